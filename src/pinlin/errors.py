@@ -1,0 +1,214 @@
+"""The pinlin exception hierarchy.
+
+Every error pinlin raises derives from :class:`PinlinError` and from the closest
+built-in exception: :class:`ValueError` for bad input, :class:`RuntimeError` for a
+computation that failed, :class:`MemoryError` for a problem too large for this
+machine.  Subclasses keep the failing data as attributes so that callers can
+react without parsing messages (SPEC section 9).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+__all__ = [
+    "PinlinError",
+    "InputError",
+    "UrdfError",
+    "NameNotFoundError",
+    "JointNotFoundError",
+    "FrameNotFoundError",
+    "ParameterError",
+    "ConfigurationError",
+    "NotAnEquilibriumError",
+    "SingularMassError",
+    "PrescribedJointError",
+    "TimePeriodicError",
+    "SceneFileError",
+    "ComputationError",
+    "ConvergenceError",
+    "ModelTooLargeError",
+]
+
+
+class PinlinError(Exception):
+    """Base class of every error raised by pinlin."""
+
+
+class InputError(PinlinError, ValueError):
+    """The caller passed something pinlin cannot work with."""
+
+
+class UrdfError(InputError):
+    """A URDF file or string could not be turned into a usable model.
+
+    Attributes
+    ----------
+    source : str
+        The path, or ``"<string>"`` for URDF text.
+    """
+
+    def __init__(self, message: str, source: str):
+        super().__init__(message)
+        self.source = source
+
+
+class NameNotFoundError(InputError):
+    """A joint or frame name does not exist; the message lists the valid names.
+
+    Attributes
+    ----------
+    name : str
+        The name that was asked for.
+    valid : tuple of str
+        The names that exist.
+    """
+
+    what = "name"
+
+    def __init__(self, name: str, valid: Sequence[str], context: str = ""):
+        self.name = name
+        self.valid = tuple(valid)
+        shown = ", ".join(repr(v) for v in self.valid[:40])
+        if len(self.valid) > 40:
+            shown += f", ... ({len(self.valid) - 40} more)"
+        where = f" in {context}" if context else ""
+        super().__init__(f"unknown {self.what} {name!r}{where}; valid {self.what}s: {shown}")
+
+
+class JointNotFoundError(NameNotFoundError):
+    """A joint name does not exist in the model."""
+
+    what = "joint"
+
+
+class FrameNotFoundError(NameNotFoundError):
+    """A frame name does not exist in the model."""
+
+    what = "frame"
+
+
+class ParameterError(InputError):
+    """A numeric parameter is non-finite, of the wrong shape or out of range.
+
+    Attributes
+    ----------
+    parameter : str
+        Name of the offending parameter.
+    """
+
+    def __init__(self, parameter: str, message: str):
+        super().__init__(f"{parameter}: {message}")
+        self.parameter = parameter
+
+
+class ConfigurationError(InputError):
+    """A configuration or velocity vector has the wrong size or is not finite."""
+
+
+class NotAnEquilibriumError(InputError):
+    """``linearize`` was asked to work at a point that is not an equilibrium.
+
+    Attributes
+    ----------
+    residual : float
+        Norm of the generalized-force residual [N or N m].
+    relative_residual : float
+        The residual divided by the size of the forces that should balance.
+    """
+
+    def __init__(self, message: str, residual: float, relative_residual: float):
+        super().__init__(message)
+        self.residual = residual
+        self.relative_residual = relative_residual
+
+
+class SingularMassError(InputError):
+    """The mass matrix is singular or indefinite.
+
+    Attributes
+    ----------
+    joints : tuple of str
+        Joints whose motion carries no inertia.
+    """
+
+    def __init__(self, message: str, joints: Sequence[str]):
+        super().__init__(message)
+        self.joints = tuple(joints)
+
+
+class PrescribedJointError(InputError):
+    """A joint cannot be given a prescribed velocity (it is not 1-DOF, or unknown)."""
+
+
+class TimePeriodicError(InputError):
+    """The linearized equations depend on the angle of a prescribed joint.
+
+    Then they are time-periodic, not constant-coefficient, and pinlin's analysis
+    (built on a constant dynamic stiffness) does not apply.
+
+    Attributes
+    ----------
+    joint : str
+        The prescribed joint whose angle changes the equations.
+    variation : float
+        Largest relative change of M, C, K or the residual over the tested angles.
+    """
+
+    def __init__(self, message: str, joint: str, variation: float):
+        super().__init__(message)
+        self.joint = joint
+        self.variation = variation
+
+
+class SceneFileError(InputError):
+    """A scene file is missing, unreadable or has a wrong key or value.
+
+    Attributes
+    ----------
+    path : str
+        The scene file.
+    key : str or None
+        The dotted key at fault, when one is.
+    """
+
+    def __init__(self, message: str, path: str, key: str | None = None):
+        where = f"{path}: " + (f"[{key}] " if key else "")
+        super().__init__(where + message)
+        self.path = path
+        self.key = key
+
+
+class ComputationError(PinlinError, RuntimeError):
+    """A computation failed (did not converge, lost all accuracy)."""
+
+
+class ConvergenceError(ComputationError):
+    """An iteration did not converge.
+
+    Attributes
+    ----------
+    history : tuple of float
+        The residual norm at each iteration.
+    """
+
+    def __init__(self, message: str, history: Sequence[float]):
+        super().__init__(message)
+        self.history = tuple(history)
+
+
+class ModelTooLargeError(PinlinError, MemoryError):
+    """The model would need more memory than this machine can give.
+
+    Attributes
+    ----------
+    required : int
+        Estimated bytes needed.
+    available : int
+        Bytes pinlin allows itself to use.
+    """
+
+    def __init__(self, message: str, required: int, available: int):
+        super().__init__(message)
+        self.required = required
+        self.available = available
