@@ -33,7 +33,7 @@ import pinocchio as pin
 from .elements import Evaluation
 from .scene import Scene
 
-__all__ = ["Assembly", "assemble"]
+__all__ = ["Assembly", "assemble", "external_forces"]
 
 
 def _symmetric_from_upper(a: np.ndarray) -> np.ndarray:
@@ -77,7 +77,8 @@ class Assembly:
     calls: list[str]
 
 
-def _fext(scene: Scene, ev: Evaluation) -> pin.StdVec_Force | None:
+def external_forces(scene: Scene, ev: Evaluation) -> pin.StdVec_Force | None:
+    """The scene's wrenches as Pinocchio's ``fext`` (one force per joint, joint frames), or None."""
     if not scene.wrenches:
         return None
     fext = pin.StdVec_Force()
@@ -108,7 +109,7 @@ def assemble(
     nv = model.nv
     v0 = np.asarray(scene.v0 if v is None else v, dtype=float)
     ev = Evaluation(scene, q, v0)
-    fext = _fext(scene, ev)
+    fext = external_forces(scene, ev)
     extra = () if fext is None else (fext,)
     M = C = K = None
 

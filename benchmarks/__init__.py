@@ -1,0 +1,1 @@
+"""pinlin's benchmark suite: run with ``python -m benchmarks`` (see benchmarks/README.md)."""
