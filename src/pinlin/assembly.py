@@ -25,6 +25,7 @@ residual only                  ``computeStaticTorque`` / ``computeGeneralizedGra
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,16 +34,24 @@ import pinocchio as pin
 from .elements import Evaluation
 from .scene import Scene
 
-__all__ = ["Assembly", "assemble", "external_forces"]
+__all__ = ["Assembly", "assemble", "external_forces", "fro", "symmetric_from_upper"]
 
 
-def _symmetric_from_upper(a: np.ndarray) -> np.ndarray:
-    upper = np.triu(a)
-    return upper + np.triu(upper, 1).T
+def symmetric_from_upper(a: np.ndarray, lower: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """A copy of ``a`` with its strictly lower triangle mirrored from the upper one.
+
+    Pinocchio's C++ ``crba`` fills only the upper triangle of M (its Python
+    binding may or may not mirror it, depending on the version).
+    """
+    a = np.array(a)
+    a[lower] = a.T[lower]
+    return a
 
 
-def _fro(a: np.ndarray) -> float:
-    return float(np.linalg.norm(a))
+def fro(a: np.ndarray) -> float:
+    """Frobenius norm (cheaper than ``np.linalg.norm`` on small arrays)."""
+    flat = a.ravel()
+    return math.sqrt(float(np.dot(flat, flat)))
 
 
 @dataclass
@@ -52,15 +61,22 @@ class Assembly:
     Attributes
     ----------
     residual : (nv,) ndarray
-        r = tau(q, v0, 0, fext) - Q_e(q, v0).
+        r = tau(q, v, 0, fext) - Q_e(q, v).
     force_scale : float
-        ||tau|| + ||Q_e||, the size of what should balance (for relative residuals).
+        ||tau|| + ||Q_e|| (+ ||K||_F when K is computed): the size of the forces
+        that should balance, or that a unit displacement [rad or m] would create,
+        used for relative residuals.  The stiffness term keeps the scale honest
+        when nothing is loaded in the generalized sense at equilibrium (a load
+        along a bar, or a wrench alone balancing a spring, where tau vanishes).
     M, C, K : (nv, nv) ndarray or None
         dr/da, dr/dv, dr/dq when asked for.
-    C_pin, K_pin : (nv, nv) ndarray or None
-        The parts of C and K computed by Pinocchio (they carry rounding that
-        breaks exact symmetry); K_nonsym_elements is True when the elements'
-        own stiffness is not exactly symmetric.
+    rounding_scale_C, rounding_scale_K : float
+        Norm of the parts of C and K that carry rounding breaking their exact
+        (skew-)symmetry: what Pinocchio computed, plus the elements whose
+        stiffness is not exactly symmetric.
+    coriolis_D : (nv, nv) ndarray or None
+        Symmetric part of Pinocchio's dtau/dv (zero in exact arithmetic for a
+        time-invariant steady motion; rounding otherwise).
     calls : list of str
         The Pinocchio algorithms run.
     """
@@ -70,21 +86,24 @@ class Assembly:
     M: np.ndarray | None
     C: np.ndarray | None
     K: np.ndarray | None
-    C_pin: np.ndarray | None
-    K_pin: np.ndarray | None
     rounding_scale_C: float
     rounding_scale_K: float
+    coriolis_D: np.ndarray | None
     calls: list[str]
 
 
 def external_forces(scene: Scene, ev: Evaluation) -> pin.StdVec_Force | None:
-    """The scene's wrenches as Pinocchio's ``fext`` (one force per joint, joint frames), or None."""
-    if not scene.wrenches:
+    """The scene's wrenches as Pinocchio's ``fext`` (one force per joint, joint frames), or None.
+
+    Follower wrenches come from the scene's precomputed constant part; world-fixed
+    wrenches are re-expressed at ``ev.q``.
+    """
+    if scene.constant_fext is None:
         return None
-    fext = pin.StdVec_Force()
-    for _ in range(scene.model.njoints):
-        fext.append(pin.Force.Zero())
-    for wrench in scene.wrenches:
+    if not scene.varying_wrenches:
+        return scene.constant_fext
+    fext = pin.StdVec_Force(scene.constant_fext)
+    for wrench in scene.varying_wrenches:
         jid, f = wrench.joint_wrench(ev)
         fext[jid] = fext[jid] + f
     return fext
@@ -107,31 +126,34 @@ def assemble(
     """
     model, data = scene.model, scene.data
     nv = model.nv
-    v0 = np.asarray(scene.v0 if v is None else v, dtype=float)
+    v0 = scene.v0 if v is None else np.asarray(v, dtype=float)
     ev = Evaluation(scene, q, v0)
     fext = external_forces(scene, ev)
     extra = () if fext is None else (fext,)
-    M = C = K = None
+    M = C = K = coriolis_D = None
+    scale_C = 0.0
 
-    if np.any(v0):
+    if not ev.at_rest:
         zero = np.zeros(nv)
         if stiffness or damping or mass:
             dq, dv, Mu = ev.call("computeRNEADerivatives", pin.computeRNEADerivatives, model, data, q, v0, zero, *extra)
             K, C = np.array(dq), np.array(dv)
-            ev.provide_mass_matrix(_symmetric_from_upper(np.array(Mu)))
-            tau = np.array(data.tau)
+            ev.provide_mass_matrix(symmetric_from_upper(Mu, scene.lower))
+            tau = data.tau.copy()
+            coriolis_D = (C + C.T) / 2
+            scale_C = fro(C)
         else:
             tau = np.array(ev.call("rnea", pin.rnea, model, data, q, v0, zero, *extra))
     elif fext is not None:
         if stiffness:
             K = np.array(ev.call("computeStaticTorqueDerivatives", pin.computeStaticTorqueDerivatives, model, data, q, fext))
-            tau = np.array(data.tau)
+            tau = data.tau.copy()
         else:
             tau = np.array(ev.call("computeStaticTorque", pin.computeStaticTorque, model, data, q, fext))
     elif scene.has_gravity:
         if stiffness:
             K = np.array(ev.call("computeGeneralizedGravityDerivatives", pin.computeGeneralizedGravityDerivatives, model, data, q))
-            tau = np.array(data.g)
+            tau = data.g.copy()
         else:
             tau = np.array(ev.call("computeGeneralizedGravity", pin.computeGeneralizedGravity, model, data, q))
     else:
@@ -143,42 +165,31 @@ def assemble(
     if mass:
         M = ev.mass_matrix()
 
-    C_pin = None if C is None else C.copy()
-    K_pin = None if K is None else K.copy()
+    scale_K = fro(K) if stiffness else 0.0
     Q = np.zeros(nv)
-    K_el = np.zeros((nv, nv)) if stiffness else None
-    C_el = np.zeros((nv, nv)) if damping else None
-    for element in scene.elements:
-        if not element.is_wrench:
-            Q += element.generalized_force(ev)
+    symmetric = True
+    for group in scene.groups:
+        group.add_force(ev, Q)
         if stiffness:
-            element.add_stiffness(ev, K_el)
+            group.add_stiffness(ev, K)
+            symmetric = symmetric and group.symmetric_stiffness
         if damping:
-            element.add_damping(ev, C_el)
-
-    def rounding(pin_part, el_part):
-        if pin_part is None:
-            return 0.0
-        scale = _fro(pin_part)
-        if el_part is not None and np.any(el_part != el_part.T):
-            scale += _fro(el_part)
-        return scale
-
-    scale_K = rounding(K_pin, K_el)
-    scale_C = rounding(C_pin, C_el)
+            group.add_damping(ev, C)
     if stiffness:
-        K = K + K_el
-    if damping:
-        C = C + C_el
+        for wrench in scene.varying_wrenches:
+            wrench.add_stiffness(ev, K)
+            symmetric = symmetric and wrench.symmetric_stiffness
+    K_norm = fro(K) if stiffness else 0.0
+    if not symmetric:
+        scale_K += K_norm
     return Assembly(
         residual=tau - Q,
-        force_scale=_fro(tau) + _fro(Q),
+        force_scale=fro(tau) + fro(Q) + K_norm,
         M=M,
         C=C,
         K=K,
-        C_pin=C_pin,
-        K_pin=K_pin,
         rounding_scale_C=scale_C,
         rounding_scale_K=scale_K,
+        coriolis_D=coriolis_D,
         calls=ev.calls,
     )

@@ -28,7 +28,7 @@ class EquilibriumResult:
     residual : float
         ||r(q)|| on the free coordinates [N, N m].
     relative_residual : float
-        ||r|| / (||tau|| + ||Q_e||).
+        ||r|| / (||tau|| + ||Q_e|| + ||K||), see :class:`pinlin.assembly.Assembly`.
     iterations : int
         Newton steps taken.
     history : tuple of float
@@ -97,7 +97,7 @@ def find_equilibrium(
     q0 : (nq,) array, optional
         Start; default Pinocchio's neutral configuration.
     tol : float
-        Stop when ||r|| / (||tau|| + ||Q_e||) <= tol.
+        Stop when ||r|| / (||tau|| + ||Q_e|| + ||K||) <= tol.
     max_iterations : int
     min_step : float
         Smallest line-search fraction before giving up.

@@ -28,6 +28,8 @@ __all__ = [
     "ComputationError",
     "ConvergenceError",
     "ModelTooLargeError",
+    "IntegrationError",
+    "AccuracyWarning",
 ]
 
 
@@ -212,3 +214,25 @@ class ModelTooLargeError(PinlinError, MemoryError):
         super().__init__(message)
         self.required = required
         self.available = available
+
+
+class IntegrationError(ComputationError):
+    """A time integration (the nonlinear reference simulation) failed.
+
+    Attributes
+    ----------
+    t_reached : float
+        The time [s] up to which the solution is valid.
+    """
+
+    def __init__(self, message: str, t_reached: float):
+        super().__init__(message)
+        self.t_reached = float(t_reached)
+
+
+class AccuracyWarning(UserWarning):
+    """A result was computed but its own error figure exceeds the requested tolerance.
+
+    The result is still returned, with the error figure attached; the warning
+    says which figure and by how much (STYLE: never silently inaccurate).
+    """

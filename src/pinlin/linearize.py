@@ -2,14 +2,22 @@
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
 import pinocchio as pin
+import scipy.linalg
 
-from .assembly import assemble
+from .assembly import assemble, fro
 from .elements import Evaluation, WrenchElement
-from .errors import NotAnEquilibriumError, ParameterError, SingularMassError, TimePeriodicError
+from .errors import (
+    ComputationError,
+    NotAnEquilibriumError,
+    ParameterError,
+    SingularMassError,
+    TimePeriodicError,
+)
 from .scene import Scene
 from .system import LinearizedSystem
 
@@ -18,10 +26,6 @@ __all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES"]
 #: Offsets [rad or m] of a prescribed joint at which the equations are
 #: evaluated again to check that they do not depend on its position.
 PERIODIC_TEST_ANGLES = (1.0, 2.5)
-
-
-def _fro(a) -> float:
-    return float(np.linalg.norm(a))
 
 
 def _structure_tol(n: int) -> float:
@@ -49,11 +53,8 @@ def _massless_joints(scene: Scene) -> list[str]:
 
 
 def _check_mass(scene: Scene, M: np.ndarray) -> None:
-    try:
-        np.linalg.cholesky(M)
+    if scipy.linalg.lapack.dpotrf(M, lower=1, clean=0)[1] == 0:  # Cholesky succeeded: positive definite
         return
-    except np.linalg.LinAlgError:
-        pass
     joints = _massless_joints(scene)
     if not joints:
         w, V = np.linalg.eigh(M)
@@ -85,12 +86,12 @@ def _time_invariance(scene: Scene, q: np.ndarray, base, tol: float) -> tuple[flo
             other = assemble(scene, pin.integrate(scene.model, q, dq), stiffness=True, damping=True, mass=True)
             calls.extend(other.calls)
             change = max(
-                _fro(getattr(other, key)[np.ix_(f, f)] - val) / max(_fro(val), np.finfo(float).tiny)
+                fro(getattr(other, key)[np.ix_(f, f)] - val) / max(fro(val), np.finfo(float).tiny)
                 for key, val in ref.items()
             )
             change = max(
                 change,
-                _fro(other.residual[f] - base.residual[f]) / max(base.force_scale, np.finfo(float).tiny),
+                fro(other.residual[f] - base.residual[f]) / max(base.force_scale, np.finfo(float).tiny),
             )
             worst = max(worst, change)
             if change > tol:
@@ -137,7 +138,8 @@ def linearize(
         generalized forces (actuators); they are returned in ``sys.balancing``
         and do not change K.  Never applied unless asked.
     equilibrium_tol : float
-        Largest relative residual ||r|| / (||tau|| + ||Q_e||) accepted as equilibrium.
+        Largest relative residual ||r|| / (||tau|| + ||Q_e|| + ||K||) accepted as
+        equilibrium (the K term: a unit displacement's force).
     structure_tol : float, optional
         Relative size below which the skew part of K (the symmetric part of the
         Coriolis C) that Pinocchio's rounding leaves is set to exactly zero; the
@@ -160,25 +162,34 @@ def linearize(
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
-    for label, val in (("equilibrium_tol", equilibrium_tol), ("periodic_tol", periodic_tol)):
-        if not (np.isfinite(val) and val > 0):
-            raise ParameterError(label, f"must be a positive number, got {val!r}")
+    if not (equilibrium_tol > 0 and math.isfinite(equilibrium_tol)):
+        raise ParameterError("equilibrium_tol", f"must be a positive number, got {equilibrium_tol!r}")
+    if not (periodic_tol > 0 and math.isfinite(periodic_tol)):
+        raise ParameterError("periodic_tol", f"must be a positive number, got {periodic_tol!r}")
     f = scene.free_dofs
     n = len(f)
+    everything = n == scene.model.nv
     base = assemble(scene, q, stiffness=True, damping=True, mass=True)
-    r = base.residual[f]
-    rel = _fro(r) / base.force_scale if base.force_scale > 0 else 0.0
+    r = base.residual if everything else base.residual[f]
+    rel = fro(r) / base.force_scale if base.force_scale > 0 else 0.0
     if rel > equilibrium_tol and not balancing:
         worst = int(np.argmax(np.abs(r)))
         raise NotAnEquilibriumError(
             f"q is not an equilibrium of the scene: relative residual {rel:.3e} > equilibrium_tol "
             f"{equilibrium_tol:g} (largest unbalanced force {r[worst]:.4g} on {scene.dof_names[worst]!r}); "
             f"use find_equilibrium, or balancing=True to hold q with actuator forces",
-            residual=_fro(r),
+            residual=fro(r),
             relative_residual=rel,
         )
-    ix = np.ix_(f, f)
-    M = base.M[ix]
+
+    def restrict(a):
+        return a if everything else a[np.ix_(f, f)]
+
+    M, C, K = restrict(base.M), restrict(base.C), restrict(base.K)
+    if not math.isfinite(base.force_scale + fro(C) + fro(M)):
+        raise ComputationError(
+            "linearize: non-finite entries in M, C, K or the residual (overflow from extreme parameters?)"
+        )
     _check_mass(scene, M)
     notes = []
     calls = list(base.calls)
@@ -188,29 +199,34 @@ def linearize(
         calls.extend(more)
 
     tol = _structure_tol(n) if structure_tol is None else float(structure_tol)
+    tiny = np.finfo(float).tiny
     dropped: dict[str, float] = {}
-    C, K = base.C[ix], base.K[ix]
-    D, G = (C + C.T) / 2, (C - C.T) / 2
-    S, N = (K + K.T) / 2, (K - K.T) / 2
-    if base.C_pin is not None and np.any(base.C_pin):
-        Cp = base.C_pin[ix]
-        D_pin = (Cp + Cp.T) / 2
-        size = _fro(D_pin) / max(_fro(Cp), np.finfo(float).tiny)
+    S = (K + K.T) * 0.5
+    N = (K - K.T) * 0.5
+    size = fro(N) / max(base.rounding_scale_K, tiny)
+    if size <= tol:
+        if size:
+            dropped["N"] = size
+        N = np.zeros_like(K)
+    if base.coriolis_D is None:  # C comes from the elements alone: exactly symmetric
+        D, G = C, np.zeros_like(C)
+    else:
+        D = (C + C.T) * 0.5
+        G = (C - C.T) * 0.5
+        D_rnea = restrict(base.coriolis_D)
+        size = fro(D_rnea) / max(base.rounding_scale_C, tiny)
         if size <= tol:  # the Coriolis part of C is skew in exact arithmetic
-            D = D - D_pin
+            D = D - D_rnea
             if size:
                 dropped["D (Coriolis rounding)"] = size
-    for name, part, scale in (("G", G, base.rounding_scale_C), ("N", N, base.rounding_scale_K)):
-        if np.any(part):
-            size = _fro(part) / max(scale, np.finfo(float).tiny)
-            if size <= tol:
-                dropped[name] = size
-                part[...] = 0.0
-            elif scale > 0 and size < 1e3 * tol:
-                notes.append(f"{name} is small ({size:.1e} of the computed part) but above structure_tol; kept")
+        size = fro(G) / max(base.rounding_scale_C, tiny)
+        if size <= tol:
+            if size:
+                dropped["G"] = size
+            G = np.zeros_like(C)
     if balancing:
         notes.append(f"held at q by constant actuator forces (relative residual {rel:.2e})")
-    return LinearizedSystem(
+    return LinearizedSystem.trusted(
         M,
         D,
         G,

@@ -8,7 +8,7 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 import pinocchio as pin
 
-from .elements import Element, JointDamper, WrenchElement
+from .elements import Element, Evaluation, JointDamper, WrenchElement
 from .elements.base import check_vector3
 from .errors import ConfigurationError, ParameterError, PrescribedJointError
 from .robot import Robot
@@ -113,9 +113,38 @@ class Scene:
         all_names = robot.dof_names
         self.dof_names = tuple(all_names[i] for i in self.free_dofs)
 
+        self.lower = np.tril_indices(robot.nv, -1)  # for mirroring Pinocchio's upper-triangular M
         self.model = pin.Model(robot.model)
         self.model.gravity = pin.Motion(self.gravity, np.zeros(3))
         self.data = robot.create_data(self.model, memory_limit)
+        self._compile()
+
+    def _compile(self) -> None:
+        """Group the elements for evaluation and precompute what does not depend on q.
+
+        Joint-space elements are grouped by class (vectorized where the class
+        allows).  Body-fixed wrenches (followers) are constant in their joint's
+        frame, so their part of Pinocchio's ``fext`` is built once here; only
+        world-fixed wrenches are re-expressed at each q.
+        """
+        by_class: dict[type, list[Element]] = {}
+        for element in self.elements:
+            if not element.is_wrench:
+                by_class.setdefault(type(element), []).append(element)
+        self.groups = tuple(cls.group(tuple(els), self.robot) for cls, els in by_class.items())
+        wrenches = self.wrenches
+        self.varying_wrenches = tuple(w for w in wrenches if not w.body_fixed)
+        self.constant_fext = None
+        if wrenches:
+            fext = pin.StdVec_Force()
+            for _ in range(self.model.njoints):
+                fext.append(pin.Force.Zero())
+            ev = Evaluation(self, self.robot.neutral(), np.zeros(self.model.nv))
+            for w in wrenches:
+                if w.body_fixed:
+                    jid, f = w.joint_wrench(ev)
+                    fext[jid] = fext[jid] + f
+            self.constant_fext = fext
 
     @staticmethod
     def _urdf_dampers(robot: Robot) -> tuple[Element, ...]:
@@ -184,9 +213,14 @@ class Scene:
                 f"{label} has shape {q.shape}; robot {self.robot.name!r} needs a full Pinocchio "
                 f"configuration of size nq = {self.robot.nq} (prescribed joints included)"
             )
-        if not np.all(np.isfinite(q)):
+        if not np.isfinite(q).all():
             raise ConfigurationError(f"{label} has non-finite entries: {q}")
-        return pin.normalize(self.model, q)
+        if self.robot.nq == self.robot.nv:  # a vector space: nothing to normalize
+            return q
+        q = pin.normalize(self.model, q)
+        if not np.isfinite(q).all():
+            raise ConfigurationError(f"{label} cannot be normalized (a zero quaternion or complex number?)")
+        return q
 
     def __repr__(self) -> str:
         kinds: dict[str, int] = {}

@@ -187,6 +187,48 @@ class LinearizedSystem:
         (D, G), (S, N) = parts["C"], parts["K"]
         return cls(M, D, G, S, N, dof_names=tuple(dof_names))
 
+    @classmethod
+    def trusted(
+        cls,
+        M: np.ndarray,
+        D: np.ndarray,
+        G: np.ndarray,
+        S: np.ndarray,
+        N: np.ndarray,
+        *,
+        dof_names: tuple[str, ...],
+        q: np.ndarray | None = None,
+        v: np.ndarray | None = None,
+        residual: float = 0.0,
+        balancing: np.ndarray | None = None,
+        elapsed: float = 0.0,
+        calls: tuple[str, ...] = (),
+        dropped: Mapping[str, float] | None = None,
+        notes: tuple[str, ...] = (),
+    ) -> LinearizedSystem:
+        """Wrap matrices that are valid by construction, without re-validating them.
+
+        For builders (such as :func:`pinlin.linearize`) that produce M, D, S
+        exactly symmetric and G, N exactly skew, with M already checked positive
+        definite and every entry finite, and ``dof_names`` of the right length.
+        The arrays are taken over (not copied) and made read-only.  Everyone else
+        should call the constructor, which validates.
+        """
+        obj = object.__new__(cls)
+        C, K = D + G, S + N
+        for a in (M, D, G, S, N, C, K, q, v, balancing):
+            if a is not None:
+                a.flags.writeable = False
+        set_ = object.__setattr__
+        for name, value in (
+            ("M", M), ("D", D), ("G", G), ("S", S), ("N", N), ("C", C), ("K", K),
+            ("dof_names", tuple(dof_names)), ("q", q), ("v", v), ("residual", residual),
+            ("balancing", balancing), ("elapsed", elapsed), ("calls", tuple(calls)),
+            ("dropped", dict(dropped or {})), ("notes", tuple(notes)),
+        ):  # fmt: skip
+            set_(obj, name, value)
+        return obj
+
     def replace(self, **changes) -> LinearizedSystem:
         """A copy with some fields changed (validated again)."""
         changes.pop("C", None)

@@ -9,12 +9,12 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ParameterError
-from .base import Element, Evaluation, as_matrix, check_psd
+from .base import Element, ElementGroup, Evaluation, as_matrix, check_psd
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..robot import JointInfo, Robot
 
-__all__ = ["JointSpring"]
+__all__ = ["JointSpring", "SpringGroup"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,3 +106,41 @@ class JointSpring(Element):
         _, jac = self.deflection(ev)
         Ks = self.matrix(j)
         K[j.v_slice, j.v_slice] += Ks if jac is None else Ks @ jac
+
+    @classmethod
+    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+        return SpringGroup(elements, robot)
+
+
+class SpringGroup(ElementGroup):
+    """Springs on joints with nq = nv = 1 as arrays; the others one by one.
+
+    Q[iv] -= k (q[iq] - rest) and K[iv, iv] += k in a few array operations.
+    """
+
+    def __init__(self, elements: tuple[JointSpring, ...], robot: Robot):
+        simple = [e for e in elements if robot.joint(e.joint).nq == 1 and e.stiffness.ndim < 2]
+        super().__init__(tuple(e for e in elements if e not in simple))
+        joints = [robot.joint(e.joint) for e in simple]
+        self.iq = np.array([j.idx_q for j in joints], dtype=int)
+        self.iv = np.array([j.idx_v for j in joints], dtype=int)
+        self.k = np.array([float(np.ravel(e.stiffness)[0]) for e in simple])
+        self.rest = np.array([0.0 if e.rest is None else float(np.ravel(e.rest)[0]) for e in simple])
+        self.unique = len(set(self.iv.tolist())) == len(self.iv)
+        self.symmetric_stiffness = all(robot.joint(e.joint).nv == 1 for e in self.elements)
+
+    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+        if len(self.iv):
+            if self.unique:
+                Q[self.iv] -= self.k * (ev.q[self.iq] - self.rest)
+            else:
+                np.subtract.at(Q, self.iv, self.k * (ev.q[self.iq] - self.rest))
+        super().add_force(ev, Q)
+
+    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        if len(self.iv):
+            if self.unique:
+                K[self.iv, self.iv] += self.k
+            else:
+                np.add.at(K, (self.iv, self.iv), self.k)
+        super().add_stiffness(ev, K)

@@ -38,6 +38,7 @@ class RayleighDamping(Element):
     beta: float = 0.0
 
     kind: ClassVar[str] = "rayleigh"
+    symmetric_stiffness: ClassVar[bool] = True
 
     def __post_init__(self):
         for name in ("alpha", "beta"):

@@ -41,6 +41,8 @@ class FollowerWrench(WrenchElement):
     torque: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
     kind: ClassVar[str] = "follower"
+    symmetric_stiffness: ClassVar[bool] = True  # it adds nothing: Pinocchio differentiates it
+    body_fixed: ClassVar[bool] = True
 
     def __post_init__(self):
         object.__setattr__(self, "force", check_vector3(self.force, f"FollowerWrench({self.frame!r}).force"))

@@ -1,0 +1,258 @@
+"""The ``pinlin`` command line: ``pinlin analyze [SCENE.toml]``.
+
+Exit codes: 0 success, 2 bad input (scene file, URDF, parameters), 3 a
+computation that failed (no convergence, lost accuracy).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from collections.abc import Sequence
+
+import numpy as np
+
+from . import __version__
+from .elements import JointDamper, JointSpring
+from .equilibrium import find_equilibrium
+from .errors import ComputationError, InputError, ModelTooLargeError, ParameterError, PinlinError
+from .linearize import linearize
+from .robot import EXAMPLES, load_example
+from .scene import Scene
+from .scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
+from .system import MATRIX_NAMES, LinearizedSystem
+
+__all__ = ["main", "analyze", "render_text"]
+
+EXIT_OK, EXIT_INPUT, EXIT_COMPUTATION = 0, 2, 3
+
+
+def _example_spec(name: str, stiffness: float, damping: float) -> SceneSpec:
+    """An example robot with elastic joints, springs unstressed at its reference pose."""
+    if not (np.isfinite(stiffness) and stiffness > 0):
+        raise ParameterError("--stiffness", f"must be a positive number, got {stiffness}")
+    if not (np.isfinite(damping) and damping >= 0):
+        raise ParameterError("--damping", f"must be a non-negative number, got {damping}")
+    robot = load_example(name)
+    refs = robot.reference_configurations
+    q0 = next(iter(refs.values())).copy() if refs else robot.neutral()
+    elements = []
+    for jname in robot.joint_names:
+        j = robot.joint(jname)
+        if j.kind == "JointModelFreeFlyer":
+            continue
+        rest = q0[j.q_slice]
+        elements.append(JointSpring(jname, stiffness, rest=rest if j.nq > 1 else float(rest[0])))
+        if damping:
+            elements.append(JointDamper(jname, damping))
+    scene = Scene(robot, elements)
+    floating = any(robot.joint(n).kind == "JointModelFreeFlyer" for n in robot.joint_names)
+    return SceneSpec(scene, scene.check_configuration(q0), not floating, floating, f"example:{name}")
+
+
+def _definiteness(a: np.ndarray) -> dict:
+    if not np.any(a):
+        return {"zero": True, "negative": 0, "zero_eigenvalues": a.shape[0], "positive": 0}
+    w = np.linalg.eigvalsh(a)
+    tol = a.shape[0] * np.finfo(float).eps * np.abs(w).max()
+    return {
+        "zero": False,
+        "negative": int(np.sum(w < -tol)),
+        "zero_eigenvalues": int(np.sum(np.abs(w) <= tol)),
+        "positive": int(np.sum(w > tol)),
+    }
+
+
+def analyze(spec: SceneSpec) -> tuple[dict, LinearizedSystem]:
+    """Run equilibrium and linearization (and the analyses available) on a scene spec.
+
+    Returns the machine-readable report (a JSON-compatible dict) and the system.
+    """
+    t0 = time.perf_counter()
+    scene = spec.scene
+    robot = scene.robot
+    report: dict = {
+        "pinlin_version": __version__,
+        "scene": {
+            "source": spec.path,
+            "robot": robot.name,
+            "urdf": robot.source,
+            "nq": robot.nq,
+            "nv": robot.nv,
+            "n": scene.n,
+            "dof_names": list(scene.dof_names),
+            "gravity": scene.gravity.tolist(),
+            "prescribed": dict(scene.prescribed),
+            "elements": [_describe(e) for e in scene.elements],
+        },
+    }
+    q = spec.q0
+    if spec.equilibrium:
+        eq = find_equilibrium(scene, q)
+        q = eq.q
+        report["equilibrium"] = {
+            "q": eq.q.tolist(),
+            "residual": eq.residual,
+            "relative_residual": eq.relative_residual,
+            "iterations": eq.iterations,
+            "elapsed": eq.elapsed,
+        }
+    sys_ = linearize(scene, q, balancing=spec.balancing)
+    report["linearization"] = {
+        "q": sys_.q.tolist(),
+        "relative_residual": sys_.residual,
+        "balancing": None if sys_.balancing is None else sys_.balancing.tolist(),
+        "nonzero": list(sys_.nonzero),
+        "calls": list(sys_.calls),
+        "dropped": sys_.dropped,
+        "notes": list(sys_.notes),
+        "elapsed": sys_.elapsed,
+        "structure": {name: _definiteness(getattr(sys_, name)) for name in ("M", "D", "S")},
+        "matrices": {name: getattr(sys_, name).tolist() for name in MATRIX_NAMES},
+    }
+    report["elapsed"] = time.perf_counter() - t0
+    return report, sys_
+
+
+def _describe(element) -> dict:
+    out = {"kind": element.kind}
+    for key in ("joint", "frame", "stiffness", "rest", "damping", "force", "torque", "alpha", "beta"):
+        if hasattr(element, key):
+            value = getattr(element, key)
+            out[key] = value.tolist() if isinstance(value, np.ndarray) else value
+    return out
+
+
+def _matrix_text(name: str, a: np.ndarray, names: Sequence[str], precision: int) -> str:
+    if a.shape[0] > 12:
+        return f"  {name}: {a.shape[0]}x{a.shape[0]}, ||{name}||_F = {np.linalg.norm(a):.6g}"
+    width = max(len(n) for n in names)
+    rows = [f"  {name} ="]
+    for label, row in zip(names, a):
+        cells = " ".join(f"{x: .{precision}g}".rjust(precision + 7) for x in row)
+        rows.append(f"    {label.rjust(width)}  {cells}")
+    return "\n".join(rows)
+
+
+def render_text(report: dict, precision: int = 6) -> str:
+    """The human-readable report."""
+    s, lin = report["scene"], report["linearization"]
+    out = [
+        f"pinlin {report['pinlin_version']}: {s['robot']} from {s['urdf']}",
+        f"  scene file: {s['source']}",
+        f"  nq = {s['nq']}, nv = {s['nv']}, free coordinates n = {s['n']}: {', '.join(s['dof_names'])}",
+        f"  gravity = {s['gravity']} m/s^2"
+        + (f", prescribed velocities {s['prescribed']}" if s["prescribed"] else ""),
+        "  elements: "
+        + (", ".join(f"{e['kind']}({e.get('joint', e.get('frame', ''))})" for e in s["elements"]) or "none"),
+        "",
+    ]
+    if "equilibrium" in report:
+        eq = report["equilibrium"]
+        out += [
+            "Equilibrium (Newton on the configuration manifold)",
+            f"  q = {np.array2string(np.array(eq['q']), precision=precision)}",
+            f"  residual = {eq['residual']:.3e} (relative {eq['relative_residual']:.2e}), "
+            f"{eq['iterations']} iterations, {eq['elapsed'] * 1e3:.2f} ms",
+            "",
+        ]
+    if lin["balancing"] is not None:
+        out += [
+            "Operating point held by constant actuator forces (balancing, asked for explicitly)",
+            f"  balancing forces = {np.array2string(np.array(lin['balancing']), precision=4)}",
+            "",
+        ]
+    out.append("Linearized equations  M x'' + (D + G) x' + (S + N) x = f")
+    out.append(f"  nonzero: {', '.join(lin['nonzero'])}; zero: "
+               f"{', '.join(n for n in MATRIX_NAMES if n not in lin['nonzero']) or 'none'}")
+    for name in lin["nonzero"]:
+        out.append(_matrix_text(name, np.array(lin["matrices"][name]), s["dof_names"], precision))
+    out.append("  structure (eigenvalue signs -/0/+): " + "; ".join(
+        f"{k}: " + ("zero" if v["zero"] else f"{v['negative']}/{v['zero_eigenvalues']}/{v['positive']}")
+        for k, v in lin["structure"].items()
+    ))
+    out.append(f"  Pinocchio calls: {', '.join(lin['calls']) or 'none'}")
+    if lin["dropped"]:
+        out.append(
+            "  set to zero as rounding: "
+            + ", ".join(f"{k} ({v:.1e} relative)" for k, v in lin["dropped"].items())
+        )
+    for note in lin["notes"]:
+        out.append(f"  note: {note}")
+    out.append(f"  equilibrium residual (relative) = {lin['relative_residual']:.2e}; "
+               f"linearize {lin['elapsed'] * 1e3:.2f} ms")
+    out.append("")
+    out.append(f"Total {report['elapsed'] * 1e3:.1f} ms")
+    return "\n".join(out)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="pinlin", description="Linearized equations of motion of multibody systems from a URDF."
+    )
+    parser.add_argument("--version", action="version", version=f"pinlin {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    a = sub.add_parser(
+        "analyze",
+        help="equilibrium, linearized matrices and their analysis for a scene",
+        description=(
+            "Find the equilibrium of a scene, linearize it into M, D, G, S, N and report them with "
+            "their errors and timings.  Without a scene file, the bundled default scene (the paper's "
+            "double pendulum with follower load) is analysed.\n\nExit codes: 0 success, 2 bad input, "
+            "3 failed computation."
+        ),
+        epilog="Scene file format (TOML):\n" + SCENE_FORMAT,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    a.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum")
+    a.add_argument(
+        "--example",
+        metavar="NAME",
+        help=f"analyse an example-robot-data model with elastic joints instead ({', '.join(sorted(EXAMPLES))})",
+    )
+    a.add_argument("--stiffness", type=float, default=1e3, help="joint stiffness for --example [N m/rad]")
+    a.add_argument("--damping", type=float, default=0.0, help="joint damping for --example [N m s/rad]")
+    a.add_argument("--json", metavar="PATH", help="also write the machine-readable report to PATH")
+    a.add_argument("--precision", type=int, default=6, help="significant digits in the text report")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``pinlin`` console script; returns the exit code."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if args.command != "analyze":
+        parser.print_help()
+        return EXIT_INPUT
+    try:
+        if args.example and args.scene:
+            raise ParameterError("--example", "give either a scene file or --example, not both")
+        if args.example:
+            spec = _example_spec(args.example, args.stiffness, args.damping)
+        else:
+            spec = load_scene(args.scene or default_scene_path())
+        report, _ = analyze(spec)
+    except (InputError, ModelTooLargeError) as exc:
+        print(f"pinlin: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except ComputationError as exc:
+        print(f"pinlin: computation failed: {exc}", file=sys.stderr)
+        return EXIT_COMPUTATION
+    except PinlinError as exc:  # any other pinlin error is a failed computation
+        print(f"pinlin: computation failed: {exc}", file=sys.stderr)
+        return EXIT_COMPUTATION
+    print(render_text(report, args.precision))
+    if args.json:
+        try:
+            with open(args.json, "w", encoding="utf-8") as f:
+                json.dump(report, f, indent=2)
+        except OSError as exc:
+            print(f"pinlin: error: cannot write {args.json}: {exc}", file=sys.stderr)
+            return EXIT_INPUT
+    return EXIT_OK
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,78 @@
+"""find_equilibrium: Newton on the configuration manifold (SPEC section 3)."""
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+import pinlin
+
+
+def double_pendulum(**kw):
+    robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf())
+    return pinlin.Scene(robot, **kw)
+
+
+@pytest.mark.parametrize(
+    "start, expected",
+    [((0.3, -0.2), (0, 0)), ((2.9, 0.2), (np.pi, 0)), ((0.2, 3.0), (0, np.pi)), ((3.0, -0.1), (np.pi, 0))],
+)
+def test_four_equilibria_of_example_6_2(start, expected):
+    """Without springs and load the double pendulum has (0,0), (pi,0), (0,pi), (pi,pi) in absolute
+    angles; in relative URDF angles theta2 = phi2 - phi1 the same set, found from nearby starts."""
+    eq = pinlin.find_equilibrium(double_pendulum(), start)
+    assert_allclose(eq.q, expected, atol=1e-10)
+    assert eq.relative_residual <= 1e-12
+    assert eq.history[-1] == eq.residual
+    assert len(eq.history) == eq.iterations + 1
+
+
+def test_spring_equilibrium_closed_form():
+    """One bar (m, l) with a spring k at rest angle a, zero gravity -> theta = a; with gravity,
+    k (theta - a) + m g l/2 sin(theta) = 0, solved by bisection as reference."""
+    m, l, k, a, g = 2.0, 0.8, 15.0, 0.9, 9.81
+    robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(1, length=l, mass=m))
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", k, rest=a)], gravity=(0, 0, -g))
+    eq = pinlin.find_equilibrium(scene)
+    lo, hi = 0.0, a
+    for _ in range(200):
+        mid = (lo + hi) / 2
+        if k * (mid - a) + m * g * l / 2 * np.sin(mid) > 0:
+            hi = mid
+        else:
+            lo = mid
+    assert_allclose(eq.q, [lo], rtol=1e-12)
+    sys = pinlin.linearize(scene, eq.q)
+    assert_allclose(sys.S, [[k + m * g * l / 2 * np.cos(lo)]], rtol=1e-10)
+
+
+def test_floating_base_under_gravity_has_no_equilibrium():
+    robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(2, radius=0.05), free_flyer=True)
+    with pytest.raises(pinlin.ConvergenceError, match="residual history") as info:
+        pinlin.find_equilibrium(pinlin.Scene(robot))
+    assert len(info.value.history) >= 1
+    assert info.value.history[0] > 1.0  # the weight of the chain, unbalanced
+
+
+def test_floating_base_in_zero_gravity_is_in_equilibrium():
+    robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(2, radius=0.05), free_flyer=True)
+    eq = pinlin.find_equilibrium(pinlin.Scene(robot, gravity=(0, 0, 0)))
+    assert eq.iterations == 0 and eq.residual == 0.0
+
+
+def test_iteration_limit_reports_history():
+    scene = double_pendulum(elements=[pinlin.JointSpring("joint1", 1.0, rest=1.0)])
+    with pytest.raises(pinlin.ConvergenceError, match="no convergence in 1 iterations") as info:
+        pinlin.find_equilibrium(scene, [2.0, 0.5], max_iterations=1)
+    assert len(info.value.history) == 2
+
+
+def test_bad_arguments():
+    scene = double_pendulum()
+    with pytest.raises(pinlin.ConfigurationError, match=r"q0 has shape \(3,\).*nq = 2"):
+        pinlin.find_equilibrium(scene, [0.0, 0.0, 0.0])
+    with pytest.raises(pinlin.ConfigurationError, match="non-finite"):
+        pinlin.find_equilibrium(scene, [0.0, np.nan])
+    with pytest.raises(pinlin.ParameterError, match="tol: must be a positive number"):
+        pinlin.find_equilibrium(scene, tol=-1.0)
+    with pytest.raises(pinlin.ParameterError, match="max_iterations"):
+        pinlin.find_equilibrium(scene, max_iterations=2.5)
