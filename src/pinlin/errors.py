@@ -28,8 +28,12 @@ __all__ = [
     "ComputationError",
     "ConvergenceError",
     "ModelTooLargeError",
+    "MissingDependencyError",
     "IntegrationError",
     "AccuracyWarning",
+    "NotAnEigenvalueError",
+    "NotSimpleError",
+    "EigenvalueNotIsolatedError",
 ]
 
 
@@ -236,3 +240,63 @@ class AccuracyWarning(UserWarning):
     The result is still returned, with the error figure attached; the warning
     says which figure and by how much (STYLE: never silently inaccurate).
     """
+
+
+class NotAnEigenvalueError(InputError):
+    """A point given as an eigenvalue (a root of det L) is not one, to the stated tolerance.
+
+    Attributes
+    ----------
+    lam : complex
+        The point [1/s].
+    distance : float
+        How far it is from being a root, in the measure the message names
+        (relative smallest singular value of L, or relative distance to the
+        nearest eigenvalue).
+    """
+
+    def __init__(self, message: str, lam: complex, distance: float):
+        super().__init__(message)
+        self.lam = complex(lam)
+        self.distance = float(distance)
+
+
+class NotSimpleError(InputError):
+    """A method needs a simple root or a simple dynamic stiffness, and this one is not.
+
+    Attributes
+    ----------
+    lam : complex or None
+        The offending eigenvalue [1/s], when there is one.
+    measure : float
+        The quantity that failed the test (named in the message).
+    """
+
+    def __init__(self, message: str, lam: complex | None = None, measure: float = float("nan")):
+        super().__init__(message)
+        self.lam = None if lam is None else complex(lam)
+        self.measure = float(measure)
+
+
+class EigenvalueNotIsolatedError(ComputationError):
+    """No contour around an eigenvalue separates it from the rest of the spectrum.
+
+    Attributes
+    ----------
+    lam : complex
+        The eigenvalue [1/s].
+    inner : float
+        Radius [1/s] of the cluster taken as the eigenvalue itself.
+    outer : float
+        Radius [1/s] at which the next eigenvalue was found.
+    """
+
+    def __init__(self, message: str, lam: complex, inner: float, outer: float):
+        super().__init__(message)
+        self.lam = complex(lam)
+        self.inner = float(inner)
+        self.outer = float(outer)
+
+
+class MissingDependencyError(PinlinError, ImportError):
+    """An optional dependency (matplotlib for plots, ...) is not installed; the message says which extra to install."""

@@ -1,0 +1,289 @@
+"""Plots of spectra, loci, Campbell diagrams, stability maps, responses and chain modes.
+
+matplotlib is an optional extra (``pip install 'pinlin[plot]'``).  Every function
+takes an optional ``ax`` (or ``axes``) to draw into and returns it, so plots
+compose into the user's own figures.  Conventions: lambda [1/s] in the complex
+plane, frequencies omega [rad/s].
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pinocchio as pin
+
+from .errors import MissingDependencyError, ParameterError
+from .tracking import track_modes
+
+__all__ = [
+    "eigenvalue_map",
+    "root_locus",
+    "campbell",
+    "stability_map",
+    "frequency_response",
+    "chain_mode_shape",
+    "work_precision",
+    "VERDICT_COLORS",
+]
+
+#: Colours of the stability verdicts in maps and eigenvalue plots.
+VERDICT_COLORS = {
+    "asymptotically_stable": "#2a9d8f",
+    "marginally_stable": "#8ecae6",
+    "divergence": "#f4a261",
+    "flutter": "#e63946",
+    "undecided": "#adb5bd",
+}
+
+_KIND_STYLE = {
+    "underdamped": ("o", "#264653"),
+    "overdamped": ("s", "#2a9d8f"),
+    "critically_damped": ("D", "#e9c46a"),
+    "rigid_body": ("x", "#6c757d"),
+    "unstable": ("^", "#e63946"),
+}
+
+
+def _pyplot():
+    try:
+        import matplotlib.pyplot as plt
+    except ImportError as exc:  # pragma: no cover - exercised only without the extra
+        raise MissingDependencyError("pinlin.plot needs matplotlib: pip install 'pinlin[plot]'") from exc
+    return plt
+
+
+def _ax(ax):
+    if ax is None:
+        _, ax = _pyplot().subplots()
+    return ax
+
+
+def _eigenvalues(modes) -> np.ndarray:
+    lam = np.asarray(getattr(modes, "eigenvalues", modes), dtype=complex).ravel()
+    if not np.all(np.isfinite(lam)):
+        raise ParameterError("eigenvalues", "has non-finite values")
+    return lam
+
+
+def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = True):
+    """Eigenvalues in the complex plane, marked by mode kind, with their error bounds.
+
+    Parameters
+    ----------
+    modes : Modes or array_like
+        A :func:`pinlin.modal_analysis` result (uses ``kind``, ``error_bound``
+        and ``stability`` when present) or plain eigenvalues.
+    error_bars : bool
+        Draw each eigenvalue's error bound as a horizontal bar (its distance to
+        the imaginary axis is what a stability verdict must beat).
+    """
+    ax = _ax(ax)
+    lam = _eigenvalues(modes)
+    kinds = tuple(getattr(modes, "kind", ("eigenvalue",) * lam.size))
+    for kind in dict.fromkeys(kinds):
+        sel = np.array([k == kind for k in kinds])
+        marker, color = _KIND_STYLE.get(kind, ("o", "#264653"))
+        ax.scatter(lam[sel].real, lam[sel].imag, marker=marker, color=color, label=kind.replace("_", " "), zorder=3)
+    bound = getattr(modes, "error_bound", None)
+    if error_bars and bound is not None:
+        ax.errorbar(lam.real, lam.imag, xerr=np.asarray(bound, float), fmt="none", ecolor="#6c757d", lw=1, zorder=2)
+    ax.axvline(0.0, color="k", lw=0.8)
+    ax.axhline(0.0, color="k", lw=0.4)
+    ax.set_xlabel("Re $\\lambda$ [1/s]")
+    ax.set_ylabel("Im $\\lambda$ [rad/s]")
+    stability = getattr(modes, "stability", None)
+    if title and stability is not None:
+        ax.set_title(str(stability.kind).replace("_", " "))
+    ax.legend(loc="best", fontsize="small")
+    return ax
+
+
+def root_locus(parameter, eigenvalues, ax=None, *, vectors=None, label: str = "parameter", cmap: str = "viridis"):
+    """Eigenvalues traced over a parameter, each mode followed by its shape.
+
+    Parameters
+    ----------
+    parameter : (steps,) array_like
+    eigenvalues : (steps, m) array_like
+    vectors : (steps, n, m) array_like, optional
+        Mode shapes for :func:`pinlin.tracking.track_modes`; without them modes
+        are matched by eigenvalue distance.
+    label : str
+        Name of the parameter (colour bar).
+    """
+    plt = _pyplot()
+    ax = _ax(ax)
+    p = np.asarray(parameter, dtype=float)
+    tracked = track_modes(eigenvalues, vectors)
+    if p.shape != (tracked.eigenvalues.shape[0],):
+        raise ParameterError("parameter", f"expected {tracked.eigenvalues.shape[0]} values, got shape {p.shape}")
+    lam = tracked.eigenvalues
+    for j in range(lam.shape[1]):
+        ax.plot(lam[:, j].real, lam[:, j].imag, color="#adb5bd", lw=1, zorder=1)
+    points = ax.scatter(lam.real.ravel(), lam.imag.ravel(), c=np.repeat(p, lam.shape[1]), cmap=cmap, s=10, zorder=2)
+    plt.colorbar(points, ax=ax, label=label)
+    ax.axvline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("Re $\\lambda$ [1/s]")
+    ax.set_ylabel("Im $\\lambda$ [rad/s]")
+    return ax
+
+
+def campbell(speed, eigenvalues, ax=None, *, vectors=None, orders: Sequence[float] = (1.0,), label: str = "spin speed [rad/s]"):
+    """Campbell diagram: damped frequencies |Im lambda| against spin speed.
+
+    Modes are followed by their shapes (:func:`pinlin.tracking.track_modes`),
+    so crossing frequencies cross instead of veering falsely; points with
+    Re lambda > 0 (unstable) are marked in red.  Straight lines show the
+    excitation orders k * speed.
+    """
+    ax = _ax(ax)
+    w = np.asarray(speed, dtype=float)
+    tracked = track_modes(eigenvalues, vectors)
+    lam = tracked.eigenvalues
+    if w.shape != (lam.shape[0],):
+        raise ParameterError("speed", f"expected {lam.shape[0]} values, got shape {w.shape}")
+    keep = [j for j in range(lam.shape[1]) if np.all(lam[:, j].imag >= -1e-12 * (1 + np.abs(lam[:, j])))]
+    keep = keep or list(range(lam.shape[1]))
+    for j in keep:
+        ax.plot(w, np.abs(lam[:, j].imag), lw=1.5)
+    unstable = lam[:, keep].real > 0
+    if np.any(unstable):
+        ws = np.broadcast_to(w[:, None], unstable.shape)
+        ax.scatter(ws[unstable], np.abs(lam[:, keep].imag)[unstable], color=VERDICT_COLORS["flutter"], s=12, zorder=3, label="Re $\\lambda$ > 0")
+        ax.legend(loc="best", fontsize="small")
+    for k in orders:
+        ax.plot(w, k * w, color="k", ls="--", lw=0.8)
+    ax.set_xlabel(label)
+    ax.set_ylabel("damped frequency |Im $\\lambda$| [rad/s]")
+    return ax
+
+
+def stability_map(x, y, kinds, ax=None, *, xlabel: str = "x", ylabel: str = "y"):
+    """Stability verdicts over a two-parameter grid.
+
+    Parameters
+    ----------
+    x : (nx,) array_like
+    y : (ny,) array_like
+    kinds : (ny, nx) array_like of str
+        Verdict kinds (``modes.stability.kind``) at each grid point.
+    """
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    ax = _ax(ax)
+    names = list(VERDICT_COLORS)
+    k = np.asarray(kinds, dtype=object)
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    if k.shape != (y.size, x.size):
+        raise ParameterError("kinds", f"expected shape {(y.size, x.size)} (len(y), len(x)), got {k.shape}")
+    unknown = {str(v) for v in k.ravel()} - set(names)
+    if unknown:
+        raise ParameterError("kinds", f"unknown verdicts {sorted(unknown)}; expected {names}")
+    codes = np.vectorize(names.index)(k.astype(str)).astype(float)
+    ax.pcolormesh(x, y, codes, cmap=ListedColormap(list(VERDICT_COLORS.values())), vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
+    present = [n for n in names if np.any(k == n)]
+    ax.legend(handles=[Patch(color=VERDICT_COLORS[n], label=n.replace("_", " ")) for n in present], loc="best", fontsize="small")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    return ax
+
+
+def frequency_response(resp, axes=None, *, output: int = 0, input: int = 0, label: str | None = None):
+    """Magnitude (log-log) and phase of one input-output pair of a frequency response.
+
+    Parameters
+    ----------
+    resp : object with ``omega`` (f,), ``magnitude`` and ``phase`` (outputs, inputs, f)
+        A :func:`pinlin.frequency_response` result (python-control's shape convention).
+    axes : pair of Axes, optional
+        Magnitude and phase axes; a new figure with two stacked axes by default.
+    """
+    plt = _pyplot()
+    omega = np.asarray(resp.omega, dtype=float)
+    mag = np.asarray(resp.magnitude)[output, input]
+    phase = np.asarray(resp.phase)[output, input]
+    if axes is None:
+        _, axes = plt.subplots(2, 1, sharex=True)
+    ax_mag, ax_phase = axes
+    ax_mag.loglog(omega, mag, label=label)
+    ax_phase.semilogx(omega, np.degrees(np.unwrap(phase)), label=label)
+    ax_mag.set_ylabel("|H|")
+    ax_phase.set_ylabel("phase [deg]")
+    ax_phase.set_xlabel("$\\omega$ [rad/s]")
+    if label:
+        ax_mag.legend(loc="best", fontsize="small")
+    return axes
+
+
+def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str = "xz", frames: Sequence[str] | None = None):
+    """A planar chain at q and displaced along a mode shape.
+
+    Parameters
+    ----------
+    scene : Scene
+    q : (nq,) array_like
+        The operating point.
+    mode : (n,) array_like
+        A mode shape on the free coordinates (complex allowed: its real part is
+        drawn, normalized to unit largest entry, times ``scale`` [rad or m]).
+    plane : str
+        The two world axes to draw, for example ``"xz"`` for chains swinging about y.
+    frames : sequence of str, optional
+        Frames joined by the drawn polyline; default: every joint frame in model
+        order and ``tip`` when the model has it.
+    """
+    ax = _ax(ax)
+    axes = ["xyz".index(c) for c in plane]
+    if len(axes) != 2:
+        raise ParameterError("plane", f"expected two of x, y, z, got {plane!r}")
+    model = scene.model
+    data = model.createData()
+    q = scene.check_configuration(q)
+    x = np.asarray(mode)
+    if x.shape != (scene.n,):
+        raise ParameterError("mode", f"expected {scene.n} values (the free coordinates), got shape {x.shape}")
+    real = np.real(x * np.exp(-1j * np.angle(x[np.argmax(np.abs(x))])))
+    dv = np.zeros(model.nv)
+    dv[scene.free_dofs] = scale * real / max(np.abs(real).max(), np.finfo(float).tiny)
+    names = list(frames) if frames is not None else [model.names[j] for j in range(1, model.njoints)] + (
+        ["tip"] if model.existFrame("tip") else []
+    )
+    ids = [scene.robot.frame_id(name) for name in names]
+
+    def points(config):
+        pin.framesForwardKinematics(model, data, config)
+        return np.array([data.oMf[i].translation[axes] for i in ids])
+
+    rest = points(q)
+    moved = points(pin.integrate(model, q, dv))
+    ax.plot(rest[:, 0], rest[:, 1], "o--", color="#adb5bd", label="equilibrium")
+    ax.plot(moved[:, 0], moved[:, 1], "o-", color="#264653", label="mode")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"{plane[0]} [m]")
+    ax.set_ylabel(f"{plane[1]} [m]")
+    return ax
+
+
+def work_precision(results: Mapping[str, tuple[Sequence[float], Sequence[float]]], ax=None):
+    """Error against run time, log-log, one line per method.
+
+    Parameters
+    ----------
+    results : mapping of label to (times [s], errors)
+    """
+    ax = _ax(ax)
+    if not results:
+        raise ParameterError("results", "nothing to plot")
+    for label, (times, errors) in results.items():
+        t = np.asarray(times, dtype=float)
+        e = np.asarray(errors, dtype=float)
+        if t.shape != e.shape:
+            raise ParameterError(f"results[{label!r}]", f"times {t.shape} and errors {e.shape} differ in shape")
+        ax.loglog(t, np.maximum(e, np.finfo(float).tiny), "o-", label=label)
+    ax.set_xlabel("run time [s]")
+    ax.set_ylabel("error")
+    ax.legend(loc="best", fontsize="small")
+    return ax
