@@ -167,3 +167,41 @@ def test_bad_cli_arguments(capsys):
     assert run(["analyze", "--example", "ur5", "--stiffness", "-1"], capsys)[0] == EXIT_INPUT
     code, _, err = run(["analyze", "scene.toml", "--example", "ur5"], capsys)
     assert code == EXIT_INPUT and "not both" in err
+
+
+def test_report_modes_and_verdict(tmp_path, capsys):
+    """Default scene: undamped, circulatory, below flutter: lam^2 are the eigenvalues of -M^-1 K (SPEC 7.1)."""
+    code, out, err = run(["analyze", "--json", str(tmp_path / "r.json")], capsys)
+    assert code == 0, err
+    report = json.loads((tmp_path / "r.json").read_text())
+    T = np.array([[1.0, 0.0], [1.0, 1.0]])
+    m1, l1, m2, l2, k1, k2, P, g = 1.3, 0.7, 0.9, 0.5, 3.0, 2.0, 4.0, 9.81
+    M = T.T @ np.array([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2], [m2 * l1 * l2 / 2, m2 * l2**2 / 3]]) @ T
+    K = T.T @ np.array([[k1 + k2 + (m1 / 2 + m2) * g * l1 - P * l1, -k2 + P * l1], [-k2, k2 + m2 * g * l2 / 2]]) @ T
+    mu = np.linalg.eigvals(-np.linalg.solve(M, K))  # real negative below the flutter load
+    expected = np.sort(np.sqrt(-mu.real))
+    imag = np.array(report["modes"]["eigenvalues_imag"])
+    assert_allclose(np.sort(imag[imag > 0]), expected, rtol=1e-12)
+    assert_allclose(report["modes"]["eigenvalues_real"], 0.0, atol=1e-12)
+    assert report["stability"]["kind"] == "marginally_stable"
+    assert max(report["modes"]["backward_error"]) < 1e-14
+    assert "Stability: MARGINALLY STABLE" in out and "eta" in out and "kappa" in out
+
+
+@pytest.mark.parametrize(
+    "scene, verdict",
+    [("scenes/rotating_ring.toml", "asymptotically_stable"), ("scenes/turntable.toml", "marginally_stable")],
+)
+def test_bundled_scene_verdicts(scene, verdict, tmp_path, capsys):
+    code, _, err = run(["analyze", str(pinlin.data_path(scene)), "--json", str(tmp_path / "r.json")], capsys)
+    assert code == 0, err
+    assert json.loads((tmp_path / "r.json").read_text())["stability"]["kind"] == verdict
+
+
+def test_plot_file_is_written(tmp_path, capsys):
+    target = tmp_path / "report.png"
+    code, _, err = run(["analyze", "--plot", str(target)], capsys)
+    assert code == 0, err
+    assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    code, _, err = run(["analyze", "--plot", str(tmp_path / "no" / "dir.png")], capsys)
+    assert code == EXIT_INPUT and "cannot write" in err

@@ -1,5 +1,11 @@
 """The ``pinlin`` command line: ``pinlin analyze [SCENE.toml]``.
 
+The report: the scene, the equilibrium and its residual, the nonzero matrices
+and their structure, the modes with their errors (eta, kappa, error bound), the
+stability verdict with its reason, and timings; ``--json`` writes it all in
+machine-readable form, ``--plot`` draws the eigenvalue map and frequency
+responses.
+
 Exit codes: 0 success, 2 bad input (scene file, URDF, parameters), 3 a
 computation that failed (no convergence, lost accuracy).
 """
@@ -17,11 +23,19 @@ import numpy as np
 from . import __version__
 from .elements import JointDamper, JointSpring
 from .equilibrium import find_equilibrium
-from .errors import ComputationError, InputError, ModelTooLargeError, ParameterError, PinlinError
+from .errors import (
+    ComputationError,
+    InputError,
+    MissingDependencyError,
+    ModelTooLargeError,
+    ParameterError,
+    PinlinError,
+)
 from .linearize import linearize
 from .robot import EXAMPLES, load_example
 from .scene import Scene
 from .scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
+from .spectral import modal_analysis
 from .system import MATRIX_NAMES, LinearizedSystem
 
 __all__ = ["main", "analyze", "render_text"]
@@ -65,10 +79,11 @@ def _definiteness(a: np.ndarray) -> dict:
     }
 
 
-def analyze(spec: SceneSpec) -> tuple[dict, LinearizedSystem]:
-    """Run equilibrium and linearization (and the analyses available) on a scene spec.
+def analyze(spec: SceneSpec):
+    """Run equilibrium, linearization and modal analysis on a scene spec.
 
-    Returns the machine-readable report (a JSON-compatible dict) and the system.
+    Returns the machine-readable report (a JSON-compatible dict), the
+    :class:`~pinlin.LinearizedSystem` and the :class:`~pinlin.Modes`.
     """
     t0 = time.perf_counter()
     scene = spec.scene
@@ -112,8 +127,27 @@ def analyze(spec: SceneSpec) -> tuple[dict, LinearizedSystem]:
         "structure": {name: _definiteness(getattr(sys_, name)) for name in ("M", "D", "S")},
         "matrices": {name: getattr(sys_, name).tolist() for name in MATRIX_NAMES},
     }
+    modes = modal_analysis(sys_)
+    report["modes"] = {
+        "method": modes.method.name,
+        "method_reason": modes.method.reason,
+        "elapsed": modes.elapsed,
+        "is_simple": bool(modes.is_simple),
+        "max_backward_error": float(modes.max_backward_error),
+        "eigenvalues_real": modes.eigenvalues.real.tolist(),
+        "eigenvalues_imag": modes.eigenvalues.imag.tolist(),
+        "natural_frequency": modes.natural_frequency.tolist(),
+        "damping_ratio": [None if not np.isfinite(z) else float(z) for z in modes.damping_ratio],
+        "backward_error": modes.backward_error.tolist(),
+        "condition": [None if not np.isfinite(k) else float(k) for k in modes.condition],
+        "error_bound": [None if not np.isfinite(b) else float(b) for b in modes.error_bound],
+        "multiplicity": np.asarray(modes.multiplicity).tolist(),
+        "kind": list(modes.kind),
+        "table": modes.table(max_rows=None),
+    }
+    report["stability"] = {"kind": modes.stability.kind, "reason": modes.stability.reason}
     report["elapsed"] = time.perf_counter() - t0
-    return report, sys_
+    return report, sys_, modes
 
 
 def _describe(element) -> dict:
@@ -184,6 +218,14 @@ def render_text(report: dict, precision: int = 6) -> str:
     out.append(f"  equilibrium residual (relative) = {lin['relative_residual']:.2e}; "
                f"linearize {lin['elapsed'] * 1e3:.2f} ms")
     out.append("")
+    modes = report["modes"]
+    out.append(modes["table"])
+    out.append(f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms")
+    out.append("")
+    st = report["stability"]
+    out.append(f"Stability: {st['kind'].replace('_', ' ').upper()}")
+    out.append(f"  {st['reason']}")
+    out.append("")
     out.append(f"Total {report['elapsed'] * 1e3:.1f} ms")
     return "\n".join(out)
 
@@ -215,8 +257,43 @@ def _parser() -> argparse.ArgumentParser:
     a.add_argument("--stiffness", type=float, default=1e3, help="joint stiffness for --example [N m/rad]")
     a.add_argument("--damping", type=float, default=0.0, help="joint damping for --example [N m s/rad]")
     a.add_argument("--json", metavar="PATH", help="also write the machine-readable report to PATH")
+    a.add_argument("--plot", metavar="PATH", help="also draw the eigenvalue map and frequency response to PATH (needs matplotlib)")
     a.add_argument("--precision", type=int, default=6, help="significant digits in the text report")
     return parser
+
+
+def write_plot(path: str, sys_: LinearizedSystem, modes) -> None:
+    """Eigenvalue map and driving-point frequency responses (up to four coordinates) into one figure."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        raise MissingDependencyError("--plot needs matplotlib: pip install 'pinlin[plot]'") from None
+    from . import plot
+    from .adjoint import frequency_response
+
+    fig = plt.figure(figsize=(11, 4.5))
+    grid = fig.add_gridspec(2, 2, width_ratios=(1, 1.2))
+    plot.eigenvalue_map(modes, fig.add_subplot(grid[:, 0]))
+    mags = np.abs(modes.eigenvalues)
+    mags = mags[mags > 1e-9 * max(mags.max(), 1.0)]
+    lo, hi = (0.1 * mags.min(), 10 * mags.max()) if mags.size else (0.1, 10.0)
+    omega = np.logspace(np.log10(lo), np.log10(hi), 600)
+    dofs = list(range(min(sys_.n, 4)))
+    resp = frequency_response(sys_, omega, inputs=dofs, outputs=dofs)
+    axes = (fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[1, 1]))
+    for k, name in enumerate(sys_.dof_names[: len(dofs)]):
+        plot.frequency_response(resp, axes, output=k, input=k, label=f"H[{name}, {name}]")
+    fig.suptitle(f"{sys_.n} coordinates: {modes.stability.kind.replace('_', ' ')}")
+    fig.tight_layout()
+    try:
+        fig.savefig(path)
+    except OSError as exc:
+        raise ParameterError("--plot", f"cannot write {path}: {exc}") from None
+    finally:
+        plt.close(fig)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -233,8 +310,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             spec = _example_spec(args.example, args.stiffness, args.damping)
         else:
             spec = load_scene(args.scene or default_scene_path())
-        report, _ = analyze(spec)
-    except (InputError, ModelTooLargeError) as exc:
+        report, sys_, modes = analyze(spec)
+        if args.plot:
+            write_plot(args.plot, sys_, modes)
+    except (InputError, ModelTooLargeError, MissingDependencyError) as exc:
         print(f"pinlin: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
     except ComputationError as exc:

@@ -90,6 +90,12 @@ def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = Tru
         ax.errorbar(lam.real, lam.imag, xerr=np.asarray(bound, float), fmt="none", ecolor="#6c757d", lw=1, zorder=2)
     ax.axvline(0.0, color="k", lw=0.8)
     ax.axhline(0.0, color="k", lw=0.4)
+    # the real axis spans at least a tenth of the spectrum's size, so error bars
+    # of 1e-14 on an undamped spectrum do not set the scale
+    span = max(1.15 * np.abs(lam.real).max(initial=0.0), 0.1 * np.abs(lam).max(initial=0.0), 1e-12)
+    left = min(-span, 1.15 * lam.real.min(initial=0.0))
+    right = max(span, 1.15 * lam.real.max(initial=0.0))
+    ax.set_xlim(left, right)
     ax.set_xlabel("Re $\\lambda$ [1/s]")
     ax.set_ylabel("Im $\\lambda$ [rad/s]")
     stability = getattr(modes, "stability", None)

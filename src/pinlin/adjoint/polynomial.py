@@ -1,0 +1,197 @@
+"""The characteristic polynomial p(lam) = det L(lam) (SPEC section 4, paper Sec. 6).
+
+.. math::  p(\\lambda) = \\det(\\lambda^2 M + \\lambda C + K)
+           = \\det M\\,\\lambda^{2n} + \\dots + \\det K
+           = \\det M \\prod_{k=1}^{2n} (\\lambda - \\lambda_k)
+
+The coefficients are computed from determinants on circles (LU, log-scaled)
+interpolated by the FFT, each coefficient taken from the circle where its
+a-posteriori error bound is smallest (see :mod:`pinlin.adjoint._circle`).  The
+coefficients of a polynomial of high degree are ill-conditioned functions of the
+roots and vice versa: the reported ``coef_error`` says how many digits each
+coefficient keeps; the roots of p are no substitute for a structured eigensolver
+(:func:`pinlin.modal_analysis`) beyond small n.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from numpy.polynomial import Polynomial
+
+from ..errors import ComputationError, ParameterError
+from ._circle import chunks, fit_on_circles, ladder
+from ._util import EPS, check_system, complex_points, eigenvalue_bounds, positive
+
+__all__ = ["CharacteristicPolynomial", "characteristic_polynomial", "det_samples"]
+
+#: Ratio between successive radii of the sampling circles.
+RADIUS_RATIO = 4.0
+#: When K is singular (zero roots) the smallest circle is this fraction of the largest.
+SINGULAR_K_SPAN = 1e-8
+
+
+class CharacteristicPolynomial(Polynomial):
+    """``p(lam) = det L(lam)`` as a :class:`numpy.polynomial.Polynomial`, with its error figures.
+
+    It is a Polynomial in every respect (call it, ``.coef``, ``.roots()``,
+    ``.deriv()``, arithmetic); the extra attributes below are set only on the
+    object :func:`characteristic_polynomial` returns (derived polynomials carry
+    ``None``).
+
+    Attributes
+    ----------
+    coef_error : (2n + 1,) ndarray
+        A-posteriori absolute error bound of each coefficient (same units as it).
+    error : float
+        Normwise relative error ``||coef_error|| / ||coef||``.
+    radius : (2n + 1,) ndarray
+        Radius [1/s] of the circle each coefficient was taken from.
+    evaluations : int
+        Determinants evaluated.
+    method : str
+        How the coefficients were computed.
+    elapsed : float
+        Seconds.
+    """
+
+    _meta = ("coef_error", "error", "radius", "evaluations", "method", "elapsed")
+
+    def __init__(self, coef, domain=None, window=None, symbol="x"):
+        super().__init__(coef, domain, window, symbol)
+        for key in self._meta:
+            setattr(self, key, None)
+
+    @property
+    def relative_coef_error(self) -> np.ndarray:
+        """``coef_error / |coef|`` per coefficient (``inf`` where a coefficient is zero)."""
+        if self.coef_error is None:
+            raise AttributeError("this polynomial was derived from a computed one and carries no error figures")
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.coef != 0, self.coef_error / np.abs(self.coef), np.inf)
+
+    def error_at(self, lam) -> np.ndarray | float:
+        """Error bound of ``p(lam)`` evaluated from these coefficients.
+
+        .. math::  \\sum_k (\\epsilon_k + 4 k\\,u\\,|c_k|)\\,|\\lambda|^k
+
+        with the coefficient errors ``epsilon_k`` and the rounding of Horner's
+        rule (``u`` the unit roundoff).
+        """
+        if self.coef_error is None:
+            raise AttributeError("this polynomial was derived from a computed one and carries no error figures")
+        z, scalar = complex_points(lam, "lam")
+        k = np.arange(len(self.coef))
+        weights = self.coef_error + 4 * k * EPS * np.abs(self.coef)
+        out = np.abs(z)[:, None] ** k @ weights
+        return float(out[0]) if scalar else out
+
+
+def det_samples(sys):
+    """``evaluate(z) -> (sign, log|det L(z)|)`` for :func:`fit_on_circles` (LU, chunked)."""
+    M, C, K = (np.asarray(a, dtype=complex) for a in (sys.M, sys.C, sys.K))
+
+    def evaluate(z):
+        sign = np.empty(len(z), dtype=complex)
+        logdet = np.empty(len(z))
+        for sl in chunks(len(z), sys.n):
+            zz = z[sl, None, None]
+            sign[sl], logdet[sl] = np.linalg.slogdet(zz * zz * M + zz * C + K)
+        return sign, logdet
+
+    return evaluate
+
+
+def characteristic_polynomial(
+    sys,
+    *,
+    radii=None,
+    n_points: int | None = None,
+    radius_ratio: float = RADIUS_RATIO,
+) -> CharacteristicPolynomial:
+    """The characteristic polynomial ``p(lam) = det(lam^2 M + lam C + K)``, degree 2n.
+
+    Determinants are evaluated (LU with partial pivoting, log-scaled) at ``N``
+    points of circles ``|lam| = r`` and interpolated by the FFT; ``N - 2n - 1``
+    extra points per circle measure the rounding noise ``eps_r``, and coefficient
+    k is taken from the circle minimizing its error bound ``eps_r / r^k``.  The
+    radii span the bounds ``lo/2 ... 2 hi`` on the eigenvalue moduli, with
+    ``|lam|^2 <= ||M^-1 C|| |lam| + ||M^-1 K||`` and the same for ``1/lam`` with
+    ``K^-1`` (SPEC section 4).  Leading coefficient ``det M``, constant term
+    ``det K``.
+
+    Parameters
+    ----------
+    sys : LinearizedSystem
+    radii : sequence of float, optional
+        Circle radii [1/s] to use instead of the automatic ladder.
+    n_points : int, optional
+        Points per circle; default ``2 (2n + 1)``.
+    radius_ratio : float
+        Ratio of successive radii of the automatic ladder (default 4).
+
+    Returns
+    -------
+    CharacteristicPolynomial
+        A :class:`numpy.polynomial.Polynomial` in lam [1/s] with ``coef_error``,
+        ``error``, ``elapsed`` and the other fields of the class.
+
+    Raises
+    ------
+    ParameterError
+        ``sys`` is not a LinearizedSystem; bad radii or point count.
+    ComputationError
+        A coefficient over- or underflows double precision (large n in
+        unsuitable units: ``det M`` of a 100-link chain is about 1e-620).
+    """
+    t0 = time.perf_counter()
+    sys = check_system(sys)
+    n = sys.n
+    ratio = positive(radius_ratio, "radius_ratio")
+    if ratio <= 1:
+        raise ParameterError("radius_ratio", f"must be > 1, got {radius_ratio}")
+    radii = _radii(sys, radii, ratio)
+    N = _points(n_points, 2 * n)
+    fit = fit_on_circles(det_samples(sys), 2 * n, 0.0, radii, N)
+    coef_c, err = fit.values("the characteristic polynomial")
+    # p has real coefficients: an imaginary part is rounding noise of the same size as err
+    err = np.maximum(err, np.abs(coef_c.imag))
+    coef = coef_c.real
+    err = err + 4 * EPS * np.abs(coef)  # the conversions mantissa * exp(log) and to real
+    p = CharacteristicPolynomial(coef)
+    p.coef_error = err
+    p.error = float(np.linalg.norm(err) / np.linalg.norm(coef)) if np.any(coef) else float("inf")
+    p.radius = fit.radius
+    p.evaluations = fit.evaluations
+    p.method = (
+        f"det L by LU on {len(fit.radii)} circle(s) of {N} points, FFT interpolation, "
+        f"each coefficient from its most accurate circle"
+    )
+    p.elapsed = time.perf_counter() - t0
+    if not np.all(np.isfinite(coef)):
+        raise ComputationError("the characteristic polynomial has non-finite coefficients")
+    return p
+
+
+def _radii(sys, radii, ratio):
+    if radii is not None:
+        try:
+            r = np.atleast_1d(np.asarray(radii, dtype=float))
+        except (TypeError, ValueError):
+            raise ParameterError("radii", f"expected positive numbers, got {radii!r}") from None
+        if r.ndim != 1 or r.size == 0 or not np.all(np.isfinite(r)) or np.any(r <= 0):
+            raise ParameterError("radii", f"expected a non-empty list of finite positive radii, got {radii!r}")
+        return r
+    lo, hi = eigenvalue_bounds(sys)
+    r_hi = 2.0 * hi if hi > 0 else 1.0
+    r_lo = 0.5 * lo if lo > 0 else r_hi * SINGULAR_K_SPAN
+    return ladder(r_lo, r_hi, ratio)
+
+
+def _points(n_points, degree):
+    if n_points is None:
+        return max(8, 2 * (degree + 1))
+    if not isinstance(n_points, (int, np.integer)) or n_points < degree + 2:
+        raise ParameterError("n_points", f"expected an integer > degree + 1 = {degree + 1}, got {n_points!r}")
+    return int(n_points)

@@ -1,0 +1,90 @@
+"""Validation of the inputs shared by the response analyses (time grids, vectors, samples).
+
+Every check raises a :class:`~pinlin.ParameterError` naming the parameter and
+giving the expected and the found shape or value (SPEC section 9).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..system import LinearizedSystem
+
+__all__ = ["check_system", "check_times", "check_vector", "check_samples", "check_tolerance"]
+
+
+def check_system(sys) -> LinearizedSystem:
+    if not isinstance(sys, LinearizedSystem):
+        raise ParameterError(
+            "sys", f"expected a pinlin.LinearizedSystem (from linearize or from_matrices), got {type(sys).__name__}"
+        )
+    return sys
+
+
+def _real_array(value, label: str) -> np.ndarray:
+    if callable(value):
+        raise ParameterError(label, "expected an array of numbers, got a callable")
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(label, f"expected real numbers, got {value!r:.80}") from None
+    return arr
+
+
+def check_times(t, label: str = "t", *, min_points: int = 1) -> np.ndarray:
+    """A 1-D, finite, strictly increasing time grid [s] with at least ``min_points`` points."""
+    arr = _real_array(t, label)
+    if arr.ndim == 0:
+        arr = arr.reshape(1)
+    if arr.ndim != 1:
+        raise ParameterError(label, f"expected a 1-D array of times, got shape {arr.shape}")
+    if arr.size < min_points:
+        raise ParameterError(label, f"expected at least {min_points} time point(s), got {arr.size}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(label, "times must be finite")
+    if arr.size > 1 and not np.all(np.diff(arr) > 0):
+        k = int(np.flatnonzero(np.diff(arr) <= 0)[0])
+        raise ParameterError(
+            label, f"times must be strictly increasing; {label}[{k + 1}] = {arr[k + 1]!r} <= {label}[{k}] = {arr[k]!r}"
+        )
+    return arr
+
+
+def check_vector(value, n: int, label: str, *, allow_none: bool = True, complex_ok: bool = False) -> np.ndarray:
+    """A finite vector of size n; None gives zeros when allowed."""
+    if value is None and allow_none:
+        return np.zeros(n, dtype=complex if complex_ok else float)
+    if callable(value):
+        raise ParameterError(label, "expected an array of numbers, got a callable")
+    try:
+        arr = np.array(value, dtype=complex if complex_ok else float)
+    except (TypeError, ValueError):
+        kind = "complex" if complex_ok else "real"
+        raise ParameterError(label, f"expected {n} {kind} numbers, got {value!r:.80}") from None
+    if arr.shape != (n,):
+        raise ParameterError(label, f"expected shape ({n},) (one value per coordinate), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(label, f"must be finite, got {arr}")
+    return arr
+
+
+def check_samples(value, rows: int, n: int, label: str) -> np.ndarray:
+    """A finite (rows, n) array of samples, one row per time point."""
+    arr = _real_array(value, label)
+    if arr.shape != (rows, n):
+        raise ParameterError(label, f"expected shape ({rows}, {n}) (one row of {n} values per time point), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        k = int(np.flatnonzero(~np.all(np.isfinite(arr), axis=1))[0])
+        raise ParameterError(label, f"must be finite; row {k} is {arr[k]}")
+    return arr
+
+
+def check_tolerance(value, label: str) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(label, f"expected a positive number, got {value!r}") from None
+    if not (np.isfinite(value) and value > 0):
+        raise ParameterError(label, f"must be a positive finite number, got {value!r}")
+    return value

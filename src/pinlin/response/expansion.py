@@ -1,0 +1,288 @@
+"""The modal expansion of the first-order state space: eigenvectors and Jordan chains.
+
+Built on the spectral module (:func:`pinlin.modal_analysis`,
+:func:`pinlin.jordan_chains`); used by the free and the harmonic response
+(SPEC sections 4 and 6).
+
+In first-order form z = (x, x'), z' = A z, a (semi)simple eigenvalue lam_k
+with right vector x_k spans v_k = (x_k, lam_k x_k), and the normalized left
+vector y_k (y_k^T L'(lam_k) x_k = 1) gives its coefficient in any state
+w = (a, b):
+
+.. math::  c_k = y_k^T \\left((\\lambda_k M + C)\\, a + M b\\right)
+
+(the SPEC's modal solution is this with w = z(0)).  A Jordan chain
+x_0, ..., x_{r-1} at lam0 spans v_i = (x_i, lam0 x_i + x_{i-1}) with
+A v_i = lam0 v_i + v_{i-1}: the states of the free solutions
+u_i(t) = exp(lam0 t) sum_{j<=i} t^j/j! x_{i-j}.  A defective eigenvalue has
+no normalized left vectors; the coefficients of its chains are found from the
+part of w that the (semi)simple modes leave, by least squares on the chain
+basis.  A few steps of iterative refinement (the same map applied to the
+residual w - V c) then make the coefficients reproduce w to rounding even when
+the left vectors are less accurate than the right ones; the final residual is
+reported.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ComputationError, ParameterError
+from ..system import LinearizedSystem
+
+__all__ = [
+    "JordanBlock",
+    "ModalExpansion",
+    "modal_expansion",
+    "complex_matmul",
+    "conjugate_partners",
+    "REFINE_STEPS",
+    "CONJUGATE_TOL",
+    "CHUNK_ROWS",
+]
+
+#: Relative distance |lam_j - conj(lam_k)| / |lam_k| within which two eigenvalues are a conjugate pair.
+CONJUGATE_TOL = 1e-10
+
+#: Rows per block in :func:`complex_matmul`.
+CHUNK_ROWS = 1024
+
+#: Steps of iterative refinement of the modal coefficients (see :meth:`ModalExpansion.coefficients`).
+REFINE_STEPS = 2
+
+
+@dataclass(frozen=True)
+class JordanBlock:
+    """One Jordan chain: eigenvalue lam0 [1/s] and vectors (n, r), columns x_0 ... x_{r-1}."""
+
+    lam0: complex
+    vectors: np.ndarray
+
+    @property
+    def length(self) -> int:
+        return self.vectors.shape[1]
+
+    def state_basis(self) -> np.ndarray:
+        """(2n, r): v_i = (x_i, lam0 x_i + x_{i-1})."""
+        X = self.vectors
+        Xd = self.lam0 * X
+        Xd[:, 1:] += X[:, :-1]
+        return np.vstack([X, Xd])
+
+
+@dataclass(frozen=True)
+class ModalExpansion:
+    """Eigenvalues, vectors and chains of a system, ready for responses.
+
+    Attributes
+    ----------
+    system : LinearizedSystem
+    modes : Modes
+        The modal analysis it was built from.
+    lam : (k,) complex
+        Semisimple eigenvalues (members of a semisimple cluster take the
+        cluster's mean, the accurate value of the multiple eigenvalue).
+    right, left : (n, k) complex
+        Their right vectors and normalized left vectors.
+    blocks : tuple of JordanBlock
+        The Jordan chains of the defective eigenvalues.
+    chain_residual : float
+        Largest relative residual of the chain equations (0 without chains).
+    gamma : float
+        Natural frequency scale sqrt(||K|| / ||M||) [1/s] (or ||C|| / ||M||, or 1),
+        weighting velocity against displacement in the least squares.
+    partner : (k,) int ndarray or None
+        For each semisimple mode, the index of its complex conjugate (itself for
+        a real eigenvalue); None when the computed spectrum is not
+        conjugate-symmetric to ``CONJUGATE_TOL``.  A real response then needs
+        only one member of each pair (twice its real part).
+    """
+
+    system: LinearizedSystem
+    modes: object
+    lam: np.ndarray
+    right: np.ndarray
+    left: np.ndarray
+    blocks: tuple[JordanBlock, ...]
+    chain_residual: float
+    gamma: float
+    partner: np.ndarray | None = None
+
+    @property
+    def is_simple(self) -> bool:
+        return not self.blocks
+
+    def _first_guess(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Coefficients of a weighted state w = (a, b / gamma): semisimple modes by their left vectors,
+        Jordan blocks by least squares on what those leave."""
+        sys, n = self.system, self.system.n
+        a, b = w[:n], w[n:] * self.gamma
+        lam = self.lam if w.ndim == 1 else self.lam[:, None]
+        c = self.left.T @ (sys.C @ a + sys.M @ b) + lam * (self.left.T @ (sys.M @ a))
+        if not self.blocks:
+            return c, np.zeros((0,) + w.shape[1:], dtype=complex)
+        rest = w - self._basis_simple @ c
+        d, *_ = np.linalg.lstsq(self._basis_chains, rest, rcond=None)
+        return c, d
+
+    @property
+    def _basis_simple(self) -> np.ndarray:
+        return np.vstack([self.right, (self.lam * self.right) / self.gamma])
+
+    @property
+    def _basis_chains(self) -> np.ndarray:
+        if not self.blocks:
+            return np.zeros((2 * self.system.n, 0), dtype=complex)
+        V = np.hstack([blk.state_basis() for blk in self.blocks])
+        V[self.system.n :] /= self.gamma
+        return V
+
+    def coefficients(
+        self, a: np.ndarray, b: np.ndarray, refine: int = REFINE_STEPS
+    ) -> tuple[np.ndarray, list[np.ndarray], float]:
+        """Coefficients of the state w = (a, b) on the modes and chains ((n,) or (n, m) columns).
+
+        The SPEC's left-vector formula (and least squares for the chains) gives
+        a first guess; ``refine`` steps of iterative refinement, each applying
+        the same formula to the residual w - V (c, d), then make the expansion
+        reproduce w to rounding even where the left vectors are less accurate
+        than the right ones (non-normal systems).
+
+        Returns
+        -------
+        c : (k,) or (k, m) complex
+            On the semisimple modes.
+        d : list of (r,) or (r, m) complex
+            On each Jordan block.
+        residual : float
+            ||w - V (c, d)|| / ||w||, velocities weighted by 1/gamma.
+        """
+        w = np.concatenate([a, b / self.gamma]).astype(complex)
+        Vs, Vd = self._basis_simple, self._basis_chains
+        c, d = self._first_guess(w)
+        for _ in range(refine):
+            r = w - Vs @ c - Vd @ d
+            dc, dd = self._first_guess(r)
+            c, d = c + dc, d + dd
+        norm_w = float(np.linalg.norm(w))
+        residual = float(np.linalg.norm(w - Vs @ c - Vd @ d) / norm_w) if norm_w > 0 else 0.0
+        out, start = [], 0
+        for blk in self.blocks:
+            out.append(d[start : start + blk.length])
+            start += blk.length
+        return c, out, residual
+
+
+def complex_matmul(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """A @ B for complex A (p, k), B (k, m) through real products of size (rows, 2k) x (2k, 2m).
+
+    The rows of A are taken ``CHUNK_ROWS`` at a time.  (Threaded BLAS products
+    of tall, thin matrices -- complex ones especially -- can be slower by two
+    orders of magnitude on a loaded machine than the same work in blocks.)
+    """
+    A = np.asarray(A, dtype=complex)
+    B = np.asarray(B, dtype=complex)
+    m = B.shape[1]
+    Bb = np.block([[B.real, B.imag], [-B.imag, B.real]])
+    out = np.empty((A.shape[0], m), dtype=complex)
+    for start in range(0, A.shape[0], CHUNK_ROWS):
+        a = A[start : start + CHUNK_ROWS]
+        R = np.hstack([a.real, a.imag]) @ Bb
+        out[start : start + CHUNK_ROWS] = R[:, :m] + 1j * R[:, m:]
+    return out
+
+
+def _gamma(sys: LinearizedSystem) -> float:
+    nM, nC, nK = (float(np.linalg.norm(a)) for a in (sys.M, sys.C, sys.K))
+    if nK > 0:
+        return float(np.sqrt(nK / nM))
+    if nC > 0:
+        return nC / nM
+    return 1.0
+
+
+def conjugate_partners(lam: np.ndarray, tol: float | None = None) -> np.ndarray | None:
+    """Index of the conjugate of each eigenvalue (itself if real), or None if the set is not symmetric."""
+    tol = CONJUGATE_TOL if tol is None else tol
+    k = lam.size
+    partner = np.arange(k)
+    pos = np.flatnonzero(lam.imag > 0)
+    neg = np.flatnonzero(lam.imag < 0)
+    if pos.size != neg.size:
+        return None
+    free = set(neg.tolist())
+    for i in pos:
+        if not free:
+            return None
+        cand = np.array(sorted(free))
+        j = int(cand[np.argmin(np.abs(lam[cand] - np.conj(lam[i])))])
+        if abs(lam[j] - np.conj(lam[i])) > tol * abs(lam[i]):
+            return None
+        partner[i], partner[j] = j, i
+        free.discard(j)
+    return partner
+
+
+def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
+    """Build the expansion from ``pinlin.modal_analysis(sys)`` (or given ``modes``) and Jordan chains.
+
+    Raises
+    ------
+    ParameterError
+        ``modes`` belongs to another system.
+    ComputationError
+        The spectral analysis left an eigenvalue neither normalized nor in a
+        cluster whose Jordan chains account for its multiplicity.
+    """
+    from ..spectral import jordan_chains, modal_analysis
+
+    if modes is None:
+        modes = modal_analysis(sys)
+    else:
+        M, C, K = modes.matrices
+        if M.shape != sys.M.shape or not (np.array_equal(M, sys.M) and np.array_equal(C, sys.C) and np.array_equal(K, sys.K)):
+            raise ParameterError("modes", "the modal analysis given is of another system (M, C, K differ)")
+    lam = np.array(modes.eigenvalues, dtype=complex)
+    in_cluster = np.zeros(lam.size, dtype=bool)
+    keep = []
+    blocks: list[JordanBlock] = []
+    residual = 0.0
+    for cluster in modes.clusters:
+        idx = list(cluster.indices)
+        in_cluster[idx] = True
+        if cluster.semisimple and np.all(modes.left_normalized[idx]):
+            lam[idx] = cluster.center
+            keep += idx
+            continue
+        chains = jordan_chains(sys, cluster.center)
+        if chains.algebraic != cluster.algebraic:
+            raise ComputationError(
+                f"free/harmonic response: the eigenvalue cluster at {cluster.center:.6g} has algebraic "
+                f"multiplicity {cluster.algebraic}, but its Jordan chains have total length "
+                f"{chains.algebraic} (partial multiplicities {chains.partial}); the rank decisions are "
+                f"ambiguous at this tolerance. Use forced_response (exact discretization) instead."
+            )
+        for chain in chains:
+            blocks.append(JordanBlock(complex(chains.lam0), np.column_stack(chain).astype(complex)))
+        residual = max(residual, chains.max_residual)
+    lone = np.flatnonzero(~in_cluster)
+    if not np.all(modes.left_normalized[lone]):
+        bad = lam[lone[~modes.left_normalized[lone]]]
+        raise ComputationError(
+            f"free/harmonic response: eigenvalues {bad} have no normalized left vector and are not in a "
+            f"cluster; the modal expansion does not apply (use forced_response)"
+        )
+    keep = np.sort(np.concatenate([lone, np.array(keep, dtype=int)])).astype(int)
+    return ModalExpansion(
+        partner=conjugate_partners(lam[keep]),
+        system=sys,
+        modes=modes,
+        lam=lam[keep],
+        right=np.array(modes.right[:, keep], dtype=complex),
+        left=np.array(modes.left[:, keep], dtype=complex),
+        blocks=tuple(blocks),
+        chain_residual=float(residual),
+        gamma=_gamma(sys),
+    )

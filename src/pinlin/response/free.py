@@ -1,0 +1,301 @@
+"""Free vibration from the modal solution (SPEC section 6, issue 5 part 1)."""
+
+from __future__ import annotations
+
+import time
+import warnings
+from math import factorial
+
+import numpy as np
+
+from ..errors import AccuracyWarning, ParameterError
+from ..system import LinearizedSystem
+from ._array import ResponseArray
+from ._inputs import check_system, check_times, check_tolerance, check_vector
+from .expansion import CHUNK_ROWS, ModalExpansion, complex_matmul, modal_expansion
+
+__all__ = ["FreeResponse", "free_response", "modal_free_motion", "TIME_CHUNK"]
+
+#: Time points evaluated together (bounds the memory of long responses).
+TIME_CHUNK = 4096
+
+
+class FreeResponse(ResponseArray):
+    """x(t): a (len(t), n) real array, with the figures of the modal solution as attributes.
+
+    Attributes
+    ----------
+    t : (len(t),) ndarray
+        Times [s].
+    xdot : (len(t), n) ndarray
+        Velocities, from the same expansion.
+    defect : float
+        Largest relative defect of the equation over t:
+        ||M x'' + C x' + K x|| / (||M|| ||x''|| + ||C|| ||x'|| + ||K|| ||x||)
+        (Frobenius matrix norms), with x, x', x'' from the expansion (SPEC section 8).
+    initial_defect : float
+        max(||x(t0) - x0|| / r_x, ||x'(t0) - v0|| / r_v) with r_x = ||x0|| +
+        ||v0|| / gamma, r_v = gamma ||x0|| + ||v0|| (gamma the natural
+        frequency scale).
+    symmetry_defect : float
+        Relative departure of the modal data from the conjugate symmetry that
+        makes x real (pairs lam, conj(lam) with conjugate terms; real modes with
+        real terms); zero in exact arithmetic.  The response is the real part
+        of the modal sum, evaluated on one member of each pair.
+    projection_residual : float
+        ||z0 - V c|| / ||z0||: how well the modal coefficients c reproduce the
+        initial state z0 = (x0, v0) in the basis V of modes and chains
+        (velocities weighted by 1/gamma), after iterative refinement.
+    chain_residual : float
+        Largest relative residual of the Jordan chain equations used (0 if none).
+    method : str
+        ``"modal"`` (simple dynamic stiffness) or ``"modal + Jordan chains"``.
+    modes : Modes
+        The modal analysis used (reuse it through ``modes=``).
+    elapsed : float
+        Seconds, modal analysis included unless ``modes`` was given.
+    """
+
+    _fields = (
+        "t",
+        "xdot",
+        "defect",
+        "initial_defect",
+        "symmetry_defect",
+        "projection_residual",
+        "chain_residual",
+        "method",
+        "modes",
+        "elapsed",
+    )
+
+    def _summary(self) -> list[str]:
+        return [f"method={self.method!r}", f"defect={self.defect:.1e}", f"elapsed={self.elapsed * 1e3:.2f} ms"]
+
+
+def _real_part_matmul(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """Re(A @ B) for complex A (p, k), B (k, m), as one real product per block of rows."""
+    Bb = np.vstack([B.real, -B.imag])
+    out = np.empty((A.shape[0], B.shape[1]))
+    for start in range(0, A.shape[0], CHUNK_ROWS):
+        a = A[start : start + CHUNK_ROWS]
+        out[start : start + CHUNK_ROWS] = np.hstack([a.real, a.imag]) @ Bb
+    return out
+
+
+def modal_free_motion(expansion: ModalExpansion, x0: np.ndarray, v0: np.ndarray, tau: np.ndarray):
+    """x, x', x'' (each (len(tau), n) real) of the free motion from (x0, v0) at tau = t - t0.
+
+    Semisimple modes: sum_k c_k exp(lam_k tau) x_k (times lam_k, lam_k^2 for
+    the derivatives); when the modes come in conjugate pairs only one member
+    of each is evaluated, with twice its real part.  A Jordan block with
+    coefficients d_i contributes exp(lam0 tau) p(tau), p(tau) = sum_j
+    tau^j/j! g_j with g_j = sum_{i>=j} d_i x_{i-j}; then
+    x' = e (lam0 p + p'), x'' = e (lam0^2 p + 2 lam0 p' + p'').
+
+    Returns
+    -------
+    x, xdot, xddot : (len(tau), n) ndarray
+    symmetry : float
+        Relative departure of the complex data from the symmetry that makes the
+        sum real (conjugate pairs: eigenvalue, and coefficient times vector;
+        real modes and Jordan terms: their imaginary part).
+    residual : float
+        The projection residual of the coefficients (see ``coefficients``).
+    """
+    c, d, residual = expansion.coefficients(x0.astype(complex), v0.astype(complex))
+    lam, X = expansion.lam, expansion.right
+    partner = expansion.partner
+    total = float(np.sum(np.linalg.norm(X, axis=0) * np.abs(c)))  # size of the modal terms at tau = 0
+    symmetry = 0.0
+    half = weight = None
+    if partner is not None:
+        idx = np.arange(lam.size)
+        half = np.flatnonzero(partner >= idx)
+        weight = np.where(partner[half] == half, 1.0, 2.0)
+        pairs = half[partner[half] != half]
+        if pairs.size:
+            mates = partner[pairs]
+            lam_gap = np.abs(lam[pairs] - np.conj(lam[mates])) / np.abs(lam[pairs])
+            vec_gap = np.linalg.norm(X[:, pairs] * c[pairs] - np.conj(X[:, mates] * c[mates]), axis=0)
+            symmetry = max(float(np.max(lam_gap)), float(np.sum(vec_gap)) / total if total > 0 else 0.0)
+        lone = half[partner[half] == half]
+        if lone.size and total > 0:
+            symmetry = max(symmetry, float(np.sum(np.linalg.norm((X[:, lone] * c[lone]).imag, axis=0))) / total)
+    parts = [_evaluate(expansion, c, d, half, weight, tau[i : i + TIME_CHUNK]) for i in range(0, tau.size, TIME_CHUNK)]
+    x = np.concatenate([p[0] for p in parts])
+    xd = np.concatenate([p[1] for p in parts])
+    xdd = np.concatenate([p[2] for p in parts])
+    imag = max(p[3] for p in parts)
+    size = float(np.max(np.abs(x))) if x.size else 0.0
+    if size > 0:
+        symmetry = max(symmetry, imag / size)
+    return x, xd, xdd, symmetry, residual
+
+
+def _evaluate(expansion: ModalExpansion, c, d, half, weight, tau):
+    """x, x', x'' (real) at tau from coefficients c (modes) and d (blocks), and max |Im| of the complex parts."""
+    lam, X = expansion.lam, expansion.right
+    T = tau.shape[0]
+    imag = 0.0
+    if half is not None:
+        lam_h = lam[half]
+        W = np.exp(np.multiply.outer(tau, lam_h)) * (c[half] * weight)
+        stacked = _real_part_matmul(np.vstack([W, W * lam_h, W * (lam_h * lam_h)]), X[:, half].T)
+        x, xd, xdd = stacked[:T], stacked[T : 2 * T], stacked[2 * T :]
+        im = None
+    else:
+        W = np.exp(np.multiply.outer(tau, lam)) * c
+        stacked = complex_matmul(np.vstack([W, W * lam, W * (lam * lam)]), X.T)
+        x, xd, xdd = stacked[:T].real, stacked[T : 2 * T].real, stacked[2 * T :].real
+        im = stacked[:T].imag
+    if expansion.blocks:
+        bx = np.zeros((T, X.shape[0]), dtype=complex)
+        bxd = np.zeros_like(bx)
+        bxdd = np.zeros_like(bx)
+        for block, coef in zip(expansion.blocks, d):
+            r = block.length
+            V = block.vectors
+            G = np.array([sum(coef[i] * V[:, i - j] for i in range(j, r)) for j in range(r)])  # (r, n)
+            powers = np.stack([tau**j / factorial(j) for j in range(r)], axis=1).astype(complex)  # (T, r)
+            p = complex_matmul(powers, G)
+            p1 = complex_matmul(powers[:, : r - 1], G[1:]) if r > 1 else np.zeros_like(p)
+            p2 = complex_matmul(powers[:, : r - 2], G[2:]) if r > 2 else np.zeros_like(p)
+            e = np.exp(block.lam0 * tau)[:, None]
+            lam0 = block.lam0
+            bx += e * p
+            bxd += e * (lam0 * p + p1)
+            bxdd += e * (lam0 * lam0 * p + 2 * lam0 * p1 + p2)
+        x, xd, xdd = x + bx.real, xd + bxd.real, xdd + bxdd.real
+        im = bx.imag if im is None else im + bx.imag
+    if im is not None and im.size:
+        imag = float(np.max(np.abs(im)))
+    return x, xd, xdd, imag
+
+
+def _relative_defect(sys: LinearizedSystem, x, xd, xdd) -> float:
+    """max_t ||M x'' + C x' + K x|| / (||M|| ||x''|| + ||C|| ||x'|| + ||K|| ||x||), Frobenius matrix norms."""
+    r = xdd @ sys.M.T + xd @ sys.C.T + x @ sys.K.T
+    nM, nC, nK = (float(np.linalg.norm(a)) for a in (sys.M, sys.C, sys.K))
+
+    def rows(a):
+        return np.sqrt(np.einsum("ij,ij->i", a, a))
+
+    scale = nM * rows(xdd) + nC * rows(xd) + nK * rows(x)
+    num = rows(r)
+    ok = scale > 0
+    return float(np.max(num[ok] / scale[ok])) if np.any(ok) else 0.0
+
+
+def free_response(
+    sys: LinearizedSystem,
+    x0,
+    v0=None,
+    t=None,
+    *,
+    t0: float = 0.0,
+    modes=None,
+    tol: float = 1e-8,
+) -> FreeResponse:
+    """Free vibration x(t) of M x'' + (D + G) x' + (S + N) x = 0 by the modal solution (SPEC section 6).
+
+    For a simple dynamic stiffness (SPEC section 4: every eigenvalue semisimple)
+
+    .. math::
+        x(t) = \\sum_{k=1}^{2n} e^{\\lambda_k (t - t_0)}\\, x_k\\, y_k^T
+               \\left((\\lambda_k M + C)\\, x_0 + M v_0\\right),
+        \\qquad y_k^T L'(\\lambda_k)\\, x_k = 1,
+
+    with the eigenvalues, right and normalized left vectors of
+    :func:`pinlin.modal_analysis`.  A defective eigenvalue (a rigid-body mode:
+    lam = 0 with chains of length two; coalescing roots at flutter onset or
+    critical damping) contributes the exponential polynomial of its Jordan
+    chains (:func:`pinlin.jordan_chains`, SPEC section 4),
+    exp(lam0 t) sum_{j<=i} t^j/j! x_{i-j}, with coefficients fitted to the
+    part of the initial state the other modes leave (see
+    :mod:`pinlin.response.expansion`).  The coefficients from the left vectors
+    are then refined (iterative refinement on the initial state) so that the
+    expansion reproduces (x0, v0) to rounding even for non-normal systems whose
+    left vectors are less accurate than their right ones.  Either way the
+    solution is exact up to the accuracy of the eigen-data: no time stepping.
+    The derivatives x', x'' come from the same expansion, so the equation's
+    defect is a genuine check.  The returned array is read-only.
+
+    Parameters
+    ----------
+    sys : LinearizedSystem
+    x0, v0 : (n,) arrays
+        Displacement and velocity at t0 (None: zero).
+    t : (len(t),) array
+        Strictly increasing times [s] (they may start before or after t0).
+    t0 : float
+        Time of the initial conditions [s].
+    modes : Modes, optional
+        A modal analysis of ``sys`` to reuse.
+    tol : float
+        An :class:`~pinlin.AccuracyWarning` is issued when ``defect``,
+        ``initial_defect`` or ``symmetry_defect`` exceeds it.
+
+    Returns
+    -------
+    FreeResponse
+        The (len(t), n) real array x(t); ``.xdot``, ``.defect``,
+        ``.initial_defect``, ``.elapsed`` and the other figures as attributes.
+
+    Raises
+    ------
+    ParameterError
+        Wrong shapes, non-finite values, non-increasing t, modes of another system.
+    ComputationError
+        The spectral data cannot be turned into an expansion (ambiguous Jordan structure).
+    """
+    t_start = time.perf_counter()
+    check_system(sys)
+    n = sys.n
+    x0 = check_vector(x0, n, "x0")
+    v0 = check_vector(v0, n, "v0")
+    if t is None:
+        raise ParameterError("t", "the output times are required")
+    times = check_times(t)
+    t0 = float(t0)
+    if not np.isfinite(t0):
+        raise ParameterError("t0", f"must be finite, got {t0!r}")
+    tol = check_tolerance(tol, "tol")
+
+    expansion = modal_expansion(sys, modes)
+    tau = times - t0
+    # one evaluation for t0 (the initial defect) and the output times
+    x, xd, xdd, symmetry, projection = modal_free_motion(expansion, x0, v0, np.concatenate([[0.0], tau]))
+    xs, xds = x[:1], xd[:1]
+    x, xd, xdd = x[1:], xd[1:], xdd[1:]
+    defect = _relative_defect(sys, x, xd, xdd)
+    g = expansion.gamma
+    rx = np.linalg.norm(x0) + np.linalg.norm(v0) / g
+    rv = g * np.linalg.norm(x0) + np.linalg.norm(v0)
+    initial = 0.0
+    if rx > 0:
+        initial = float(max(np.linalg.norm(xs[0] - x0) / rx, np.linalg.norm(xds[0] - v0) / rv))
+    method = "modal" if expansion.is_simple else "modal + Jordan chains"
+    worst = max(defect, initial, symmetry)
+    if worst > tol:
+        warnings.warn(
+            f"free_response: the {method} solution has defect {defect:.1e}, initial defect {initial:.1e}, "
+            f"symmetry defect {symmetry:.1e} (largest above tol {tol:g}); the eigen-data may be ill-conditioned "
+            f"(max eigenvalue condition {np.max(expansion.modes.condition):.1e}); forced_response(sys, None, "
+            f"...) gives the exact discretization instead",
+            AccuracyWarning,
+            stacklevel=2,
+        )
+    return FreeResponse(
+        x,
+        t=times,
+        xdot=xd,
+        defect=defect,
+        initial_defect=initial,
+        symmetry_defect=symmetry,
+        projection_residual=projection,
+        chain_residual=expansion.chain_residual,
+        method=method,
+        modes=expansion.modes,
+        elapsed=time.perf_counter() - t_start,
+    )

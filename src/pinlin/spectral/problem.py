@@ -1,0 +1,203 @@
+"""The quadratic eigenvalue problem behind a modal analysis (SPEC section 4).
+
+.. math::  L(\\lambda) x = (\\lambda^2 M + \\lambda C + K) x = 0,
+           \\qquad y^T L(\\lambda) = 0
+
+A :class:`QuadraticProblem` holds the three real coefficient matrices, their
+Frobenius norms (the weights of the backward error and of the condition
+number), and the Fan-Lin-Van Dooren scaling.  It is built either from a
+:class:`~pinlin.LinearizedSystem` (M symmetric positive definite, C = D + G,
+K = S + N) or from a tuple ``(M, C, K)`` of general real square matrices with M
+nonsingular, which need not be mechanical at all.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError, SingularMassError
+from ..system import LinearizedSystem
+
+__all__ = ["QuadraticProblem", "Scaling", "fan_lin_van_dooren", "as_problem", "check_tolerance"]
+
+#: Default: a tuple's M counts as singular when its reciprocal 2-norm condition
+#: number is below this (n eps is where LU loses every digit).
+SINGULAR_MASS_RCOND = 1e-14
+
+
+def check_tolerance(name: str, value, *, upper: float | None = 1.0) -> float:
+    """Validate a tolerance: a finite number in (0, upper); return it as float.
+
+    Raises
+    ------
+    ParameterError
+        The value is not a real number, not finite, not positive or too large.
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, f"expected a positive number, got {value!r}") from None
+    if not np.isfinite(v) or v <= 0:
+        raise ParameterError(name, f"expected a finite positive number, got {value!r}")
+    if upper is not None and v >= upper:
+        raise ParameterError(name, f"expected a number below {upper:g}, got {v:g}")
+    return v
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """Fan-Lin-Van Dooren scaling lambda = gamma mu, L_s(mu) = delta L(gamma mu) (SPEC section 4).
+
+    .. math::
+        \\gamma = \\sqrt{\\|K\\|/\\|M\\|},\\quad
+        \\delta = 2 / (\\|K\\| + \\gamma \\|C\\|),\\quad
+        M_s = \\gamma^2\\delta M,\\; C_s = \\gamma\\delta C,\\; K_s = \\delta K
+
+    After scaling ||M_s|| = ||K_s|| and their common size and ||C_s|| add up to 2.
+    When K = 0 (only possible with rigid-body modes) gamma = ||C||/||M|| balances
+    M against C instead, and with C = K = 0 no scaling is done (gamma = 1).
+
+    Attributes
+    ----------
+    gamma : float
+        Frequency scale [rad/s]: lambda = gamma mu.
+    delta : float
+        Scale of the coefficients [1/(unit of K)].
+    """
+
+    gamma: float
+    delta: float
+
+    @property
+    def identity(self) -> bool:
+        return self.gamma == 1.0 and self.delta == 1.0
+
+
+def fan_lin_van_dooren(norm_M: float, norm_C: float, norm_K: float) -> Scaling:
+    """The Fan-Lin-Van Dooren parameters from the coefficient norms (see :class:`Scaling`)."""
+    if norm_K > 0:
+        gamma = np.sqrt(norm_K / norm_M)
+    elif norm_C > 0:
+        gamma = norm_C / norm_M
+    else:
+        return Scaling(1.0, 1.0 / norm_M)
+    denom = norm_K + gamma * norm_C
+    delta = 2.0 / denom
+    return Scaling(float(gamma), float(delta))
+
+
+@dataclass(frozen=True, eq=False)
+class QuadraticProblem:
+    """Real coefficients of L(lam) = lam^2 M + lam C + K and what the solvers need of them.
+
+    Attributes
+    ----------
+    M, C, K : (n, n) ndarray
+        Read-only real coefficients.
+    system : LinearizedSystem or None
+        The mechanical system when built from one; None for a plain tuple.
+    norm_M, norm_C, norm_K : float
+        Frobenius norms: the weights of eta and kappa (SPEC section 4).
+    scaling : Scaling
+        Fan-Lin-Van Dooren parameters for these norms.
+    """
+
+    M: np.ndarray
+    C: np.ndarray
+    K: np.ndarray
+    system: LinearizedSystem | None
+    norm_M: float
+    norm_C: float
+    norm_K: float
+    scaling: Scaling
+
+    @property
+    def n(self) -> int:
+        return self.M.shape[0]
+
+    @property
+    def mechanical(self) -> bool:
+        """True when built from a LinearizedSystem (M spd, D, S symmetric, G, N skew)."""
+        return self.system is not None
+
+    def scaled(self, scaling: Scaling | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(M_s, C_s, K_s) = (gamma^2 delta M, gamma delta C, delta K)."""
+        s = self.scaling if scaling is None else scaling
+        return s.gamma**2 * s.delta * self.M, s.gamma * s.delta * self.C, s.delta * self.K
+
+    def weight(self, lam) -> np.ndarray:
+        """|lam|^2 ||M|| + |lam| ||C|| + ||K||: the scale of L(lam) in the backward error."""
+        a = np.abs(lam)
+        return a * a * self.norm_M + a * self.norm_C + self.norm_K
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float, copy=True)
+    a.flags.writeable = False
+    return a
+
+
+def _matrix(name: str, value, n: int | None) -> np.ndarray:
+    a = np.asarray(value)
+    if np.iscomplexobj(a):
+        raise ParameterError(name, "expected a real matrix, got complex entries")
+    try:
+        a = np.array(a, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, "expected a real matrix of numbers") from None
+    if a.ndim != 2 or a.shape[0] != a.shape[1]:
+        raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
+    if a.shape[0] == 0:
+        raise ParameterError(name, "expected at least one coordinate, got shape (0, 0)")
+    if n is not None and a.shape != (n, n):
+        raise ParameterError(name, f"expected shape {(n, n)} like M, got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        bad = tuple(int(i) for i in np.argwhere(~np.isfinite(a))[0])
+        raise ParameterError(name, f"has non-finite entries (first at index {bad})")
+    return a
+
+
+def as_problem(source, *, mass_rcond: float = SINGULAR_MASS_RCOND) -> QuadraticProblem:
+    """Turn a LinearizedSystem or a tuple (M, C, K) into a :class:`QuadraticProblem`.
+
+    Parameters
+    ----------
+    source : LinearizedSystem or tuple (M, C, K)
+        A tuple holds general real square matrices of one size; M must be
+        nonsingular (it need not be symmetric).
+    mass_rcond : float
+        A tuple's M is refused as singular when sigma_min / sigma_max of M is
+        below this value.
+
+    Raises
+    ------
+    ParameterError
+        Not a system or a 3-tuple; matrices not real, square, of one shape or finite.
+    SingularMassError
+        M of a tuple is (numerically) singular.
+    """
+    if isinstance(source, LinearizedSystem):
+        M, C, K, system = source.M, source.C, source.K, source
+    elif isinstance(source, (tuple, list)):
+        if len(source) != 3:
+            raise ParameterError("sys", f"expected a LinearizedSystem or a tuple (M, C, K), got {len(source)} items")
+        M = _matrix("M", source[0], None)
+        C = _matrix("C", source[1], M.shape[0])
+        K = _matrix("K", source[2], M.shape[0])
+        rcond = check_tolerance("mass_rcond", mass_rcond)
+        sv = np.linalg.svd(M, compute_uv=False)
+        if sv[-1] <= rcond * sv[0]:
+            raise SingularMassError(
+                f"M is singular: sigma_min/sigma_max = {sv[-1] / sv[0] if sv[0] else 0.0:.3g} <= mass_rcond "
+                f"{rcond:g}; the quadratic eigenproblem then has infinite eigenvalues, which pinlin does not treat",
+                (),
+            )
+        M, C, K, system = _readonly(M), _readonly(C), _readonly(K), None
+    else:
+        raise ParameterError(
+            "sys", f"expected a LinearizedSystem or a tuple (M, C, K) of arrays, got {type(source).__name__}"
+        )
+    norms = [float(np.linalg.norm(a)) for a in (M, C, K)]
+    return QuadraticProblem(M, C, K, system, *norms, fan_lin_van_dooren(*norms))

@@ -1,0 +1,223 @@
+"""Cheaper exact solver paths for structured mechanical systems (issue 3 part 2).
+
+Each path solves an n-size problem instead of the 2n-size companion pencil
+and returns the same :class:`~pinlin.spectral.qep.RawSpectrum`; the backward
+error and condition number of every pair are then computed from the original
+L(lam) exactly as for the general path, so a path is never trusted blindly.
+
+================  =========================  =======================================
+path              applies when               method
+================  =========================  =======================================
+``symmetric``     D = G = N = 0              eigh(S, M): lam = +-sqrt(-mu)
+``squared``       D = G = 0, N != 0          QZ of (-K, M) in mu = lam^2 (size n)
+``proportional``  G = N = 0, D M^-1 S        one eigh; per mode
+                  = S M^-1 D                 lam^2 + d_j lam + k_j = 0
+``general``       otherwise, tuple input     scaled companion QZ (size 2n)
+================  =========================  =======================================
+
+"Zero" means exactly zero, as :meth:`LinearizedSystem.is_zero` reports
+(``pinlin.linearize`` already sets rounding noise of G and N to exact zeros).
+With D = G = 0 the dynamic stiffness L(lam) = lam^2 M + K depends on lam^2
+only, so the spectrum is symmetric under lam -> -lam; with K symmetric as
+well L is symmetric and the right eigenvector is also the left one.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg as sla
+
+from ..errors import ComputationError
+from .problem import QuadraticProblem
+from .qep import RawSpectrum, _dggev, complex_columns, exact_pairs
+
+__all__ = ["solve_symmetric", "solve_squared", "solve_proportional", "proportionality_defect", "PATHS"]
+
+#: Names of the solver paths, in the order they are tried by ``method="auto"``.
+PATHS = ("symmetric", "squared", "proportional", "general")
+
+#: Mixing weight of D in the single eigh of the proportional path (an
+#: irrational number, so that distinct (k_j, d_j) pairs get distinct keys).
+_MIX = 0.6180339887498949
+
+
+def _duplicate(lam_a, lam_b, *cols):
+    """Interleave two eigenvalue sets sharing the same vectors: (a_0, b_0, a_1, b_1, ...)."""
+    k = lam_a.shape[0]
+    lam = np.empty(2 * k, dtype=complex)
+    lam[0::2], lam[1::2] = lam_a, lam_b
+    out = []
+    for c in cols:
+        d = np.empty((c.shape[0], 2 * k), dtype=complex)
+        d[:, 0::2] = c
+        d[:, 1::2] = c
+        out.append(d)
+    return lam, out
+
+
+def solve_symmetric(problem: QuadraticProblem) -> tuple[RawSpectrum, float]:
+    """D = G = N = 0: (S - mu M) phi = 0 by eigh, lam = +-sqrt(-mu), x = y = phi.
+
+    mu > 0 gives the conjugate pair +-i sqrt(mu) (an undamped mode); mu < 0 the
+    real pair -+sqrt(-mu) (divergence); mu = 0 a double zero (rigid-body mode).
+
+    Returns
+    -------
+    raw : RawSpectrum
+    worst : float
+        Largest backward error eta of the pairs.  ``eigh`` reduces the pencil
+        with a Cholesky factor of M, so eta grows like eps cond(M); the caller
+        switches to :func:`solve_squared` (QZ, backward stable) when it is too large.
+    """
+    sys = problem.system
+    M, S = sys.M, sys.S
+    mu, Phi = sla.eigh(S, M)
+    root = np.sqrt(np.abs(mu))
+    pos = mu > 0
+    lam_a = np.where(pos, 1j * root, -root + 0j)
+    lam_b = np.where(pos, -1j * root, root + 0j)
+    MP, SP = M @ Phi, S @ Phi
+    num = np.linalg.norm(SP - MP * mu, axis=0)
+    den = (np.abs(mu) * problem.norm_M + problem.norm_K) * np.linalg.norm(Phi, axis=0)
+    eta = np.where(num == 0, 0.0, num / np.where(den > 0, den, np.finfo(float).tiny))
+    lam, (X, MX, KX) = _duplicate(lam_a, lam_b, Phi, MP, SP)
+    raw = RawSpectrum(lam, X, X.copy(), MX, np.zeros_like(MX), KX, np.zeros(lam.shape[0], dtype=int))
+    return raw, float(np.max(eta))
+
+
+def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
+    """D = G = 0: (K + mu M) x = 0 by QZ of size n, lam = +-sqrt(mu).
+
+    L(lam) = lam^2 M + K, so each eigenvalue mu of the n-size pencil (-K, M)
+    with vectors (x, y) gives the two eigenvalues +-sqrt(mu) of L with the same
+    vectors.  A conjugate pair (mu, conj mu) gives the four eigenvalues
+    +-sqrt(mu), +-conj(sqrt(mu)), arranged as two conjugate pairs.
+    """
+    M, K = problem.M, problem.K
+    alphar, alphai, beta, vl, vr = _dggev(-K, M.copy())
+    if np.any(beta == 0):
+        raise ComputationError("QZ of (-K, M) found an infinite eigenvalue: M is numerically singular")
+    mu = exact_pairs(alphar, alphai, beta)
+    X = complex_columns(vr, alphai)
+    MX = complex_columns(M @ vr, alphai)
+    KX = complex_columns(K @ vr, alphai)
+    Y = complex_columns(vl, alphai, conjugate=True)
+    # real mu: roots s and -s; complex mu (first of its pair): s and its conjugate
+    # come from mu and conj(mu) -> build as pairs (s, conj s) and (-s, -conj s).
+    lam_list, idx_list = [], []
+    j = 0
+    n = mu.shape[0]
+    while j < n:
+        if alphai[j] == 0:
+            m = mu[j].real
+            if m < 0:
+                s = 1j * np.sqrt(-m)
+                lam_list += [s, -s]
+            else:
+                s = np.sqrt(m) + 0j
+                lam_list += [-s, s]
+            idx_list += [j, j]
+            j += 1
+        else:
+            s = np.sqrt(mu[j])  # principal root, Re s > 0
+            lam_list += [s, np.conj(s), -s, -np.conj(s)]
+            idx_list += [j, j + 1, j, j + 1]
+            j += 2
+    lam = np.array(lam_list, dtype=complex)
+    idx = np.array(idx_list, dtype=int)
+    return RawSpectrum(
+        lam, X[:, idx], Y[:, idx], MX[:, idx], np.zeros_like(MX[:, idx]), KX[:, idx], np.zeros(lam.shape[0], dtype=int)
+    )
+
+
+def proportionality_defect(problem: QuadraticProblem) -> float:
+    """||D M^-1 S - S M^-1 D|| / (||D|| ||M^-1|| ||S||) (Frobenius; 2-norm for M^-1).
+
+    Zero in exact arithmetic exactly when M^-1 D and M^-1 S commute, i.e. when
+    the undamped modes also diagonalize D (Caughey and O'Kelly, 1965).
+    """
+    sys = problem.system
+    D, S = sys.D, sys.S
+    nd, ns = np.linalg.norm(D), np.linalg.norm(S)
+    if nd == 0 or ns == 0:
+        return 0.0
+    c = sla.cho_factor(sys.M)
+    MiS = sla.cho_solve(c, S)
+    MiD = sla.cho_solve(c, D)
+    comm = D @ MiS - S @ MiD
+    inv_norm = 1.0 / np.linalg.eigvalsh(sys.M)[0]
+    return float(np.linalg.norm(comm) / (nd * ns * inv_norm))
+
+
+def _gep_eta(A, M, w, Phi, AP, MP) -> np.ndarray:
+    """Backward errors of the pairs (w_j, phi_j) of the pencil (A, M), Frobenius norms."""
+    num = np.linalg.norm(AP - MP * w, axis=0)
+    den = (np.abs(w) * np.linalg.norm(M) + np.linalg.norm(A)) * np.linalg.norm(Phi, axis=0)
+    return np.where(num == 0, 0.0, num / np.where(den > 0, den, np.finfo(float).tiny))
+
+
+def solve_proportional(
+    problem: QuadraticProblem, *, structure_tol: float, eigh_tol: float
+) -> tuple[RawSpectrum | None, float, str]:
+    """G = N = 0 with proportional damping: modal decoupling.
+
+    The modes phi_j of the pencil (S + t D, M) (t a fixed irrational weight)
+    diagonalize S and D together when D M^-1 S = S M^-1 D; each mode then obeys
+
+    .. math::  \\lambda^2 + d_j \\lambda + k_j = 0,\\qquad
+               d_j = \\frac{\\phi_j^T D \\phi_j}{\\phi_j^T M \\phi_j},\\;
+               k_j = \\frac{\\phi_j^T S \\phi_j}{\\phi_j^T M \\phi_j}
+
+    solved without cancellation.  The modes come from ``eigh``; when its
+    backward error exceeds ``eigh_tol`` (M ill-conditioned) from QZ of the same
+    n-size pencil instead.
+
+    Returns
+    -------
+    raw : RawSpectrum or None
+        None when some mode is not an eigenvector of both (S, M) and (D, M) to
+        ``structure_tol``, or QZ returned complex modes.
+    defect : float
+        Largest relative residual ||D phi - d M phi|| / ((|d| ||M|| + ||D||) ||phi||),
+        and the same for S.
+    how : str
+        "eigh" or "QZ".
+    """
+    sys = problem.system
+    M, D, S = sys.M, sys.D, sys.S
+    nd, ns = np.linalg.norm(D), np.linalg.norm(S)
+    t = _MIX * (ns / nd) if nd > 0 and ns > 0 else _MIX
+    A = S + t * D
+    w, Phi = sla.eigh(A, M)
+    MP = M @ Phi
+    how = "eigh"
+    if np.max(_gep_eta(A, M, w, Phi, A @ Phi, MP)) > eigh_tol:
+        alphar, alphai, beta, _, vr = _dggev(A.copy(), M.copy(), left=False)
+        if np.any(alphai != 0) or np.any(beta == 0):
+            return None, np.inf, "QZ"
+        Phi = vr
+        MP = M @ Phi
+        how = "QZ"
+    DP, SP = D @ Phi, S @ Phi
+    m = np.einsum("ij,ij->j", Phi, MP)
+    d = np.einsum("ij,ij->j", Phi, DP) / m
+    k = np.einsum("ij,ij->j", Phi, SP) / m
+    defect = float(max(np.max(_gep_eta(D, M, d, Phi, DP, MP)), np.max(_gep_eta(S, M, k, Phi, SP, MP))))
+    if defect > structure_tol:
+        return None, defect, how
+    disc = d * d - 4 * k
+    sq = np.sqrt(np.abs(disc))
+    lam_a = np.empty(d.shape, dtype=complex)
+    lam_b = np.empty(d.shape, dtype=complex)
+    cplx = disc < 0
+    lam_a[cplx] = -d[cplx] / 2 + 0.5j * sq[cplx]
+    lam_b[cplx] = np.conj(lam_a[cplx])
+    real = ~cplx
+    sign = np.where(d[real] >= 0, 1.0, -1.0)
+    q = -(d[real] + sign * sq[real]) / 2  # the root of larger modulus, no cancellation
+    with np.errstate(divide="ignore", invalid="ignore"):
+        other = np.where(q != 0, k[real] / np.where(q != 0, q, 1.0), 0.0)
+    lam_a[real] = np.minimum(q, other)
+    lam_b[real] = np.maximum(q, other)
+    lam, (X, MX, CX, KX) = _duplicate(lam_a, lam_b, Phi, MP, DP, SP)
+    return RawSpectrum(lam, X, X.copy(), MX, CX, KX, np.zeros(lam.shape[0], dtype=int)), defect, how

@@ -1,0 +1,137 @@
+"""Harmonic forcing (issue 5 part 2, SPEC section 6): X = H(i omega) F.
+
+Reference: a direct solve of L(i omega) X = F with ``numpy.linalg.solve`` in the
+test (acceptance: 1e-10 relative).  The resonance test shows the growth
+|i omega - lam|^-m at a root with a Jordan chain of length m.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose
+
+import pinlin
+from response_cases import double_pendulum, rotating_ring, turntable
+
+
+def _systems():
+    dp = double_pendulum(P=4.0, damping=0.02)
+    tt, q = turntable()
+    ring = rotating_ring()
+    return {
+        "double pendulum, damped + N": pinlin.linearize(dp, dp.neutral()),
+        "turntable (G)": pinlin.linearize(tt, q),
+        "rotating ring (D + G)": pinlin.linearize(ring, ring.neutral()),
+        "Jordan stiffness (defective)": pinlin.LinearizedSystem.from_matrices(
+            np.eye(2), 0.2 * np.eye(2), [[2.0, 1.0], [0.0, 2.0]]
+        ),
+        "two free masses (rigid body)": pinlin.LinearizedSystem.from_matrices(
+            np.diag([1.0, 3.0]), 0.1 * np.eye(2), [[2.0, -2.0], [-2.0, 2.0]]
+        ),
+    }
+
+
+SYSTEMS = _systems()
+
+
+def _direct(sys, F, omega):
+    return np.array([np.linalg.solve(-(w**2) * sys.M + 1j * w * sys.C + sys.K, F) for w in omega])
+
+
+@pytest.mark.parametrize("name", sorted(SYSTEMS))
+def test_modal_amplitude_matches_direct_solve(name):
+    sys = SYSTEMS[name]
+    rng = np.random.default_rng(5)
+    F = rng.standard_normal(sys.n) + 1j * rng.standard_normal(sys.n)
+    lam = pinlin.modal_analysis(sys).eigenvalues
+    # a sweep, plus frequencies 1e-3 away from each resonance
+    omega = np.concatenate([np.linspace(0.05, 1.5 * np.abs(lam.imag).max() + 1, 97), np.abs(lam.imag[lam.imag > 0]) + 1e-3])
+    X = pinlin.harmonic_response(sys, F, omega)
+    ref = _direct(sys, F, omega)
+    assert X.shape == (omega.size, sys.n) and X.dtype == complex
+    err = np.linalg.norm(X - ref, axis=1) / np.linalg.norm(ref, axis=1)
+    assert np.max(err) < 1e-10, np.max(err)
+    assert np.max(X.defect) < 1e-12
+    assert_allclose(X.distance, np.min(np.abs(1j * omega[:, None] - lam), axis=1), rtol=1e-14, atol=0)
+
+
+def test_direct_method_and_scalar_frequency():
+    sys = SYSTEMS["turntable (G)"]
+    F = np.array([1.0, -0.5])
+    X = pinlin.harmonic_response(sys, F, 1.3, method="direct")
+    assert X.shape == (2,) and isinstance(X.omega, float) and X.method == "direct"
+    assert_allclose(X, _direct(sys, F, [1.3])[0], rtol=1e-13, atol=0)
+    modal = pinlin.harmonic_response(sys, F, 1.3)
+    assert_allclose(modal, X, rtol=1e-12, atol=0)
+
+
+def test_steady_state_solves_the_equation_in_time():
+    # x(t) = Re(X e^{i w t}) from a complex force with a phase lag, checked by finite differences in t.
+    sys = SYSTEMS["double pendulum, damped + N"]
+    F = np.array([0.3, 1.0j])
+    w = 2.5
+    X = pinlin.harmonic_response(sys, F, w)
+    t = np.linspace(0.0, 3.0, 7)
+    h = 1e-4
+
+    def x(tt):
+        return np.real(np.exp(1j * w * tt)[:, None] * X)
+
+    xd = (x(t + h) - x(t - h)) / (2 * h)
+    xdd = (x(t + h) - 2 * x(t) + x(t - h)) / h**2
+    lhs = xdd @ sys.M.T + xd @ sys.C.T + x(t) @ sys.K.T
+    assert_allclose(lhs, np.real(np.exp(1j * w * t)[:, None] * F), rtol=0, atol=1e-5)
+
+
+def test_resonance_grows_with_the_chain_length():
+    # M = I, C = c I, lam^2 + c lam + 2 = 0.  K = [[2, 1], [0, 2]]: the roots carry a chain of length 2,
+    # and at omega = sqrt(2) (|i omega - lam| ~ c/2) the amplitude grows like c^-2; for the semisimple
+    # K = 2 I it grows like c^-1.
+    F = np.array([0.0, 1.0])
+    c = np.array([1e-1, 1e-2, 1e-3])
+    defective, semisimple, distance = [], [], []
+    for ci in c:
+        d = pinlin.harmonic_response(pinlin.LinearizedSystem.from_matrices(np.eye(2), ci * np.eye(2), [[2.0, 1.0], [0.0, 2.0]]), F, np.sqrt(2))
+        s = pinlin.harmonic_response(pinlin.LinearizedSystem.from_matrices(np.eye(2), ci * np.eye(2), 2 * np.eye(2)), F, np.sqrt(2))
+        assert_allclose(d, np.linalg.solve(-2 * np.eye(2) + 1j * np.sqrt(2) * ci * np.eye(2) + [[2.0, 1.0], [0.0, 2.0]], F), rtol=1e-10, atol=0)
+        defective.append(np.linalg.norm(d))
+        semisimple.append(np.linalg.norm(s))
+        distance.append(d.distance)
+    slope_d = np.polyfit(np.log(distance), np.log(defective), 1)[0]
+    slope_s = np.polyfit(np.log(distance), np.log(semisimple), 1)[0]
+    assert_allclose(slope_d, -2.0, rtol=0, atol=0.02)
+    assert_allclose(slope_s, -1.0, rtol=0, atol=0.02)
+
+
+def test_undamped_resonance_raises():
+    sys = pinlin.LinearizedSystem.from_matrices(np.eye(1), None, [[4.0]])
+    with pytest.raises(pinlin.ComputationError, match="undamped"):
+        pinlin.harmonic_response(sys, [1.0], [1.0, 2.0])
+
+
+@pytest.mark.parametrize(
+    ("F", "omega", "kwargs", "match"),
+    [
+        ([1.0], 1.0, {}, r"F: expected shape \(2,\)"),
+        ([1.0, np.nan], 1.0, {}, "F: must be finite"),
+        (None, 1.0, {}, "F"),
+        ([1.0, 0.0], np.inf, {}, "finite"),
+        ([1.0, 0.0], [[1.0, 2.0]], {}, "1-D"),
+        ([1.0, 0.0], [], {}, "non-empty"),
+        ([1.0, 0.0], "fast", {}, "omega"),
+        ([1.0, 0.0], 1.0, {"method": "fft"}, "method"),
+        ([1.0, 0.0], 1.0, {"tol": 0.0}, "tol"),
+    ],
+)
+def test_bad_inputs_raise(F, omega, kwargs, match):
+    sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), np.eye(2))
+    with pytest.raises(pinlin.ParameterError, match=match):
+        pinlin.harmonic_response(sys, F, omega, **kwargs)
+
+
+def test_defect_above_tol_warns():
+    sys = SYSTEMS["turntable (G)"]
+    with pytest.warns(pinlin.AccuracyWarning, match="defect"):
+        X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0], tol=1e-300)
+    assert np.all(X.defect > 1e-300)
