@@ -75,6 +75,23 @@ def positive(value, name: str) -> float:
     return v
 
 
+def check_radii(radii) -> np.ndarray:
+    """Contour radii: a non-empty 1-D array of finite positive numbers.
+
+    Raises
+    ------
+    ParameterError
+        Anything else.
+    """
+    try:
+        r = np.atleast_1d(np.asarray(radii, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError("radii", f"expected positive numbers, got {radii!r}") from None
+    if r.ndim != 1 or r.size == 0 or not np.all(np.isfinite(r)) or np.any(r <= 0):
+        raise ParameterError("radii", f"expected a non-empty list of finite positive radii, got {radii!r}")
+    return r
+
+
 def dof_indices(sys: LinearizedSystem, which, name: str) -> np.ndarray:
     """Indices of the coordinates named or numbered in ``which`` (None: all of them)."""
     if which is None:

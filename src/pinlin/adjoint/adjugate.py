@@ -32,6 +32,7 @@ from ._util import (
     LOG_MAX,
     LOG_TINY,
     ResultArray,
+    check_radii,
     check_system,
     checked_exp,
     complex_scalar,
@@ -376,16 +377,6 @@ def _fit_adjugate(sys, center, radii, n_points):
     return fit, coef, err, N
 
 
-def _check_radii(radii):
-    try:
-        r = np.atleast_1d(np.asarray(radii, dtype=float))
-    except (TypeError, ValueError):
-        raise ParameterError("radii", f"expected positive numbers, got {radii!r}") from None
-    if r.ndim != 1 or r.size == 0 or not np.all(np.isfinite(r)) or np.any(r <= 0):
-        raise ParameterError("radii", f"expected a non-empty list of finite positive radii, got {radii!r}")
-    return r
-
-
 def adjugate_polynomial(sys, *, radii=None, n_points: int | None = None) -> AdjugatePolynomial:
     """The coefficient matrices ``A_0, ..., A_{2n-2}`` of ``adj L(lam) = sum_k A_k lam^k``.
 
@@ -417,7 +408,7 @@ def adjugate_polynomial(sys, *, radii=None, n_points: int | None = None) -> Adju
         r_lo = 0.5 * lo if lo > 0 else r_hi * TAYLOR_SPAN
         radii = ladder(r_lo, r_hi, RADIUS_RATIO)
     else:
-        radii = _check_radii(radii)
+        radii = check_radii(radii)
     fit, coef, err, N = _fit_adjugate(sys, 0.0, radii, n_points)
     err = np.maximum(err, np.linalg.norm(coef.imag.reshape(len(coef), -1), axis=1))
     return AdjugatePolynomial(
@@ -518,7 +509,7 @@ def adjugate_taylor(sys, lam0, order: int = 1, *, radii=None, n_points: int | No
         r_hi = abs(lam0) + max(hi, natural_scale(sys))
         radii = ladder(r_hi * TAYLOR_SPAN, r_hi, RADIUS_RATIO)
     else:
-        radii = _check_radii(radii)
+        radii = check_radii(radii)
     fit, coef, err, N = _fit_adjugate(sys, lam0, radii, n_points)
     m = int(order) + 1
     shape = coef.shape[1:]

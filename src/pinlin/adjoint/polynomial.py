@@ -22,7 +22,7 @@ from numpy.polynomial import Polynomial
 
 from ..errors import ComputationError, ParameterError
 from ._circle import chunks, fit_on_circles, ladder
-from ._util import EPS, check_system, complex_points, eigenvalue_bounds, positive
+from ._util import EPS, check_radii, check_system, complex_points, eigenvalue_bounds, positive
 
 __all__ = ["CharacteristicPolynomial", "characteristic_polynomial", "det_samples"]
 
@@ -176,13 +176,7 @@ def characteristic_polynomial(
 
 def _radii(sys, radii, ratio):
     if radii is not None:
-        try:
-            r = np.atleast_1d(np.asarray(radii, dtype=float))
-        except (TypeError, ValueError):
-            raise ParameterError("radii", f"expected positive numbers, got {radii!r}") from None
-        if r.ndim != 1 or r.size == 0 or not np.all(np.isfinite(r)) or np.any(r <= 0):
-            raise ParameterError("radii", f"expected a non-empty list of finite positive radii, got {radii!r}")
-        return r
+        return check_radii(radii)
     lo, hi = eigenvalue_bounds(sys)
     r_hi = 2.0 * hi if hi > 0 else 1.0
     r_lo = 0.5 * lo if lo > 0 else r_hi * SINGULAR_K_SPAN
