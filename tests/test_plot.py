@@ -127,3 +127,55 @@ def test_work_precision():
     assert len(ax.get_lines()) == 2 and ax.get_xscale() == "log"
     with pytest.raises(pinlin.ParameterError, match="differ in shape"):
         plot.work_precision({"bad": ([1.0], [1.0, 2.0])})
+
+
+def test_campbell_keeps_a_whirl_branch_through_zero_frequency():
+    """Rotating ring (SPEC 7.3, undamped): lam = +-i(w0 + W), +-i(w0 - W). The branch i(w0 - W)
+    changes the sign of Im lam at W = w0; one member of each conjugate pair must still be drawn (a V)."""
+    w0 = 2.0
+    speeds = np.linspace(0.1, 4.1, 9)  # avoids W = w0, where lam = 0 is double
+    lams, vecs = [], []
+    for W in speeds:
+        lams.append(np.array([1j * (w0 + W), -1j * (w0 + W), 1j * (w0 - W), -1j * (w0 - W)]))
+        # shapes of the complex coordinates x +- i y, fixed over W
+        vecs.append(np.array([[1, 1, 1, 1], [-1j, 1j, 1j, -1j]]) / np.sqrt(2))
+    ax = plot.campbell(speeds, np.array(lams), vectors=np.array(vecs), orders=())
+    curves = sorted((line.get_ydata() for line in ax.get_lines()), key=lambda y: y[-1])
+    assert len(curves) == 2
+    assert_allclose(curves[0], np.abs(w0 - speeds), atol=1e-15)
+    assert_allclose(curves[1], w0 + speeds, atol=1e-15)
+
+
+def test_frequency_response_of_a_load_pattern():
+    """Weights over the inputs plot sum_j H[output, j] w_j (the response to a generalized force)."""
+
+    class TwoInputs:
+        omega = np.logspace(-1, 1, 30)
+        response = np.stack([1 / (1 + 1j * omega), 2 / (1 + 1j * omega)])[None]  # (1 output, 2 inputs, f)
+        magnitude = np.abs(response)
+        phase = np.angle(response)
+
+    ax_mag, ax_phase = plot.frequency_response(TwoInputs(), input=[1.0, 1.0])
+    assert_allclose(ax_mag.get_lines()[0].get_ydata(), 3 / np.abs(1 + 1j * TwoInputs.omega), rtol=1e-14)
+    resp = _Response()  # no ``response`` attribute: rebuilt from magnitude and phase
+    ax_mag, _ = plot.frequency_response(resp, input=[2.0])
+    assert_allclose(ax_mag.get_lines()[0].get_ydata(), 2 * resp.magnitude[0, 0], rtol=1e-14)
+    with pytest.raises(pinlin.ParameterError, match="input: expected an index or 2 finite weights"):
+        plot.frequency_response(TwoInputs(), input=[1.0, 2.0, 3.0])
+
+
+def test_campbell_does_not_mark_rounding_as_instability():
+    """An undamped spectrum has Re lam ~ 1e-16 of either sign; only Re lam beyond rtol * |lam|
+    (and beyond given error bounds) is drawn as unstable."""
+    speeds = np.array([0.0, 1.0, 2.0])
+    lams = np.array([[1e-16 + 1j, 1e-16 - 1j], [3e-16 + 2j, 3e-16 - 2j], [1e-3 + 3j, 1e-3 - 3j]])
+
+    def red(ax):
+        points = [c for c in ax.collections if isinstance(c, PathCollection)]
+        return sum(len(c.get_offsets()) for c in points)
+
+    assert red(plot.campbell(speeds, lams)) == 1
+    assert red(plot.campbell(speeds, lams, error_bounds=np.full((3, 2), 1e-2))) == 0
+    assert red(plot.campbell(speeds, lams, rtol=0.0)) == 3
+    with pytest.raises(pinlin.ParameterError, match="error_bounds: expected shape"):
+        plot.campbell(speeds, lams, error_bounds=np.ones(3))

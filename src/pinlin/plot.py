@@ -135,13 +135,71 @@ def root_locus(parameter, eigenvalues, ax=None, *, vectors=None, label: str = "p
     return ax
 
 
-def campbell(speed, eigenvalues, ax=None, *, vectors=None, orders: Sequence[float] = (1.0,), label: str = "spin speed [rad/s]"):
+def _one_per_conjugate_pair(lam: np.ndarray, rtol: float = 1e-8) -> list[int]:
+    """Columns of tracked eigenvalues (steps, m) to draw: one of each conjugate pair.
+
+    Columns j and k are a pair when lam[:, k] = conj(lam[:, j]) at every step
+    (relative to the step's largest |lam|); of a pair the column with the larger
+    sum of Im lam is kept.  Unpaired columns are kept when Im lam >= 0 throughout.
+    """
+    scale = np.abs(lam).max(axis=1, keepdims=True) + np.finfo(float).tiny
+    m = lam.shape[1]
+    keep: list[int] = []
+    used: set[int] = set()
+    for j in range(m):
+        if j in used:
+            continue
+        dist = np.max(np.abs(lam - np.conj(lam[:, [j]])) / scale, axis=0)
+        dist[j] = np.inf
+        dist[list(used)] = np.inf
+        k = int(np.argmin(dist))
+        if dist[k] <= rtol:
+            used.update((j, k))
+            keep.append(j if lam[:, j].imag.sum() >= lam[:, k].imag.sum() else k)
+        elif np.all(lam[:, j].imag >= -1e-12 * (1 + np.abs(lam[:, j]))):
+            keep.append(j)
+    return sorted(keep)
+
+
+def campbell(
+    speed,
+    eigenvalues,
+    ax=None,
+    *,
+    vectors=None,
+    orders: Sequence[float] = (1.0,),
+    label: str = "spin speed [rad/s]",
+    error_bounds=None,
+    rtol: float = 1e-9,
+):
     """Campbell diagram: damped frequencies |Im lambda| against spin speed.
 
     Modes are followed by their shapes (:func:`pinlin.tracking.track_modes`),
-    so crossing frequencies cross instead of veering falsely; points with
-    Re lambda > 0 (unstable) are marked in red.  Straight lines show the
-    excitation orders k * speed.
+    so crossing frequencies cross instead of veering falsely; points whose
+    Re lambda is positive beyond rounding (unstable) are marked in red.
+    Straight lines show the excitation orders k * speed.
+
+    One member of each complex conjugate pair of tracked modes is drawn, so a
+    whirl branch whose frequency passes through zero (lambda = i (omega_0 -
+    speed) of a rotating ring) is drawn as a V instead of being dropped;
+    unpaired modes are drawn when Im lambda >= 0 at every speed.
+
+    Parameters
+    ----------
+    speed : (steps,) array_like
+    eigenvalues : (steps, m) array_like
+    vectors : (steps, n, m) array_like, optional
+        Mode shapes for the tracking; without them modes are matched by eigenvalue distance.
+    orders : sequence of float
+        Excitation orders drawn as lines k * speed.
+    error_bounds : (steps, m) array_like, optional
+        Error bounds of the eigenvalues (``modes.error_bound`` of each step, in
+        the same order as ``eigenvalues``): a point is marked unstable only when
+        Re lambda exceeds its bound.
+    rtol : float
+        Re lambda must also exceed rtol times the step's largest |lambda| to be
+        marked, so that rounding on an undamped spectrum (Re lambda ~ 1e-16)
+        is not drawn as instability.
     """
     ax = _ax(ax)
     w = np.asarray(speed, dtype=float)
@@ -149,11 +207,19 @@ def campbell(speed, eigenvalues, ax=None, *, vectors=None, orders: Sequence[floa
     lam = tracked.eigenvalues
     if w.shape != (lam.shape[0],):
         raise ParameterError("speed", f"expected {lam.shape[0]} values, got shape {w.shape}")
-    keep = [j for j in range(lam.shape[1]) if np.all(lam[:, j].imag >= -1e-12 * (1 + np.abs(lam[:, j])))]
+    if not (np.isfinite(rtol) and rtol >= 0):
+        raise ParameterError("rtol", f"must be >= 0, got {rtol!r}")
+    threshold = np.broadcast_to(rtol * np.abs(lam).max(axis=1, keepdims=True), lam.shape)
+    if error_bounds is not None:
+        bounds = np.asarray(error_bounds, dtype=float)
+        if bounds.shape != lam.shape:
+            raise ParameterError("error_bounds", f"expected shape {lam.shape} (like eigenvalues), got {bounds.shape}")
+        threshold = np.maximum(threshold, np.take_along_axis(bounds, tracked.order, axis=1))
+    keep = _one_per_conjugate_pair(lam)
     keep = keep or list(range(lam.shape[1]))
     for j in keep:
         ax.plot(w, np.abs(lam[:, j].imag), lw=1.5)
-    unstable = lam[:, keep].real > 0
+    unstable = lam[:, keep].real > threshold[:, keep]
     if np.any(unstable):
         ws = np.broadcast_to(w[:, None], unstable.shape)
         ax.scatter(ws[unstable], np.abs(lam[:, keep].imag)[unstable], color=VERDICT_COLORS["flutter"], s=12, zorder=3, label="Re $\\lambda$ > 0")
@@ -197,8 +263,8 @@ def stability_map(x, y, kinds, ax=None, *, xlabel: str = "x", ylabel: str = "y")
     return ax
 
 
-def frequency_response(resp, axes=None, *, output: int = 0, input: int = 0, label: str | None = None):
-    """Magnitude (log-log) and phase of one input-output pair of a frequency response.
+def frequency_response(resp, axes=None, *, output: int = 0, input=0, label: str | None = None):
+    """Magnitude (log-log) and phase of one output of a frequency response, for one input or a load pattern.
 
     Parameters
     ----------
@@ -206,11 +272,37 @@ def frequency_response(resp, axes=None, *, output: int = 0, input: int = 0, labe
         A :func:`pinlin.frequency_response` result (python-control's shape convention).
     axes : pair of Axes, optional
         Magnitude and phase axes; a new figure with two stacked axes by default.
+    output : int
+        Index of the output (into ``resp``'s outputs).
+    input : int or (n_inputs,) array_like
+        Index of the input, or weights w of all inputs: the curve is then
+        sum_j H[output, j] w_j, the response to the load pattern w (a
+        generalized force from :func:`pinlin.generalized_force`, say).
+    label : str, optional
+        Legend entry.
+
+    Raises
+    ------
+    ParameterError
+        Weights whose length is not the number of inputs, or not finite.
     """
     plt = _pyplot()
     omega = np.asarray(resp.omega, dtype=float)
-    mag = np.asarray(resp.magnitude)[output, input]
-    phase = np.asarray(resp.phase)[output, input]
+    weights = np.asarray(input)
+    if weights.ndim == 0:
+        mag = np.asarray(resp.magnitude)[output, int(input)]
+        phase = np.asarray(resp.phase)[output, int(input)]
+    else:
+        H = getattr(resp, "response", None)
+        if H is None:
+            H = np.asarray(resp.magnitude) * np.exp(1j * np.asarray(resp.phase))
+        H = np.asarray(H)[output]
+        if weights.shape != (H.shape[0],) or not np.all(np.isfinite(weights)):
+            raise ParameterError(
+                "input", f"expected an index or {H.shape[0]} finite weights (one per input), got {weights!r}"
+            )
+        h = weights @ H
+        mag, phase = np.abs(h), np.angle(h)
     if axes is None:
         _, axes = plt.subplots(2, 1, sharex=True)
     ax_mag, ax_phase = axes
