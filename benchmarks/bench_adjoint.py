@@ -31,6 +31,7 @@ from numpy.polynomial import Polynomial
 
 import pinlin
 from pinlin.adjoint import characteristic_polynomial
+from pinlin.testing import mp_characteristic_coefficients
 
 from .common import Report, Table, median_time, write_report
 
@@ -189,27 +190,6 @@ def frequency_response_table(quick: bool) -> tuple[Table, Table | None, dict]:
     return table, ref_table, summary
 
 
-def _mp_reference(sys, dps: int = 50):
-    """Coefficients det M prod(lam - lam_k) and eigenvalues, lam_k of the 50-digit companion matrix."""
-    n = sys.n
-    with mp.workdps(dps):
-        Mi = mp.inverse(mp.matrix(sys.M.tolist()))
-        B0 = -Mi * mp.matrix(sys.K.tolist())
-        B1 = -Mi * mp.matrix(sys.C.tolist())
-        A = mp.zeros(2 * n, 2 * n)
-        for i in range(n):
-            A[i, n + i] = 1
-            for j in range(n):
-                A[n + i, j] = B0[i, j]
-                A[n + i, n + j] = B1[i, j]
-        ev = mp.eig(A, left=False, right=False)
-        c = [mp.mpc(1)]
-        for lam in ev:
-            c = [(c[k - 1] if k > 0 else 0) - lam * (c[k] if k < len(c) else 0) for k in range(len(c) + 1)]
-        det_m = mp.det(mp.matrix(sys.M.tolist()))
-        return np.array([float(mp.re(det_m * x)) for x in c]), np.array([complex(x) for x in ev])
-
-
 def _eig_error(approx: np.ndarray, ref: np.ndarray) -> float:
     """Largest relative distance from a reference eigenvalue to the nearest approximation."""
     d = np.abs(ref[:, None] - approx[None, :]).min(axis=1)
@@ -222,7 +202,7 @@ def polynomial_table(quick: bool) -> tuple[Table, dict]:
     worst = {}
     for n in sizes:
         sys = chain(n)
-        ref, ref_ev = _mp_reference(sys)
+        ref, ref_ev = mp_characteristic_coefficients(sys)
         p = characteristic_polynomial(sys)
         t_p = median_time(lambda sys=sys: characteristic_polynomial(sys), repeats=3)
         rel = np.abs(p.coef - ref) / np.abs(ref)

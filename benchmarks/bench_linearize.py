@@ -1,21 +1,42 @@
-"""Linearization: analytic (pinlin.linearize) against Pinocchio's floor and finite differences.
+"""Linearization: analytic (pinlin.linearize) against finite differences, with honest references.
 
 For each scene, in one process:
 
-- ``linearize``: the median time of ``pinlin.linearize(scene, q)`` (M, D, G, S, N
-  with every check pinlin makes);
-- floor: Pinocchio's ``crba`` + ``computeRNEADerivatives`` at the same point,
-  the least any analytic linearization must spend;
-- central differences: K and C from 2 nv residual evaluations each (through
-  ``pin.integrate``) plus ``crba`` for M.
+- ``linearize``: ``pinlin.linearize(scene, q)`` (M, D, G, S, N with every check
+  pinlin makes), and its analytic core ``assemble`` (Pinocchio's derivative
+  algorithms plus the elements' analytic derivatives, no checks);
+- forward and central differences of the residual r(q, v) = tau - Q_e in q
+  (steps through ``pin.integrate``, so in the tangent space) and in v, at the
+  steps of :data:`H_SWEEP`; M from ``crba`` (as exact as the analytic one);
+- the Pinocchio floor: ``crba`` + ``computeRNEADerivatives``, the least any
+  analytic linearization must spend;
+- MuJoCo's ``mjd_inverseFD`` on the same URDF (meshes stripped, joints mapped
+  by name), when the optional ``mujoco`` package is importable.
 
-Errors are against the hand-derived closed form where one exists (the paper's
-double pendulum, the turntable); elsewhere the analytic-vs-difference gap is
-shown, which bounds the differences' error (the analytic result agrees with the
-closed forms to rounding).
+References (never the method under test):
+
+- closed forms for the paper's double pendulum (SPEC 7.1) and the turntable
+  (SPEC 7.2): they bound the error of every method directly;
+- for fixed-base arms of 1-DOF joints (ur5, panda), an independent model in
+  mpmath at 50 digits (:func:`mp_reference`: forward kinematics from the model's
+  numbers, gravity, springs and follower wrenches by virtual work, K by
+  50-digit differences, M from link Jacobians; no Pinocchio algorithm);
+- elsewhere (the floating-base Talos), Richardson extrapolation (Ridders'
+  tableau, steps 0.1 / 1.4^i) of central differences: its own error estimate
+  is reported, and its error against the better references where they exist
+  (~1e-14).  The gap between the analytic result and this reference bounds the
+  analytic error from above; the difference methods' errors, 1e3 times larger
+  and more, are measured by it reliably.
+
+Error of a method: the largest relative Frobenius error of M, C and K; for a C
+whose reference is zero the denominator is sqrt(||M|| ||K||), the critical
+damping scale (consistent units).
 """
 
 from __future__ import annotations
+
+import re
+import time
 
 import numpy as np
 import pinocchio as pin
@@ -23,29 +44,491 @@ import pinocchio as pin
 import pinlin
 from pinlin.assembly import assemble
 
-from .common import Report, Table, median_time, write_report
+from .common import (
+    RESULTS,
+    Report,
+    Table,
+    interleaved_medians,
+    median_time,
+    work_precision_plot,
+    write_report,
+)
+
+#: Steps [rad, m, rad/s] of the finite-difference sweep.
+H_SWEEP = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
+QUICK_H_SWEEP = (1e-3, 1e-5, 1e-7, 1e-9)
+#: Steps used for timing (the cost does not depend on the step).
+TIMED_H = {"forward": 1e-7, "central": 1e-5}
+#: MuJoCo finite-difference steps compared.
+MUJOCO_EPS = (1e-4, 1e-6, 1e-8)
 
 
-def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float = 1e-6):
-    """M by crba, K and C by central differences of the residual r(q, v) on the free coordinates."""
+# ----------------------------------------------------------------------------- differences
+
+
+def _residual(scene: pinlin.Scene, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return assemble(scene, q, v, stiffness=False).residual
+
+
+def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str = "central"):
+    """(M, C, K) on the free coordinates: M by crba, C and K by differences of r(q, v).
+
+    ``scheme`` "central": (r(x + h e_k) - r(x - h e_k)) / 2h; "forward":
+    (r(x + h e_k) - r(x)) / h; steps in q through ``pin.integrate``.
+    """
     model = scene.model
     f = scene.free_dofs
     v0 = np.asarray(scene.v0)
     nv = model.nv
     K = np.zeros((nv, nv))
     C = np.zeros((nv, nv))
+    r0 = _residual(scene, q, v0) if scheme == "forward" else None
     for k in f:
         e = np.zeros(nv)
         e[k] = h
-        rp = assemble(scene, pin.integrate(model, q, e), v0, stiffness=False).residual
-        rm = assemble(scene, pin.integrate(model, q, -e), v0, stiffness=False).residual
-        K[:, k] = (rp - rm) / (2 * h)
-        rp = assemble(scene, q, v0 + e, stiffness=False).residual
-        rm = assemble(scene, q, v0 - e, stiffness=False).residual
-        C[:, k] = (rp - rm) / (2 * h)
+        rp = _residual(scene, pin.integrate(model, q, e), v0)
+        vp = _residual(scene, q, v0 + e)
+        if scheme == "central":
+            K[:, k] = (rp - _residual(scene, pin.integrate(model, q, -e), v0)) / (2 * h)
+            C[:, k] = (vp - _residual(scene, q, v0 - e)) / (2 * h)
+        else:
+            K[:, k] = (rp - r0) / h
+            C[:, k] = (vp - r0) / h
     M = pin.crba(model, scene.data, q)
+    M = np.triu(M) + np.triu(M, 1).T
     ix = np.ix_(f, f)
     return M[ix], C[ix], K[ix]
+
+
+def ridders(fn, h0: float = 0.1, con: float = 1.4, ntab: int = 10) -> tuple[np.ndarray, float]:
+    """Richardson extrapolation of central differences of a vector function (Ridders' tableau).
+
+    ``fn(h)`` returns the central difference quotient at step h.  Returns the
+    extrapolated derivative and its error estimate (2-norm), the smallest over
+    the tableau; stops when the estimate has grown twice past its minimum.
+    """
+    con2 = con * con
+    a = [[fn(h0)]]
+    best, err = a[0][0], np.inf
+    h = h0
+    for i in range(1, ntab):
+        h /= con
+        row = [fn(h)]
+        fac = con2
+        for j in range(1, i + 1):
+            row.append((row[j - 1] * fac - a[i - 1][j - 1]) / (fac - 1.0))
+            fac *= con2
+            e = max(np.linalg.norm(row[j] - row[j - 1]), np.linalg.norm(row[j] - a[i - 1][j - 1]))
+            if e <= err:
+                err, best = e, row[j]
+        a.append(row)
+        if np.linalg.norm(row[i] - a[i - 1][i - 1]) >= 2.0 * err:
+            break
+    return best, float(err)
+
+
+def richardson_reference(scene: pinlin.Scene, q: np.ndarray):
+    """(M, C, K, error estimates) with C and K by Ridders extrapolation, M by crba."""
+    model = scene.model
+    f = scene.free_dofs
+    v0 = np.asarray(scene.v0)
+    nv = model.nv
+    K = np.zeros((nv, nv))
+    C = np.zeros((nv, nv))
+    eK = eC = 0.0
+    for k in f:
+        e = np.zeros(nv)
+        e[k] = 1.0
+
+        def dq(h, e=e):
+            return (_residual(scene, pin.integrate(model, q, h * e), v0) - _residual(scene, pin.integrate(model, q, -h * e), v0)) / (2 * h)
+
+        def dv(h, e=e):
+            return (_residual(scene, q, v0 + h * e) - _residual(scene, q, v0 - h * e)) / (2 * h)
+
+        K[:, k], err = ridders(dq)
+        eK = np.hypot(eK, err)
+        C[:, k], err = ridders(dv)
+        eC = np.hypot(eC, err)
+    M = pin.crba(model, scene.data, q)
+    M = np.triu(M) + np.triu(M, 1).T
+    ix = np.ix_(f, f)
+    return M[ix], C[ix], K[ix], (eC, eK)
+
+
+def matrix_error(M, C, K, ref) -> float:
+    """max of the relative Frobenius errors of M, C, K (C against sqrt(||M|| ||K||) when its reference is 0)."""
+    Mr, Cr, Kr = ref
+    nM, nK = np.linalg.norm(Mr), np.linalg.norm(Kr)
+    nC = max(np.linalg.norm(Cr), np.sqrt(nM * nK))
+    return float(max(np.linalg.norm(M - Mr) / nM, np.linalg.norm(C - Cr) / nC, np.linalg.norm(K - Kr) / nK))
+
+
+# ----------------------------------------------------------------------------- mpmath reference
+
+
+def _mp_axis(jm) -> tuple[str, np.ndarray]:
+    """("R" or "P", unit axis in the joint frame) of a 1-DOF Pinocchio joint, else ValueError."""
+    name = jm.shortname()
+    for kind, prefix in (("R", "JointModelR"), ("P", "JointModelP")):
+        if name in (prefix + "X", prefix + "Y", prefix + "Z"):
+            return kind, np.eye(3)["XYZ".index(name[-1])]
+    if name == "JointModelRevoluteUnaligned":
+        return "R", np.asarray(jm.extract().axis, dtype=float)
+    if name == "JointModelPrismaticUnaligned":
+        return "P", np.asarray(jm.extract().axis, dtype=float)
+    raise ValueError(f"joint type {name} not supported by the mpmath reference")
+
+
+def mp_reference(scene: pinlin.Scene, q: np.ndarray, dps: int = 50):
+    """(M, C, K) of a fixed-base scene of 1-DOF joints from an independent forward-kinematics model in mpmath.
+
+    Uses only the model's numbers (joint placements and axes, link inertias, frame
+    placements) and the scene's springs, dampers and follower wrenches; no
+    Pinocchio algorithm.  In ``dps``-digit arithmetic:
+
+    - residual r(q) = g(q) - J_F(q)^T w_F(q) + k (q - q_rest), with the gravity
+      torque g_j = -sum_i m_i g . (omega_j x (c_i - p_j)) over the links i moved by
+      joint j (omega_j its world axis, p_j its origin; a prismatic joint moves c_i
+      along omega_j) and the follower wrench w_F rotated into world axes;
+    - K = dr/dq by central differences at h = 10^-(dps/2.5) (error ~ 10^-(dps/2.5 * 2));
+    - M = sum_i m_i J_ci^T J_ci + J_wi^T I_i J_wi (world inertia about the centre of mass);
+    - C = the joint dampers (at v = 0 Coriolis terms vanish).
+    """
+    import mpmath as mp
+
+    model = scene.model
+    n = model.nv
+    if model.nq != n:
+        raise ValueError("the mpmath reference handles 1-DOF joints only")
+    joints = []
+    for i in range(1, model.njoints):
+        jm = model.joints[i]
+        kind, axis = _mp_axis(jm)
+        joints.append((i, jm.idx_q, kind, axis))
+    springs, dampers, follows = {}, {}, []
+    for e in scene.elements:
+        if isinstance(e, pinlin.JointSpring):
+            springs[scene.robot.joint(e.joint).idx_v] = (float(np.ravel(e.stiffness)[0]), 0.0 if e.rest is None else float(np.ravel(e.rest)[0]))
+        elif isinstance(e, pinlin.JointDamper):
+            dampers[scene.robot.joint(e.joint).idx_v] = float(np.ravel(e.damping)[0])
+        elif isinstance(e, pinlin.FollowerWrench):
+            follows.append(e)
+        else:
+            raise ValueError(f"element {e!r} not supported by the mpmath reference")
+    with mp.workdps(dps):
+        def mat(a):
+            return mp.matrix(np.asarray(a, dtype=float).tolist())
+
+        placements = [(mat(model.jointPlacements[i].rotation), mat(model.jointPlacements[i].translation)) for i in range(model.njoints)]
+        g = mat(model.gravity.linear)
+
+        def rot(axis, t):
+            x, y, z = (mp.mpf(float(c)) for c in axis)
+            c, s_ = mp.cos(t), mp.sin(t)
+            C1 = 1 - c
+            return mp.matrix([[c + x * x * C1, x * y * C1 - z * s_, x * z * C1 + y * s_],
+                              [y * x * C1 + z * s_, c + y * y * C1, y * z * C1 - x * s_],
+                              [z * x * C1 - y * s_, z * y * C1 + x * s_, c + z * z * C1]])
+
+        def kinematics(qq):
+            R = {0: mp.eye(3)}
+            p = {0: mp.matrix(3, 1)}
+            world = {}
+            for i, iq, kind, axis in joints:
+                par = model.parents[i]
+                Rp, tp = placements[i]
+                Rj = R[par] * Rp
+                pj = p[par] + R[par] * tp
+                w = Rj * mat(axis)
+                world[i] = (w, pj, kind)
+                if kind == "R":
+                    R[i] = Rj * rot(axis, qq[iq])
+                    p[i] = pj
+                else:
+                    R[i] = Rj
+                    p[i] = pj + w * qq[iq]
+            return R, p, world
+
+        def ancestors(i):
+            out = []
+            while i > 0:
+                out.append(i)
+                i = model.parents[i]
+            return out
+
+        def cross(a, b):
+            return mp.matrix([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+        def dot(a, b):
+            return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+        def jac_point(world, i, point):
+            """Linear velocity of a point on body i per joint velocity (n columns)."""
+            cols = [mp.matrix(3, 1) for _ in range(n)]
+            for j in ancestors(i):
+                w, pj, kind = world[j]
+                cols[model.joints[j].idx_v] = cross(w, point - pj) if kind == "R" else w
+            return cols
+
+        def residual(qq):
+            R, p, world = kinematics(qq)
+            r = [mp.mpf(0)] * n
+            for i in range(1, model.njoints):
+                m_i = mp.mpf(model.inertias[i].mass)
+                if m_i == 0:
+                    continue
+                c = p[i] + R[i] * mat(model.inertias[i].lever)
+                for k, col in enumerate(jac_point(world, i, c)):
+                    r[k] -= m_i * dot(g, col)
+            for f in follows:
+                fr = model.frames[scene.robot.frame_id(f.frame)]
+                i = fr.parentJoint
+                Rf = R[i] * mat(fr.placement.rotation)
+                pf = p[i] + R[i] * mat(fr.placement.translation)
+                F, T = Rf * mat(f.force), Rf * mat(f.torque)
+                for k, col in enumerate(jac_point(world, i, pf)):
+                    r[k] -= dot(F, col)
+                for j in ancestors(i):
+                    w, _, kind = world[j]
+                    if kind == "R":
+                        r[model.joints[j].idx_v] -= dot(T, w)
+            for k, (stiff, rest) in springs.items():
+                r[k] += stiff * (qq[k] - rest)
+            return r
+
+        q_mp = [mp.mpf(float(x)) for x in q]
+        h = mp.mpf(10) ** (-int(dps / 2.5))
+        K = np.zeros((n, n))
+        for k in range(n):
+            qp, qm = list(q_mp), list(q_mp)
+            qp[k] += h
+            qm[k] -= h
+            rp, rm = residual(qp), residual(qm)
+            K[:, k] = [float((a - b) / (2 * h)) for a, b in zip(rp, rm)]
+        R, p, world = kinematics(q_mp)
+        M = mp.zeros(n, n)
+        for i in range(1, model.njoints):
+            m_i = mp.mpf(model.inertias[i].mass)
+            c = p[i] + R[i] * mat(model.inertias[i].lever)
+            Jv = jac_point(world, i, c)
+            Iw = R[i] * mat(model.inertias[i].inertia) * R[i].T
+            Jw = [mp.matrix(3, 1) for _ in range(n)]
+            for j in ancestors(i):
+                w, _, kind = world[j]
+                if kind == "R":
+                    Jw[model.joints[j].idx_v] = w
+            for a in range(n):
+                for b in range(n):
+                    M[a, b] += m_i * dot(Jv[a], Jv[b]) + dot(Jw[a], Iw * Jw[b])
+        M = np.array([[float(M[a, b]) for b in range(n)] for a in range(n)])
+    C = np.zeros((n, n))
+    for k, c in dampers.items():
+        C[k, k] = c
+    return M, C, K
+
+
+# ----------------------------------------------------------------------------- cases
+
+
+class Case:
+    def __init__(self, label, scene, q, exact=None, balancing=False, urdf=None, free_flyer=False):
+        self.label, self.scene, self.q, self.exact = label, scene, q, exact
+        self.balancing, self.urdf, self.free_flyer = balancing, urdf, free_flyer
+
+
+def double_pendulum_case(theta=(0.4, 0.5), k=(3.0, 2.0), c=(0.2, 0.1), P=4.0) -> Case:
+    """The paper's double pendulum (SPEC 7.1) posed at relative angles ``theta``, with its closed form.
+
+    The spring rests are chosen so that ``theta`` is an equilibrium.  Absolute
+    angles phi = T theta; in phi, with gravity potential V = -(m1/2 + m2) g l1
+    cos phi1 - m2 g l2/2 cos phi2 and the follower's Q1 = -P l1 sin(phi2 - phi1):
+
+        M_phi = [[(m1/3 + m2) l1^2, m2 l1 l2/2 cos(phi2 - phi1)], [., m2 l2^2/3]]
+        K_phi = Hess V - dQ/dphi = diag((m1/2 + m2) g l1 cos phi1, m2 g l2/2 cos phi2)
+                + P l1 cos(phi2 - phi1) [[-1, 1], [0, 0]]
+
+    and M = T^T M_phi T, K = T^T K_phi T + diag(k), C = diag(c).  At theta = 0
+    this is SPEC 7.1's printed matrices; away from 0 gravity loads the joints,
+    so difference quotients suffer rounding as on a real robot.
+    """
+    m1, l1, m2, l2, g = 1.3, 0.7, 0.9, 0.5, 9.81
+    T = np.array([[1.0, 0.0], [1.0, 1.0]])
+    th = np.asarray(theta, dtype=float)
+    p1, p2 = T @ th
+    cr = np.cos(p2 - p1)
+    Q_phi = np.array([-(m1 / 2 + m2) * g * l1 * np.sin(p1) - P * l1 * np.sin(p2 - p1), -m2 * g * l2 / 2 * np.sin(p2)])
+    rest = th - (T.T @ Q_phi) / np.asarray(k)  # springs balance gravity and the follower at theta
+    text = pinlin.double_pendulum_urdf(m1, l1, m2, l2)
+    robot = pinlin.load_urdf_string(text)
+    elements = [pinlin.JointSpring(f"joint{i + 1}", k[i], rest=float(rest[i])) for i in range(2)]
+    elements += [pinlin.JointDamper(f"joint{i + 1}", c[i]) for i in range(2)]
+    elements.append(pinlin.FollowerWrench("tip", force=(0, 0, P)))
+    scene = pinlin.Scene(robot, elements, gravity=(0, 0, -g))
+    M = np.array([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2 * cr], [m2 * l1 * l2 / 2 * cr, m2 * l2**2 / 3]])
+    K = np.diag([(m1 / 2 + m2) * g * l1 * np.cos(p1), m2 * g * l2 / 2 * np.cos(p2)])
+    K = K + P * l1 * cr * np.array([[-1.0, 1.0], [0.0, 0.0]])
+    exact = (T.T @ M @ T, np.diag(c), T.T @ K @ T + np.diag(k))
+    return Case(f"double pendulum at theta = {tuple(theta)} (SPEC 7.1 closed form)", scene, th, exact, urdf=text)
+
+
+def turntable_case() -> Case:
+    a, m, k, l0, W = 0.5, 1.0, 10.0, 0.3, 2.0
+    robot = pinlin.load_urdf_string(pinlin.turntable_urdf(a, m))
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("slider", k, rest=l0)], prescribed={"table": W})
+    r0 = (k * l0 + m * W**2 * a) / (k - m * W**2)
+    q = scene.neutral()
+    q[3] = r0
+    exact = (
+        np.diag([m * r0**2, m]),
+        2 * m * W * r0 * np.array([[0.0, 1.0], [-1.0, 0.0]]),
+        np.diag([m * W**2 * a * r0, k - m * W**2]),
+    )
+    return Case("turntable, Omega = 2 rad/s (SPEC 7.2)", scene, q, exact)
+
+
+def _arm_case(name: str, q_ref, tool: str, k: float = 100.0) -> Case:
+    robot = pinlin.load_example(name)
+    elements = []
+    for j, qj in zip(robot.joint_names, q_ref):
+        elements += [pinlin.JointSpring(j, k, rest=float(qj)), pinlin.JointDamper(j, 0.5)]
+    elements.append(pinlin.FollowerWrench(tool, force=(0.0, 0.0, 5.0)))
+    scene = pinlin.Scene(robot, elements)
+    q = pinlin.find_equilibrium(scene, np.asarray(q_ref, dtype=float)).q
+    text = pinlin.robot.example_urdf_path(name).read_text(encoding="utf-8")
+    return Case(f"{name}: springs, dampers, follower at {tool}", scene, q, urdf=text)
+
+
+def ur5_case() -> Case:
+    return _arm_case("ur5", [0.3, -1.2, 1.4, -0.8, 1.1, 0.4], "tool0")
+
+
+def panda_case() -> Case:
+    q_ref = pinlin.load_example("panda").reference_configurations["default"]
+    return _arm_case("panda", q_ref, "panda_hand")
+
+
+def talos_case() -> Case:
+    robot = pinlin.load_example("talos_reduced")
+    q = robot.reference_configurations["half_sitting"]
+    elements = []
+    for j in robot.joint_names[1:]:
+        elements += [pinlin.JointSpring(j, 200.0, rest=float(q[robot.joint(j).idx_q])), pinlin.JointDamper(j, 0.5)]
+    elements.append(pinlin.DeadWrench("arm_left_7_link", force=(0.0, 0.0, -10.0)))
+    scene = pinlin.Scene(robot, elements)
+    return Case(
+        "talos_reduced: floating base, springs, dampers, dead load (balanced)", scene, q, balancing=True
+    )
+
+
+# ----------------------------------------------------------------------------- MuJoCo peer
+
+
+def _strip_meshes(urdf: str) -> str:
+    urdf = re.sub(r"<visual\b.*?</visual>", "", urdf, flags=re.S)
+    urdf = re.sub(r"<collision\b.*?</collision>", "", urdf, flags=re.S)
+    return urdf.replace("</robot>", '<mujoco><compiler discardvisual="true" fusestatic="false"/></mujoco></robot>')
+
+
+def _mujoco_case(mujoco, m, label: str, urdf: str, q: np.ndarray, quick: bool):
+    """Rows of one robot (one per MuJoCo eps), or a note saying why it was not compared."""
+    out = []
+    robot = pinlin.load_urdf_string(urdf)
+    model = pin.Model(robot.model)
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -9.81]), np.zeros(3))
+    data = model.createData()
+    names = robot.joint_names
+    try:
+        jid = [mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_JOINT, n) for n in names]
+    except Exception:  # noqa: BLE001
+        jid = [-1]
+    if min(jid) < 0 or m.nv != model.nv:
+        return f"{label}: joints do not map one to one (MuJoCo nv = {m.nv}, Pinocchio nv = {model.nv})"
+    qadr = np.array([m.jnt_qposadr[j] for j in jid])
+    vadr = np.array([m.jnt_dofadr[j] for j in jid])
+    d = mujoco.MjData(m)
+    d.qpos[qadr] = q
+    d.qvel[:] = 0.0
+    mujoco.mj_forward(m, d)
+    d.qacc[:] = 0.0  # mj_forward wrote the forward acceleration; linearize at a = 0
+    nv = m.nv
+    DfDq, DfDv, DfDa = np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros((nv, nv))
+
+    def mj_derivs(eps):
+        mujoco.mjd_inverseFD(m, d, eps, False, DfDq, DfDv, DfDa, None, None, None, None)
+        ix = np.ix_(vadr, vadr)
+        return DfDa.T[ix].copy(), DfDq.T[ix].copy()  # MuJoCo stores the transposes
+
+    # reference of the rigid-body part (gravity only): Ridders on Pinocchio's gravity torque
+    def g(qq):
+        return pin.computeGeneralizedGravity(model, data, qq).copy()
+
+    Kref = np.zeros((nv, nv))
+    for k in range(nv):
+        e = np.zeros(nv)
+        e[k] = 1.0
+        Kref[:, k], _ = ridders(lambda h, e=e: (g(pin.integrate(model, q, h * e)) - g(pin.integrate(model, q, -h * e))) / (2 * h))
+    Mref = pin.crba(model, data, q)
+    Mref = np.triu(Mref) + np.triu(Mref, 1).T
+
+    def analytic():
+        pin.crba(model, data, q)
+        return pin.computeGeneralizedGravityDerivatives(model, data, q)
+
+    Kan = np.array(analytic())
+    t_an = median_time(analytic, repeats=5 if quick else 9)
+    err_an = float(np.linalg.norm(Kan - Kref) / np.linalg.norm(Kref))
+    for eps in MUJOCO_EPS:
+        Mm, Km = mj_derivs(eps)
+        t_mj = median_time(lambda eps=eps: mj_derivs(eps), repeats=5 if quick else 9)
+        out.append(
+            [label, nv, eps, t_mj * 1e6, t_an * 1e6, t_mj / t_an,
+             float(np.linalg.norm(Km - Kref) / np.linalg.norm(Kref)), err_an,
+             float(np.linalg.norm(Mm - Mref) / np.linalg.norm(Mref))]
+        )
+    return out
+
+
+def mujoco_rows(cases, quick: bool):
+    """Rows comparing MuJoCo's mjd_inverseFD with Pinocchio's analytic rigid-body derivatives, or a reason.
+
+    ``cases``: (label, URDF text, q) of fixed-base robots; Pinocchio loads the same text.
+    """
+    try:
+        import mujoco
+    except ImportError:
+        return None, "mujoco is not importable here: the MuJoCo peer (mjd_inverseFD) was skipped (pip install mujoco to add it)"
+    rows = []
+    notes = []
+    for label, urdf, q in cases:
+        try:
+            m = mujoco.MjModel.from_xml_string(_strip_meshes(urdf))
+        except Exception as exc:  # noqa: BLE001 - MuJoCo raises ValueError subclasses of its own
+            notes.append(f"{label}: MuJoCo could not compile the URDF ({str(exc).splitlines()[0][:120]})")
+            continue
+        # inverse dynamics of the free tree: no equality (mimic joints) or contact forces
+        m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
+        row_or_note = _mujoco_case(mujoco, m, label, urdf, q, quick)
+        if isinstance(row_or_note, str):
+            notes.append(row_or_note)
+        else:
+            rows += row_or_note
+    note = (
+        f"mujoco {mujoco.__version__}: rigid-body part only (MuJoCo knows neither pinlin's springs nor its "
+        "follower loads): dtau/dq of gravity and M = dtau/da at the same q, v = 0, a = 0. "
+        "mjd_inverseFD computes dtau/dq, dtau/dv and dtau/da by forward differences in C; Pinocchio's analytic "
+        "counterpart is crba + computeGeneralizedGravityDerivatives. Reference for dtau/dq: Ridders extrapolation "
+        "of Pinocchio's computeGeneralizedGravity; for M: crba. Constraints (the panda's mimic finger joint) are "
+        "disabled in MuJoCo. Floating bases are not compared (MuJoCo's free joint has other velocity "
+        "coordinates). The slender bars of SPEC 7.1 have no inertia about their axis, which MuJoCo refuses: "
+        "its double pendulum has 1 cm bars."
+    )
+    if notes:
+        note += " " + " ".join(notes)
+    return rows, note
+
+
+# ----------------------------------------------------------------------------- run
 
 
 def _floor(scene: pinlin.Scene, q: np.ndarray):
@@ -63,108 +546,175 @@ def _floor(scene: pinlin.Scene, q: np.ndarray):
     return run
 
 
-def _double_pendulum():
-    m1, l1, m2, l2, k1, k2, P, g = 1.3, 0.7, 0.9, 0.5, 3.0, 2.0, 4.0, 9.81
-    robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf(m1, l1, m2, l2))
-    scene = pinlin.Scene(
-        robot,
-        [pinlin.JointSpring("joint1", k1), pinlin.JointSpring("joint2", k2), pinlin.FollowerWrench("tip", force=(0, 0, P))],
-        gravity=(0, 0, -g),
-    )
-    T = np.array([[1.0, 0.0], [1.0, 1.0]])
-    M = np.array([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2], [m2 * l1 * l2 / 2, m2 * l2**2 / 3]])
-    S = np.array([[k1 + k2 + (m1 / 2 + m2) * g * l1 - P * l1, -k2 + P * l1 / 2], [-k2 + P * l1 / 2, k2 + m2 * g * l2 / 2]])
-    N = P * l1 / 2 * np.array([[0.0, 1.0], [-1.0, 0.0]])
-    exact = (T.T @ M @ T, np.zeros((2, 2)), T.T @ (S + N) @ T)
-    return "double pendulum + follower (SPEC 7.1)", scene, np.zeros(2), exact
-
-
-def _turntable():
-    a, m, k, l0, W = 0.5, 1.0, 10.0, 0.3, 2.0
-    robot = pinlin.load_urdf_string(pinlin.turntable_urdf(a, m))
-    scene = pinlin.Scene(robot, [pinlin.JointSpring("slider", k, rest=l0)], prescribed={"table": W})
-    r0 = (k * l0 + m * W**2 * a) / (k - m * W**2)
-    q = scene.neutral()
-    q[3] = r0
-    exact = (
-        np.diag([m * r0**2, m]),
-        2 * m * W * r0 * np.array([[0.0, 1.0], [-1.0, 0.0]]),
-        np.diag([m * W**2 * a * r0, k - m * W**2]),
-    )
-    return "turntable (SPEC 7.2)", scene, q, exact
-
-
-def _panda():
-    robot = pinlin.load_example("panda")
-    elements = []
-    for name in robot.joint_names:
-        elements += [pinlin.JointSpring(name, 200.0), pinlin.JointDamper(name, 0.5)]
-    elements.append(pinlin.FollowerWrench("panda_hand", force=(0.0, 0.0, 5.0)))
-    scene = pinlin.Scene(robot, elements)
-    q = pinlin.find_equilibrium(scene, robot.reference_configurations["default"]).q
-    return "panda: springs, dampers, follower", scene, q, None
-
-
-def _chain(n: int):
-    robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(n))
-    elements = [pinlin.JointSpring(f"joint{i + 1}", 10.0) for i in range(n)]
-    elements += [pinlin.JointDamper(f"joint{i + 1}", 0.1) for i in range(n)]
-    elements.append(pinlin.FollowerWrench("tip", force=(0.0, 0.0, 1.0)))
-    scene = pinlin.Scene(robot, elements)
-    return f"{n}-link chain: springs, dampers, follower", scene, np.zeros(n), None
-
-
-def _rel(a, b) -> float:
-    return float(np.linalg.norm(a - b) / np.linalg.norm(b))
-
-
 def run(quick: bool = False) -> Report:
-    cases = [_double_pendulum(), _turntable(), _panda(), _chain(30)]
-    if not quick:
-        cases.append(_chain(100))
-    rows = []
-    summary = {}
-    for label, scene, q, exact in cases:
-        sys = pinlin.linearize(scene, q)
-        t_lin = median_time(lambda scene=scene, q=q: pinlin.linearize(scene, q))
-        t_floor = median_time(_floor(scene, q))
-        repeats = 3 if scene.n > 50 else 7
-        t_fd = median_time(lambda scene=scene, q=q: fd_linearization(scene, q), repeats=repeats)
-        M_fd, C_fd, K_fd = fd_linearization(scene, q)
-        if exact is not None:
-            M_ex, C_ex, K_ex = exact
-            err_lin = max(_rel(sys.M, M_ex), _rel(sys.K, K_ex), _rel(sys.C, C_ex) if np.any(C_ex) else 0.0)
-            err_fd = max(_rel(M_fd, M_ex), _rel(K_fd, K_ex), _rel(C_fd, C_ex) if np.any(C_ex) else 0.0)
-            reference = "closed form"
+    t_start = time.perf_counter()
+    cases = [double_pendulum_case(), turntable_case(), ur5_case(), panda_case(), talos_case()]
+    sweep = QUICK_H_SWEEP if quick else H_SWEEP
+    repeats = 5 if quick else 9
+    time_rows, sweep_rows, summary = [], [], {}
+    plot_series: dict[str, list] = {}
+    sweep_plot: dict[str, dict[str, list]] = {}
+    headline = []
+    for case in cases:
+        scene, q, bal = case.scene, case.q, case.balancing
+        sys = pinlin.linearize(scene, q, balancing=bal)
+        Mr, Cr, Kr, (eC, eK) = richardson_reference(scene, q)
+        richardson = (Mr, Cr, Kr)
+        rich_est = max(eK / np.linalg.norm(Kr), eC / max(np.linalg.norm(Cr), np.sqrt(np.linalg.norm(Mr) * np.linalg.norm(Kr))))
+        try:
+            mp_ref = mp_reference(scene, q)
+        except ValueError:  # floating base: not modelled by the mpmath kinematics
+            mp_ref = None
+        if case.exact is not None:
+            ref, ref_name, ref_err = case.exact, "closed form", 0.0
+        elif mp_ref is not None:
+            ref, ref_name, ref_err = mp_ref, "mpmath 50 digits", 0.0
         else:
-            err_lin = float("nan")
-            err_fd = max(_rel(K_fd, sys.K), _rel(C_fd, sys.C))
-            reference = "analytic"
-        rows.append(
-            [label, scene.n, t_lin * 1e6, t_floor * 1e6, t_lin / t_floor, t_fd * 1e6, t_fd / t_lin, err_lin, err_fd, reference]
+            ref, ref_name, ref_err = richardson, "Richardson", rich_est
+        rich_err = matrix_error(*richardson, ref) if ref_name != "Richardson" else float("nan")
+        mp_check = matrix_error(*mp_ref, case.exact) if (mp_ref is not None and case.exact is not None) else float("nan")
+        err_lin = matrix_error(sys.M, sys.C, sys.K, ref)
+
+        def lin(scene=scene, q=q, bal=bal):
+            return pinlin.linearize(scene, q, balancing=bal)
+
+        def core(scene=scene, q=q):
+            return assemble(scene, q, stiffness=True, damping=True, mass=True)
+
+        def fwd(scene=scene, q=q):
+            return fd_linearization(scene, q, TIMED_H["forward"], "forward")
+
+        def cen(scene=scene, q=q):
+            return fd_linearization(scene, q, TIMED_H["central"], "central")
+
+        t_lin, t_core, t_fwd, t_cen = interleaved_medians([lin, core, fwd, cen], repeats=repeats, min_time=0.01)
+        t_floor = median_time(_floor(scene, q), repeats=repeats)
+        errs = {"forward": [], "central": []}
+        for scheme in ("forward", "central"):
+            for h in sweep:
+                e = matrix_error(*fd_linearization(scene, q, h, scheme), ref)
+                errs[scheme].append(e)
+                sweep_rows.append([case.label, scheme, h, e, e / max(err_lin, 1e-300)])
+        best = {s: (min(v), sweep[int(np.argmin(v))]) for s, v in errs.items()}
+        acc_ratio = best["central"][0] / max(err_lin, np.finfo(float).eps / 2)
+        time_rows.append(
+            [case.label, sys.n, t_lin * 1e6, t_core * 1e6, t_floor * 1e6, t_fwd * 1e6, t_cen * 1e6,
+             t_cen / t_lin, t_cen / t_core, err_lin, best["forward"][0], best["forward"][1], best["central"][0],
+             best["central"][1], acc_ratio, ref_name, ref_err, rich_err, mp_check]
         )
-        summary[label] = f"{t_lin / t_floor:.1f}x floor, {t_fd / t_lin:.1f}x faster than central differences"
-    table = Table(
-        "linearize against Pinocchio's floor and central differences (h = 1e-6)",
-        [
-            "scene",
-            "n",
-            "linearize [us]",
-            "floor crba+RNEA derivs [us]",
-            "linearize / floor",
-            "central FD [us]",
-            "FD / linearize",
-            "linearize rel. error",
-            "FD rel. error",
-            "error reference",
-        ],
-        rows,
+        headline.append((case.label, sys.n, t_cen / t_lin, acc_ratio, ref_name))
+        short = case.label.split(":")[0].split(" (")[0].split(" +")[0]
+        plot_series[f"{short}: linearize"] = [(t_lin, err_lin)]
+        plot_series[f"{short}: central FD (best h)"] = [(t_cen, best["central"][0])]
+        plot_series[f"{short}: forward FD (best h)"] = [(t_fwd, best["forward"][0])]
+        sweep_plot[short] = {"forward": errs["forward"], "central": errs["central"], "analytic": err_lin}
+        summary[case.label] = (
+            f"linearize {t_cen / t_lin:.1f}x faster than central differences ({t_cen / t_core:.1f}x for the analytic "
+            f"core), error {err_lin:.1e} vs best central {best['central'][0]:.1e} (h = {best['central'][1]:g}) "
+            f"and best forward {best['forward'][0]:.1e}: {acc_ratio:.1e}x more accurate (reference: {ref_name})"
+        )
+    t1 = Table(
+        "Run time and accuracy: analytic linearization against finite differences",
+        ["scene", "n", "linearize [us]", "analytic core [us]", "floor crba+RNEA derivs [us]", "forward FD [us]",
+         "central FD [us]", "central FD / linearize", "central FD / core", "linearize error", "best forward error",
+         "at h", "best central error", "at h", "best central error / linearize error", "reference",
+         "Richardson's error estimate (where it is the reference)", "Richardson's error against the reference",
+         "mpmath kinematics against the closed form"],
+        time_rows,
         note=(
-            "Medians of repeats in one process.  Errors: max relative Frobenius error of M, C, K against the "
-            "reference named in the last column ('analytic' = gap between differences and the analytic result)."
+            "Times: medians of interleaved repeats in one process ('analytic core' = pinlin.assembly.assemble of "
+            "M, C, K without the checks linearize makes: equilibrium, mass, time invariance). Differences use the "
+            "same residual evaluation as pinlin (assemble without derivatives), 2n (forward) or 4n (central) "
+            "evaluations plus crba. Errors: max relative Frobenius error of M, C, K against the reference. With a "
+            "closed form, or the mpmath reference (an independent forward-kinematics model of the fixed-base arm in "
+            "50-digit arithmetic: gravity, springs and follower by virtual work, K by 50-digit differences, M from "
+            "the link Jacobians; no Pinocchio algorithm), the errors are exact to double precision; with "
+            "Richardson (the floating-base Talos, which the mpmath model does not cover) the linearize error is "
+            "the gap to the reference, an upper bound dominated by Richardson's own error (its estimate and, where "
+            "a better reference exists, its measured error are listed: ~1e-14). Ratios use an error floor of eps/2."
         ),
     )
-    return Report("linearize", [table], summary)
+    t2 = Table(
+        "Error of finite differences against the step h",
+        ["scene", "scheme", "h", "error", "error / linearize error"],
+        sweep_rows,
+        note=(
+            "Truncation error falls like h (forward) or h^2 (central) until rounding, eps ||r|| / h, takes over: "
+            "the best step balances them and is problem dependent."
+        ),
+    )
+    tables = [t1, t2]
+    mj_cases = [
+        ("double pendulum (bars of radius 1 cm)", pinlin.pendulum_chain_urdf(2, [0.7, 0.5], [1.3, 0.9], radius=0.01),
+         np.array([0.4, 0.5]))
+    ] + [(c.label.split(":")[0], c.urdf, c.q) for c in cases if c.urdf is not None and c.label.startswith(("ur5", "panda"))]
+    mj_rows, mj_note = mujoco_rows(mj_cases, quick)
+    if mj_rows is None:
+        summary["MuJoCo peer"] = mj_note
+    else:
+        tables.append(
+            Table(
+                "MuJoCo mjd_inverseFD against Pinocchio's analytic derivatives (rigid-body part, same URDF)",
+                ["robot", "n", "MuJoCo eps", "mjd_inverseFD [us]", "Pinocchio analytic [us]", "MuJoCo / analytic",
+                 "MuJoCo dtau/dq error", "analytic dtau/dq error", "MuJoCo M error"],
+                mj_rows,
+                note=mj_note,
+            )
+        )
+        summary["MuJoCo peer"] = "compared (rigid-body part); see the last table"
+    robots = [h for h in headline if not h[0].startswith(("double", "turntable"))]
+    summary["headline"] = (
+        "central differences / linearize run time: "
+        + ", ".join(f"{lab.split(':')[0]} (n = {n}) {s:.1f}x" for lab, n, s, _, _ in headline)
+        + "; accuracy ratio (best central error / linearize error, reference): "
+        + ", ".join(f"{lab.split(':')[0]} {a:.1e} ({r})" for lab, _, _, a, r in headline)
+    )
+    exact_refs = [h for h in headline if h[4] != "Richardson"]
+    summary["robots (n >= 6)"] = (
+        f"min speed ratio {min(h[2] for h in robots):.1f}x (target >= 5x); min accuracy ratio against exact "
+        f"references (closed form, mpmath) {min(h[3] for h in exact_refs):.1e} (target >= 1e4); against "
+        f"Richardson (floating base) {min((h[3] for h in headline if h[4] == 'Richardson'), default=float('nan')):.1e},"
+        " a lower bound set by Richardson's own accuracy"
+    )
+    figures = _plot(plot_series, sweep_plot, sweep, quick)
+    text = (
+        "Analytic linearization (pinlin.linearize: Pinocchio's analytic derivatives plus the elements' own) against "
+        "finite differences of the same residual, and MuJoCo's finite-difference inverse-dynamics derivatives as a "
+        "peer when mujoco is importable. Small systems (n = 2) cost the difference quotients only 4n + 1 = 9 "
+        "residual evaluations, less than linearize's checks; from the 6-joint arm upward analytic wins on time too."
+    )
+    report = Report("linearize", tables, summary, figures, text=text)
+    report.elapsed = time.perf_counter() - t_start
+    return report
+
+
+def _plot(series, sweep_plot, sweep, quick: bool) -> list[str]:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return []
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(13, 5))
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for i, (label, d) in enumerate(sweep_plot.items()):
+        c = colors[i % len(colors)]
+        ax1.loglog(sweep, np.maximum(d["forward"], 1e-17), "--", color=c, marker="v", label=f"{label}: forward")
+        ax1.loglog(sweep, np.maximum(d["central"], 1e-17), "-", color=c, marker="o", label=f"{label}: central")
+        ax1.axhline(max(d["analytic"], 1e-17), color=c, lw=0.8, ls=":")
+    ax1.set_xlabel("step h")
+    ax1.set_ylabel("max relative error of M, C, K")
+    ax1.set_title("Finite differences against the step (dotted: analytic)", fontsize=10)
+    ax1.grid(True, which="both", alpha=0.3)
+    ax1.legend(fontsize=6, ncol=2)
+    work_precision_plot(RESULTS / "unused.png", series, "Linearization: error against run time", ax=ax2)
+    path = RESULTS / ("linearize_quick.png" if quick else "linearize.png")
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return [str(path)]
 
 
 if __name__ == "__main__":

@@ -3,12 +3,14 @@
 Every timing is the median of repeats, and every comparison is a ratio against a
 baseline run in the same process.  Each benchmark module exposes
 ``run(quick: bool) -> Report``; :func:`write_report` stores it as Markdown and
-JSON in ``benchmarks/results/``.
+JSON in ``benchmarks/results/``; :func:`work_precision_plot` draws error against
+run time (log-log) as PNG.  ``python -m benchmarks`` runs them all.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import platform
 import statistics
 import time
@@ -79,9 +81,13 @@ class Report:
     tables: list[Table]
     summary: dict[str, object] = field(default_factory=dict)
     figures: list[str] = field(default_factory=list)
+    text: str = ""
+    elapsed: float = 0.0
 
     def markdown(self) -> str:
         parts = [f"## {self.name}", ""]
+        if self.text:
+            parts += [self.text.strip(), ""]
         if self.summary:
             parts += [f"- **{k}**: {v}" for k, v in self.summary.items()] + [""]
         parts += [t.markdown() for t in self.tables]
@@ -89,18 +95,61 @@ class Report:
         return "\n".join(parts)
 
 
+#: Environment variables that set the thread count of BLAS / OpenMP libraries.
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "BLIS_NUM_THREADS")
+
+
+def _cpu_model() -> str:
+    try:
+        with open("/proc/cpuinfo", encoding="ascii", errors="replace") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def _memory_gib() -> str:
+    try:
+        with open("/proc/meminfo", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("MemTotal:"):
+                    return f"{int(line.split()[1]) / 2**20:.1f}"
+    except OSError:
+        pass
+    return "unknown"
+
+
+def blas_info() -> str:
+    """BLAS library numpy was built against (from ``numpy.show_config``), or 'unknown'."""
+    try:
+        cfg = np.show_config(mode="dicts")
+        blas = cfg["Build Dependencies"]["blas"]
+        return f"{blas.get('name', '?')} {blas.get('version', '')}".strip()
+    except Exception:  # noqa: BLE001 - older numpy: no dict mode
+        return "unknown"
+
+
 def machine() -> dict[str, str]:
     import pinocchio
     import scipy
 
-    return {
+    info = {
         "python": platform.python_version(),
         "machine": platform.machine(),
-        "processor": platform.processor() or "unknown",
+        "processor": _cpu_model(),
+        "cpus": str(os.cpu_count()),
+        "memory [GiB]": _memory_gib(),
+        "os": f"{platform.system()} {platform.release()}",
         "numpy": np.__version__,
         "scipy": scipy.__version__,
         "pinocchio": pinocchio.__version__,
+        "blas": blas_info(),
     }
+    for var in THREAD_VARIABLES:
+        info[var] = os.environ.get(var, "unset")
+    return info
 
 
 def _jsonable(x):
@@ -119,9 +168,91 @@ def write_report(report: Report, directory: Path = RESULTS) -> Path:
     payload = {
         "name": report.name,
         "machine": machine(),
+        "elapsed [s]": report.elapsed,
+        "text": report.text,
         "summary": report.summary,
         "tables": [{"title": t.title, "columns": list(t.columns), "rows": t.rows, "note": t.note} for t in report.tables],
         "figures": report.figures,
     }
     (directory / f"{report.name}.json").write_text(json.dumps(payload, indent=2, default=_jsonable), encoding="utf-8")
     return md
+
+
+def work_precision_plot(
+    path: Path,
+    series: dict[str, Sequence[tuple[float, float]]],
+    title: str,
+    *,
+    xlabel: str = "run time [s]",
+    ylabel: str = "relative error",
+    floor: float = 1e-17,
+    connect: Sequence[str] = (),
+    ax=None,
+) -> str | None:
+    """Error against run time, log-log, one marker style per series; returns the PNG path or None.
+
+    ``series`` maps a label to (time, error) points; errors below ``floor`` are
+    drawn at ``floor`` (an exact result has no place on a log axis).  Series
+    named in ``connect`` are joined by lines (a sweep of one method's setting).
+    Without matplotlib nothing is drawn.  With ``ax`` the curves are drawn on
+    that axes and nothing is saved.
+    """
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return None
+    own = ax is None
+    if own:
+        fig, ax = plt.subplots(figsize=(7, 4.8))
+    markers = "o^sDvP<>Xh*p"
+    for i, (label, pts) in enumerate(series.items()):
+        pts = np.array([(t, max(e, floor)) for t, e in pts if np.isfinite(t) and np.isfinite(e)], dtype=float)
+        if pts.size == 0:
+            continue
+        style = "-" if label in connect else ""
+        ax.loglog(pts[:, 0], pts[:, 1], style + markers[i % len(markers)], label=label, alpha=0.85)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    if not own:
+        return None
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return str(path)
+
+
+def interleaved_medians(fns: Sequence[Callable[[], object]], repeats: int = 7, min_time: float = 0.01) -> list[float]:
+    """Median wall time [s] per call of each function, sampled in turn.
+
+    Each function gets one warm-up call and a loop count making one sample last
+    at least ``min_time``; then the samples of all functions are taken
+    alternately, so a change of machine load (this machine is shared) does not
+    favour one side of a ratio.
+    """
+    loops = []
+    for fn in fns:
+        fn()
+        n = 1
+        while True:
+            t0 = time.perf_counter()
+            for _ in range(n):
+                fn()
+            if time.perf_counter() - t0 >= min_time or n >= 1 << 20:
+                break
+            n *= 2
+        loops.append(n)
+    samples: list[list[float]] = [[] for _ in fns]
+    for _ in range(repeats):
+        for fn, n, out in zip(fns, loops, samples):
+            t0 = time.perf_counter()
+            for _ in range(n):
+                fn()
+            out.append((time.perf_counter() - t0) / n)
+    return [statistics.median(s) for s in samples]

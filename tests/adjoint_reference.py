@@ -11,6 +11,7 @@ import mpmath as mp
 import numpy as np
 
 import pinlin
+from pinlin.testing import mp_characteristic_coefficients
 
 DPS = 50
 
@@ -94,23 +95,7 @@ def inv_mp(sys, lam) -> np.ndarray:
 
 def poly_coefficients_mp(sys) -> np.ndarray:
     """det M prod_k (lam - lam_k), lam_k eigenvalues of the 50-digit companion matrix, ascending powers."""
-    n = sys.n
-    with mp.workdps(DPS):
-        Mi = mp.inverse(mp.matrix(sys.M.tolist()))
-        B0 = -Mi * mp.matrix(sys.K.tolist())
-        B1 = -Mi * mp.matrix(sys.C.tolist())
-        A = mp.zeros(2 * n, 2 * n)
-        for i in range(n):
-            A[i, n + i] = 1
-            for j in range(n):
-                A[n + i, j] = B0[i, j]
-                A[n + i, n + j] = B1[i, j]
-        ev = mp.eig(A, left=False, right=False)
-        c = [mp.mpc(1)]
-        for lam in ev:
-            c = [(c[k - 1] if k > 0 else 0) - lam * (c[k] if k < len(c) else 0) for k in range(len(c) + 1)]
-        det_m = mp.det(mp.matrix(sys.M.tolist()))
-        return np.array([float(mp.re(det_m * x)) for x in c])
+    return mp_characteristic_coefficients(sys, dps=DPS)[0]
 
 
 def angle(u: np.ndarray, v: np.ndarray) -> float:

@@ -145,3 +145,17 @@ def test_bad_system_and_points():
         p.error_at(np.inf)
     with pytest.raises(AttributeError, match="no error figures"):
         p.deriv().error_at(1.0)
+
+
+def test_mp_reference_closed_form_oscillator():
+    """pinlin.testing's 50-digit reference itself, on m lam^2 + c lam + k: roots and coefficients exact."""
+    from pinlin.testing import mp_characteristic_coefficients, mp_eigenvalues, paired
+
+    m, c, k = 2.0, 0.6, 5.0
+    sys = pinlin.LinearizedSystem.from_matrices([[m]], [[c]], [[k]])
+    roots = (-c + np.array([1, -1]) * np.sqrt(complex(c * c - 4 * m * k))) / (2 * m)
+    assert_allclose(paired(roots, mp_eigenvalues(sys)), roots, rtol=1e-15)
+    coef, _ = mp_characteristic_coefficients(sys)
+    assert_allclose(coef, [k, c, m], rtol=1e-15)
+    with pytest.raises(pinlin.ParameterError, match="three square matrices"):
+        mp_eigenvalues((np.eye(2), np.eye(3), np.eye(2)))

@@ -76,3 +76,13 @@ def test_bad_arguments():
         pinlin.find_equilibrium(scene, tol=-1.0)
     with pytest.raises(pinlin.ParameterError, match="max_iterations"):
         pinlin.find_equilibrium(scene, max_iterations=2.5)
+
+
+def test_stall_far_from_equilibrium_is_reported_with_advice():
+    """A 50-link chain curled by 5 rad against its springs: the residual norm stalls (Newton's known limit)."""
+    n = 50
+    robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(n))
+    scene = pinlin.Scene(robot, [pinlin.JointSpring(f"joint{i + 1}", 5.0) for i in range(n)])
+    with pytest.raises(pinlin.ConvergenceError, match="stalled at a local minimum of ||r||") as info:
+        pinlin.find_equilibrium(scene, np.full(n, 0.1), max_iterations=30)
+    assert info.value.history[-1] > 1.0

@@ -134,7 +134,8 @@ def test_unknown_example():
 
 
 def test_memory_estimate_follows_spec():
-    assert pinocchio_data_bytes(500) >= 32 * 500**3  # about 4 GB at nv = 500 (SPEC section 1)
+    # Pinocchio keeps 32 nv^3 bytes (about 4 GB at nv = 500, SPEC section 1) and peaks near twice that
+    assert 64 * 500**3 <= pinocchio_data_bytes(500) <= 80 * 500**3
 
 
 def test_memory_guard_refuses_before_allocating():
@@ -149,7 +150,7 @@ def test_memory_guard_refuses_before_allocating():
 
 
 def test_memory_guard_default_limit_refuses_huge_chain():
-    """nv = 1000 would need 32 GB for Pinocchio's data: more than this machine allows (SPEC section 1)."""
+    """nv = 1000: Pinocchio's data keeps 32 GB and peaks near 70 GB, more than a 24 GB machine allows (SPEC section 1)."""
     with pytest.raises(pinlin.ModelTooLargeError, match="nv = 1000"):
         pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(1000), memory_limit=24 * 2**30 // 2)
 

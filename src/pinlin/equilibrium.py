@@ -89,7 +89,10 @@ def find_equilibrium(
     coordinates (least squares if K is singular), then backtracks along
     ``pin.integrate(q, alpha dx)`` until ||r|| decreases (Armijo).  Prescribed
     joints stay where ``q0`` puts them.  Several equilibria may exist: the one
-    found depends on the start.
+    found depends on the start.  The line search works on ||r||, so far from an
+    equilibrium (a chain curled by several radians against its springs) it can
+    stall at a local minimum of ||r|| where K is nearly singular; the error then
+    says so.  Start closer, or raise the load in steps (continuation).
 
     Parameters
     ----------
@@ -146,8 +149,17 @@ def find_equilibrium(
                     f"residual history: {[f'{h:.2e}' for h in history]}",
                     history,
                 )
+    stalled = len(history) > 4 and history[-1] > 0.9 * history[-4]
     raise ConvergenceError(
         f"find_equilibrium: no convergence in {max_iterations} iterations (relative residual "
-        f"{rel:.2e} > tol {tol:g}); residual history: {[f'{h:.2e}' for h in history]}",
+        f"{rel:.2e} > tol {tol:g})"
+        + (
+            "; the residual has stalled at a local minimum of ||r||, which Newton's line search "
+            "cannot leave: start closer to the equilibrium, or raise the load in steps from a "
+            "known equilibrium (continuation)"
+            if stalled
+            else ""
+        )
+        + f"; residual history: {[f'{h:.2e}' for h in history]}",
         history,
     )

@@ -145,8 +145,10 @@ def modal_analysis(
         "auto" picks the cheapest applicable path; naming one forces it
         (ParameterError if it does not apply).
     scaling : bool
-        Fan-Lin-Van Dooren scaling for the general path (default True); False
-        runs QZ on the unscaled pencil (for comparison).
+        Fan-Lin-Van Dooren scaling for the general path (default True;
+        plus the tropical scalings, two more QZ runs, when ||C|| > 10 sqrt(||M|| ||K||),
+        see :mod:`pinlin.spectral.qep`); False runs QZ on the unscaled pencil
+        (for comparison).
     cluster_tol : float
         Relative distance under which computed eigenvalues are grouped as one
         multiple eigenvalue (see :data:`~pinlin.spectral.jordan.CLUSTER_TOL`).
@@ -199,9 +201,11 @@ def modal_analysis(
     used_scaling: Scaling | None = None
     if name == "general":
         used_scaling = problem.scaling if scaling else Scaling(1.0, 1.0)
-        raw = solve_general(problem, scaling=used_scaling)
+        raw = solve_general(problem, scaling=None if scaling else used_scaling)
         if not scaling:
             reason += " (unscaled, as requested)"
+        if raw.note:
+            reason += f"; {raw.note}"
     elif name == "symmetric":
         raw, worst = solve_symmetric(problem)
         if worst > eigh_tol:
@@ -285,7 +289,11 @@ def modal_analysis(
     constants = mode_constants(lam, fig.right, *fig.products) if problem.mechanical else None
     facts = structural_facts(problem, definiteness_tol)
     K_zero = not np.any(problem.K)
-    stability = decide_stability(facts, lam, bound, clusters, K_is_zero=K_zero, safety=safety)
+    # a coordinate on which neither K nor C acts drifts exactly: x(t) = t e_j
+    drift = bool(np.any(~np.any(problem.K, axis=0) & ~np.any(problem.C, axis=0)))
+    stability = decide_stability(
+        facts, lam, bound, clusters, K_is_zero=K_zero, exact_drift=drift, safety=safety
+    )
     return Modes(
         eigenvalues=lam,
         right=fig.right,

@@ -116,6 +116,8 @@ class Modes:
         ``.reason``.
     scaling : Scaling or None
         Fan-Lin-Van Dooren parameters used by the general path (None if none).
+        A heavily damped problem is also solved with the tropical scalings (two
+        more QZ runs), which ``method.reason`` describes.
     block : (2n,) int
         Companion block each right vector was recovered from (general path; 0
         for structured paths).

@@ -16,20 +16,43 @@ eigenproblems solved by linearization", SIAM J. Matrix Anal. Appl. 29, 2007);
 the left eigenvector is the first block of w.  When M, C and K are exactly
 symmetric, L(lam)^T = L(lam), so y = x (plain transpose) and QZ computes right
 vectors only.
+
+A heavily damped problem, tau = ||C|| / sqrt(||M|| ||K||) > :data:`TROPICAL_TAU`,
+has eigenvalues of two sizes, about ||C|| / ||M|| and ||K|| / ||C||, that no single
+scaling serves (the backward error of the Fan-Lin-Van Dooren scaled QZ grows
+with tau, to 1e-8 at tau = 1e8).  It is then solved again with the tropical
+scalings gamma+ = ||C|| / ||M|| and gamma- = ||K|| / ||C|| (Gaubert and Sharify,
+2009; Hammarling, Munro and Tisseur, "An algorithm for the complete solution
+of quadratic eigenvalue problems", ACM TOMS 39, 2013), and each eigentriple
+(conjugate pairs together) is taken from the run where its backward error is
+smallest.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.linalg import lapack
+from scipy.optimize import linear_sum_assignment
 
 from ..errors import ComputationError
 from .accuracy import backward_errors
 from .problem import QuadraticProblem, Scaling
 
-__all__ = ["RawSpectrum", "solve_general", "companion_pencil", "complex_columns", "exact_pairs"]
+__all__ = [
+    "RawSpectrum",
+    "solve_general",
+    "companion_pencil",
+    "complex_columns",
+    "exact_pairs",
+    "tropical_scalings",
+    "TROPICAL_TAU",
+]
+
+#: Damping measure tau = ||C|| / sqrt(||M|| ||K||) above which the general path uses
+#: tropical scaling (two QZ runs) instead of the single Fan-Lin-Van Dooren scaling.
+TROPICAL_TAU = 10.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,6 +70,8 @@ class RawSpectrum:
     block : (2n,) int
         Companion block the right vector was recovered from (1 or 2), 0 for
         structured paths.
+    note : str
+        How the spectrum was obtained when that needs saying (tropical scaling).
     """
 
     lam: np.ndarray
@@ -56,6 +81,7 @@ class RawSpectrum:
     CX: np.ndarray
     KX: np.ndarray
     block: np.ndarray
+    note: str = ""
 
 
 def companion_pencil(M, C, K) -> tuple[np.ndarray, np.ndarray]:
@@ -114,6 +140,21 @@ def _dggev(A: np.ndarray, B: np.ndarray, left: bool = True):
     return alphar, alphai, beta, vl, vr
 
 
+def tropical_scalings(problem: QuadraticProblem, tau_max: float = TROPICAL_TAU) -> tuple[Scaling, Scaling] | None:
+    """(gamma+ scaling, gamma- scaling) when tau = ||C|| / sqrt(||M|| ||K||) > tau_max, else None.
+
+    gamma+ = ||C|| / ||M|| suits the large eigenvalues, gamma- = ||K|| / ||C|| the
+    small ones; delta makes the largest scaled coefficient of size one.
+    """
+    nM, nC, nK = problem.norm_M, problem.norm_C, problem.norm_K
+    if nK == 0 or nC == 0 or nC <= tau_max * np.sqrt(nM * nK):
+        return None
+    out = []
+    for gamma in (nC / nM, nK / nC):
+        out.append(Scaling(float(gamma), float(1.0 / max(gamma * gamma * nM, gamma * nC, nK))))
+    return out[0], out[1]
+
+
 def solve_general(problem: QuadraticProblem, *, scaling: Scaling | None = None) -> RawSpectrum:
     """All 2n eigentriples of L(lam) by QZ on the scaled first companion form.
 
@@ -121,8 +162,9 @@ def solve_general(problem: QuadraticProblem, *, scaling: Scaling | None = None) 
     ----------
     problem : QuadraticProblem
     scaling : Scaling, optional
-        Default: the problem's Fan-Lin-Van Dooren scaling; ``Scaling(1, 1)``
-        gives plain QZ on the unscaled pencil.
+        Default: the problem's Fan-Lin-Van Dooren scaling, or tropical scaling
+        (two runs) when the problem is heavily damped (see the module doc);
+        ``Scaling(1, 1)`` gives plain QZ on the unscaled pencil.
 
     Raises
     ------
@@ -130,19 +172,99 @@ def solve_general(problem: QuadraticProblem, *, scaling: Scaling | None = None) 
         QZ failed, or returned an infinite or non-finite eigenvalue (M is then
         numerically singular).
     """
-    s = problem.scaling if scaling is None else scaling
+    if scaling is not None:
+        return _solve_scaled(problem, scaling)[0]
+    tropical = tropical_scalings(problem)
+    if tropical is None:
+        return _solve_scaled(problem, problem.scaling)[0]
+    return _merge(problem, *tropical)
+
+
+def _merge(problem: QuadraticProblem, plus: Scaling, minus: Scaling) -> RawSpectrum:
+    """Each eigentriple from the run (Fan-Lin-Van Dooren, gamma+ or gamma-) with the smallest backward error.
+
+    The Fan-Lin-Van Dooren run serves the eigenvalues of size sqrt(||K|| / ||M||)
+    that a heavily damped problem may also have (damping concentrated on a few
+    coordinates).  Runs are paired with the base run by an optimal assignment of
+    eigenvalues; a conjugate pair is replaced only by an exactly conjugate pair,
+    so pairs stay exact conjugates.
+    """
+    runs = [_solve_scaled(problem, s, allow_infinite=True) for s in (problem.scaling, plus, minus)]
+    finite = [bool(np.all(np.isfinite(r.lam))) for r, _ in runs]
+    if not any(finite[:2]):
+        k = int(np.sum(~np.isfinite(runs[0][0].lam)))
+        raise ComputationError(
+            f"QZ found {k} infinite eigenvalue(s): M is numerically singular (||M|| = {problem.norm_M:.3g})"
+        )
+    base = 0 if finite[0] else 1
+    cur, cur_eta = runs[base]
+    source = np.full(cur.lam.shape[0], base)
+    for k, (other, other_eta) in enumerate(runs):
+        if k == base:
+            continue
+        with np.errstate(invalid="ignore"):
+            cost = np.abs(cur.lam[:, None] - other.lam[None, :])
+        ok = np.isfinite(cost)
+        big = 2.0 * float(np.max(cost[ok], initial=0.0)) + 1.0  # no overflow in the assignment's sums
+        _, partner = linear_sum_assignment(np.where(ok, cost, big))
+        take = np.zeros(cur.lam.shape[0], dtype=bool)
+        done = np.zeros(cur.lam.shape[0], dtype=bool)
+        for i in range(cur.lam.shape[0]):
+            if done[i]:
+                continue
+            group = [i]
+            if cur.lam[i].imag != 0:  # its exact conjugate in the current spectrum
+                mates = np.flatnonzero((cur.lam == np.conj(cur.lam[i])) & ~done)
+                mates = mates[mates != i]
+                if mates.size:
+                    group.append(int(mates[0]))
+            done[group] = True
+            js = partner[group]
+            if len(group) == 2 and other.lam[js[0]] != np.conj(other.lam[js[1]]):
+                continue
+            if np.max(other_eta[js]) < np.max(cur_eta[group]):
+                take[group] = True
+        pick = take[None, :]
+        fields = {name: np.where(pick, getattr(other, name)[:, partner], getattr(cur, name))
+                  for name in ("X", "Y", "MX", "CX", "KX")}
+        cur = replace(cur, lam=np.where(take, other.lam[partner], cur.lam),
+                      block=np.where(take, other.block[partner], cur.block), **fields)
+        cur_eta = np.where(take, other_eta[partner], cur_eta)
+        source = np.where(take, k, source)
+    tau = problem.norm_C / np.sqrt(problem.norm_M * problem.norm_K)
+    counts = [int(np.sum(source == k)) for k in range(3)]
+    note = (
+        f"heavily damped (tau = ||C||/sqrt(||M|| ||K||) = {tau:.1e} > {TROPICAL_TAU:g}): QZ with the "
+        f"Fan-Lin-Van Dooren gamma = {problem.scaling.gamma:.3g} and the tropical gamma+ = {plus.gamma:.3g}, "
+        f"gamma- = {minus.gamma:.3g}; each eigenpair from the run with the smallest backward error "
+        f"({counts[0]}, {counts[1]} and {counts[2]} eigenvalues)"
+    )
+    return replace(cur, note=note)
+
+
+def _solve_scaled(
+    problem: QuadraticProblem, s: Scaling, *, allow_infinite: bool = False
+) -> tuple[RawSpectrum, np.ndarray]:
+    """QZ on the companion form scaled by ``s``: the raw spectrum and each pair's backward error.
+
+    With ``allow_infinite`` an infinite eigenvalue (the gamma- run of tropical
+    scaling can push the large ones there) gets lam = inf and eta = inf instead
+    of an error.
+    """
     n = problem.n
     A, B = companion_pencil(*problem.scaled(s))
     # L(lam)^T = L(lam) when M, C, K are symmetric: the left vectors are the right ones
     symmetric = all(np.array_equal(X, X.T) for X in (problem.M, problem.C, problem.K))
     alphar, alphai, beta, vl, vr = _dggev(A, B, left=not symmetric)
     finite = (beta != 0) & np.isfinite(alphar) & np.isfinite(alphai)
-    if not np.all(finite):
+    if not np.all(finite) and not allow_infinite:
         raise ComputationError(
             f"QZ found {int(np.sum(~finite))} infinite eigenvalue(s): M is numerically singular "
             f"(||M|| = {problem.norm_M:.3g})"
         )
-    lam = s.gamma * exact_pairs(alphar, alphai, beta)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lam = s.gamma * exact_pairs(alphar, alphai, np.where(finite, beta, 1.0))
+    lam[~finite] = np.inf
     # right vectors: both blocks, real storage, one product per coefficient
     V = vr
     MV = problem.M @ V[:n]
@@ -153,8 +275,9 @@ def solve_general(problem: QuadraticProblem, *, scaling: Scaling | None = None) 
     KW = problem.K @ V[n:]
     X1, MX1, CX1, KX1 = (complex_columns(R, alphai) for R in (V[:n], MV, CV, KV))
     X2, MX2, CX2, KX2 = (complex_columns(R, alphai) for R in (V[n:], MW, CW, KW))
-    eta1 = backward_errors(problem, lam, X1, MX1, CX1, KX1)
-    eta2 = backward_errors(problem, lam, X2, MX2, CX2, KX2)
+    with np.errstate(invalid="ignore"):  # lam = inf (allow_infinite): eta is set to inf below
+        eta1 = backward_errors(problem, lam, X1, MX1, CX1, KX1)
+        eta2 = backward_errors(problem, lam, X2, MX2, CX2, KX2)
     use1 = eta1 < eta2
     pick = use1[None, :]
     X = np.where(pick, X1, X2)
@@ -163,4 +286,4 @@ def solve_general(problem: QuadraticProblem, *, scaling: Scaling | None = None) 
     KX = np.where(pick, KX1, KX2)
     Y = X.copy() if symmetric else complex_columns(vl[:n], alphai, conjugate=True)
     block = np.where(use1, 1, 2)
-    return RawSpectrum(lam, X, Y, MX, CX, KX, block)
+    return RawSpectrum(lam, X, Y, MX, CX, KX, block), np.where(finite, np.minimum(eta1, eta2), np.inf)

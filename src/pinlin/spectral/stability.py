@@ -4,11 +4,15 @@ The verdict is one of
 
 * ``"asymptotically_stable"`` -- every eigenvalue has Re lam < 0;
 * ``"marginally_stable"`` -- Re lam <= 0, those on the imaginary axis semisimple;
-* ``"divergence"`` -- a real positive eigenvalue, or non-oscillatory secular
-  growth (a defective zero eigenvalue, e.g. a rigid-body drift x = t x_0);
-* ``"flutter"`` -- a complex pair with Re lam > 0, or oscillatory secular
-  growth (a defective eigenvalue on the imaginary axis);
-* ``"undecided"`` -- rounding cannot tell and no theorem decides,
+* ``"divergence"`` -- a real positive eigenvalue, or an exact rigid-body
+  drift x = t e_j (a coordinate on which neither K nor C acts, with the
+  defective zero eigenvalue it causes);
+* ``"flutter"`` -- a complex pair with Re lam > 0;
+* ``"undecided"`` -- rounding cannot tell and no theorem decides; in
+  particular a multiple eigenvalue on the imaginary axis that is defective
+  only to the rank tolerance (a flutter or divergence onset: rounding-level
+  changes of the data split it into simple eigenvalues on the axis or a pair
+  off it),
 
 each with a reason naming the theorem, or the eigenvalue and its error bound.
 
@@ -183,6 +187,7 @@ def decide_stability(
     clusters: Sequence[Cluster],
     *,
     K_is_zero: bool = False,
+    exact_drift: bool = False,
     safety: float = STABILITY_SAFETY,
 ) -> Stability:
     """The verdict for eigenvalues ``lam`` with first-order bounds ``bound`` (see module doc).
@@ -197,6 +202,9 @@ def decide_stability(
         Multiple eigenvalues with their Jordan structure.
     K_is_zero : bool
         K = 0 exactly: lam = 0 is then exactly an eigenvalue of multiplicity >= n.
+    exact_drift : bool
+        Some coordinate j has K[:, j] = C[:, j] = 0 exactly, so x(t) = t e_j
+        solves M x'' + C x' + K x = 0 exactly: a rigid-body drift.
     safety : float
         Factor applied to ``bound``.
     """
@@ -293,23 +301,34 @@ def decide_stability(
         if not c.consistent or c.semisimple:
             continue
         j = c.indices[0]
-        on_axis = facts.reflection_symmetric or (K_is_zero and abs(c.center) <= r[j])
+        at_zero = abs(c.center) <= r[j]
+        on_axis = facts.reflection_symmetric or (K_is_zero and at_zero)
         if not on_axis:
             continue
-        growth = "divergence" if abs(c.center) <= r[j] else "flutter"
+        growth = "divergence" if at_zero else "flutter"
+        if not (at_zero and exact_drift):
+            # Defective only to rank_tol: rounding-level changes of the data split a multiple
+            # eigenvalue on the axis into simple ones on it (bounded) or off it (growing).
+            onset = "divergence" if at_zero else "flutter"
+            return at(
+                "undecided",
+                f"the eigenvalue {_fmt(c.center)} of multiplicity {c.algebraic} lies on the imaginary axis and is "
+                f"defective to the rank tolerance (Jordan chains of lengths {c.partial}): the system is at a "
+                f"stability boundary ({onset} onset) within rounding, where a perturbation of the data at the "
+                f"rounding level leaves simple eigenvalues on the axis (marginally stable) or moves a pair off it "
+                f"({onset}); the computed spectrum cannot tell which",
+                j,
+                None,
+                None,
+            )
         what = "rigid-body drift" if growth == "divergence" else "oscillation with linearly growing amplitude"
-        why = (
-            "the spectrum is symmetric under lam -> -conj(lam), so it is on the axis or has a mirror image in "
-            "Re lam > 0"
-            if facts.reflection_symmetric
-            else "K = 0, so lam = 0 is exact"
-        )
+        why = "K[:, j] = C[:, j] = 0 for a coordinate j, so x(t) = t e_j solves the equations exactly"
         return at(
             growth,
             f"the eigenvalue {_fmt(c.center)} of multiplicity {c.algebraic} is defective (Jordan chains of "
             f"lengths {c.partial}) and {why}: secular growth t^{c.index - 1} ({what})",
             j,
-            "Jordan structure" + (" + symmetry" if facts.reflection_symmetric else ""),
+            "Jordan structure + exact drift",
             False,
         )
     if facts.reflection_symmetric:
