@@ -5,12 +5,13 @@ import subprocess
 import sys
 import textwrap
 
+import jsonschema
 import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
 import pinlin
-from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, main
+from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, REPORT_SCHEMA, main
 from pinlin.scenefile import load_scene
 
 
@@ -32,6 +33,7 @@ def test_default_scene_reports_the_paper_matrices(capsys, tmp_path):
     assert "nonzero: M, S, N; zero: D, G" in out
     assert "15.8511" in out and "4.20725" in out and "1.4" in out
     report = json.loads((tmp_path / "r.json").read_text())
+    jsonschema.validate(report, REPORT_SCHEMA)
     assert set(report) >= {"scene", "equilibrium", "linearization", "elapsed", "pinlin_version"}
     lin = report["linearization"]
     assert lin["nonzero"] == ["M", "S", "N"]
@@ -104,6 +106,7 @@ def test_example_robot(capsys, tmp_path):
     code, out, err = run(["analyze", "--example", "ur5", "--json", str(tmp_path / "u.json")], capsys)
     assert code == 0, err
     report = json.loads((tmp_path / "u.json").read_text())
+    jsonschema.validate(report, REPORT_SCHEMA)
     assert report["scene"]["n"] == 6
     S = np.array(report["linearization"]["matrices"]["S"])
     assert np.all(np.linalg.eigvalsh(S) > 900)  # 1000 N m/rad springs, softened a little by gravity
@@ -205,3 +208,11 @@ def test_plot_file_is_written(tmp_path, capsys):
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     code, _, err = run(["analyze", "--plot", str(tmp_path / "no" / "dir.png")], capsys)
     assert code == EXIT_INPUT and "cannot write" in err
+
+
+def test_schema_rejects_a_broken_report(tmp_path, capsys):
+    run(["analyze", "--json", str(tmp_path / "r.json")], capsys)
+    report = json.loads((tmp_path / "r.json").read_text())
+    report["stability"]["kind"] = "stable-ish"
+    with pytest.raises(jsonschema.ValidationError, match="stable-ish"):
+        jsonschema.validate(report, REPORT_SCHEMA)

@@ -38,9 +38,84 @@ from .scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
 from .spectral import modal_analysis
 from .system import MATRIX_NAMES, LinearizedSystem
 
-__all__ = ["main", "analyze", "render_text"]
+__all__ = ["main", "analyze", "render_text", "REPORT_SCHEMA"]
 
 EXIT_OK, EXIT_INPUT, EXIT_COMPUTATION = 0, 2, 3
+
+_NUMBERS = {"type": "array", "items": {"type": "number"}}
+_OPTIONAL_NUMBERS = {"type": "array", "items": {"type": ["number", "null"]}}
+_MATRIX = {"type": "array", "items": _NUMBERS}
+
+#: JSON Schema (draft 2020-12) of the ``--json`` report; ``null`` marks values
+#: that do not exist for a mode (the damping ratio of lam = 0, the condition
+#: number of a defective eigenvalue).
+REPORT_SCHEMA = {
+    "$schema": "https://json-schema.org/draft/2020-12/schema",
+    "type": "object",
+    "required": ["pinlin_version", "scene", "linearization", "modes", "stability", "elapsed"],
+    "properties": {
+        "pinlin_version": {"type": "string"},
+        "elapsed": {"type": "number", "minimum": 0},
+        "scene": {
+            "type": "object",
+            "required": ["source", "robot", "urdf", "nq", "nv", "n", "dof_names", "gravity", "prescribed", "elements"],
+            "properties": {
+                "nq": {"type": "integer", "minimum": 1},
+                "nv": {"type": "integer", "minimum": 1},
+                "n": {"type": "integer", "minimum": 1},
+                "dof_names": {"type": "array", "items": {"type": "string"}},
+                "gravity": {**_NUMBERS, "minItems": 3, "maxItems": 3},
+                "prescribed": {"type": "object", "additionalProperties": {"type": "number"}},
+                "elements": {"type": "array", "items": {"type": "object", "required": ["kind"]}},
+            },
+        },
+        "equilibrium": {
+            "type": "object",
+            "required": ["q", "residual", "relative_residual", "iterations", "elapsed"],
+            "properties": {"q": _NUMBERS, "iterations": {"type": "integer", "minimum": 0}},
+        },
+        "linearization": {
+            "type": "object",
+            "required": ["q", "relative_residual", "balancing", "nonzero", "calls", "dropped", "notes", "elapsed",
+                         "structure", "matrices"],
+            "properties": {
+                "nonzero": {"type": "array", "items": {"enum": list(MATRIX_NAMES)}},
+                "calls": {"type": "array", "items": {"type": "string"}},
+                "balancing": {"oneOf": [{"type": "null"}, _NUMBERS]},
+                "matrices": {
+                    "type": "object",
+                    "required": list(MATRIX_NAMES),
+                    "additionalProperties": _MATRIX,
+                },
+            },
+        },
+        "modes": {
+            "type": "object",
+            "required": ["method", "method_reason", "elapsed", "is_simple", "max_backward_error", "eigenvalues_real",
+                         "eigenvalues_imag", "natural_frequency", "damping_ratio", "backward_error", "condition",
+                         "error_bound", "multiplicity", "kind", "table"],
+            "properties": {
+                "eigenvalues_real": _NUMBERS,
+                "eigenvalues_imag": _NUMBERS,
+                "natural_frequency": _NUMBERS,
+                "backward_error": _NUMBERS,
+                "damping_ratio": _OPTIONAL_NUMBERS,
+                "condition": _OPTIONAL_NUMBERS,
+                "error_bound": _OPTIONAL_NUMBERS,
+                "kind": {"type": "array", "items": {"type": "string"}},
+                "is_simple": {"type": "boolean"},
+            },
+        },
+        "stability": {
+            "type": "object",
+            "required": ["kind", "reason"],
+            "properties": {
+                "kind": {"enum": ["asymptotically_stable", "marginally_stable", "divergence", "flutter", "undecided"]},
+                "reason": {"type": "string"},
+            },
+        },
+    },
+}
 
 
 def _example_spec(name: str, stiffness: float, damping: float) -> SceneSpec:
