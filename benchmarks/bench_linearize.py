@@ -708,7 +708,7 @@ def _plot(series, sweep_plot, sweep, quick: bool) -> list[str]:
     ax1.set_title("Finite differences against the step (dotted: analytic)", fontsize=10)
     ax1.grid(True, which="both", alpha=0.3)
     ax1.legend(fontsize=6, ncol=2)
-    work_precision_plot(RESULTS / "unused.png", series, "Linearization: error against run time", ax=ax2)
+    work_precision_plot(None, series, "Linearization: error against run time", ax=ax2)
     path = RESULTS / ("linearize_quick.png" if quick else "linearize.png")
     RESULTS.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()

@@ -179,7 +179,7 @@ def write_report(report: Report, directory: Path = RESULTS) -> Path:
 
 
 def work_precision_plot(
-    path: Path,
+    path: Path | None,
     series: dict[str, Sequence[tuple[float, float]]],
     title: str,
     *,
@@ -195,7 +195,7 @@ def work_precision_plot(
     drawn at ``floor`` (an exact result has no place on a log axis).  Series
     named in ``connect`` are joined by lines (a sweep of one method's setting).
     Without matplotlib nothing is drawn.  With ``ax`` the curves are drawn on
-    that axes and nothing is saved.
+    that axes and nothing is saved (``path`` may be None).
     """
     try:
         import matplotlib

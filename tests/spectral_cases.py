@@ -11,6 +11,7 @@ import numpy as np
 
 import pinlin
 from pinlin import FollowerWrench, JointDamper, JointSpring, Scene
+from pinlin.testing import cantilever_beam
 
 # SPEC section 4 check problem lam^2 A2 + lam A1 + A0 (A2 not symmetric)
 A2 = np.array([[1, 2, 2], [3, 1, 1], [3, 2, 1.0]])
@@ -66,35 +67,9 @@ def double_pendulum_spec(P=4.0, m1=1.3, l1=0.7, m2=0.9, l2=0.5, k1=3.0, k2=2.0, 
 
 
 def cantilever(ne=40, L=2.0, E=2.1e11, I=8.33e-10, rhoA=0.785, c=50.0, at=None):
-    """Clamped-free Euler-Bernoulli beam, Hermite cubic elements (textbook element matrices).
+    """Clamped-free Euler-Bernoulli beam with one dashpot (see :func:`pinlin.testing.cantilever_beam`)."""
+    return cantilever_beam(ne, L, E, I, rhoA, c, at)
 
-    k_e = EI/l^3 [[12, 6l, -12, 6l], [6l, 4l^2, -6l, 2l^2], ...],
-    m_e = rhoA l/420 [[156, 22l, 54, -13l], [22l, 4l^2, 13l, -3l^2], ...];
-    dofs (w_i, theta_i), i = 1..ne; a single dashpot c on the transverse
-    displacement of node ``at`` (default the tip).  SI units (steel strip).
-    """
-    l = L / ne
-    k = E * I / l**3 * np.array(
-        [[12, 6 * l, -12, 6 * l], [6 * l, 4 * l * l, -6 * l, 2 * l * l], [-12, -6 * l, 12, -6 * l],
-         [6 * l, 2 * l * l, -6 * l, 4 * l * l]]
-    )
-    m = rhoA * l / 420 * np.array(
-        [[156, 22 * l, 54, -13 * l], [22 * l, 4 * l * l, 13 * l, -3 * l * l], [54, 13 * l, 156, -22 * l],
-         [-13 * l, -3 * l * l, -22 * l, 4 * l * l]]
-    )
-    nd = 2 * (ne + 1)
-    K = np.zeros((nd, nd))
-    M = np.zeros((nd, nd))
-    for e in range(ne):
-        ix = np.ix_(range(2 * e, 2 * e + 4), range(2 * e, 2 * e + 4))
-        K[ix] += k
-        M[ix] += m
-    K, M = K[2:, 2:], M[2:, 2:]
-    D = np.zeros_like(K)
-    j = 2 * ((ne if at is None else at) - 1)
-    D[j, j] = c
-    Z = np.zeros_like(K)
-    return pinlin.LinearizedSystem(M, D, Z, K, Z)
 
 
 #: beta_r L of a cantilever: 1 + cos(bL) cosh(bL) = 0

@@ -159,3 +159,19 @@ def test_mp_reference_closed_form_oscillator():
     assert_allclose(coef, [k, c, m], rtol=1e-15)
     with pytest.raises(pinlin.ParameterError, match="three square matrices"):
         mp_eigenvalues((np.eye(2), np.eye(3), np.eye(2)))
+
+
+def test_cantilever_beam_test_problem():
+    """pinlin.testing.cantilever_beam: static tip deflection of the FE beam is exact (cubic elements): P L^3 / 3EI."""
+    from pinlin.testing import cantilever_beam
+
+    L, E, I = 2.0, 2.1e11, 8.33e-10
+    beam = cantilever_beam(8, L=L, E=E, I=I)
+    f = np.zeros(beam.n)
+    f[-2] = 1.0  # unit tip force on the last transverse displacement
+    assert_allclose(np.linalg.solve(beam.K, f)[-2], L**3 / (3 * E * I), rtol=1e-10)
+    assert beam.D[-2, -2] == 50.0 and np.count_nonzero(beam.D) == 1
+    with pytest.raises(pinlin.ParameterError, match="at: expected a node in 1..8"):
+        cantilever_beam(8, at=9)
+    with pytest.raises(pinlin.ParameterError, match="ne: expected an integer"):
+        cantilever_beam(0)

@@ -1,4 +1,4 @@
-"""High-precision references for checking pinlin's results (SPEC section 8).
+"""High-precision references and test problems for checking pinlin's results (SPEC section 8).
 
 Errors in pinlin's tests and benchmarks are measured against references that
 do not share the method; these are the multiprecision ones, computed with
@@ -17,7 +17,7 @@ from scipy.optimize import linear_sum_assignment
 
 from .errors import MissingDependencyError, ParameterError
 
-__all__ = ["mp_eigenvalues", "mp_characteristic_coefficients", "paired"]
+__all__ = ["mp_eigenvalues", "mp_characteristic_coefficients", "paired", "cantilever_beam"]
 
 
 def _mpmath():
@@ -99,3 +99,73 @@ def paired(computed, reference) -> np.ndarray:
     out = np.empty_like(reference)
     out[i] = reference[j]
     return out
+
+
+def cantilever_beam(
+    ne: int = 40,
+    L: float = 2.0,
+    E: float = 2.1e11,
+    I: float = 8.33e-10,
+    rhoA: float = 0.785,
+    c: float = 50.0,
+    at: int | None = None,
+):
+    """A clamped-free Euler-Bernoulli beam of Hermite cubic elements with one dashpot.
+
+    The textbook element matrices
+
+    .. math::
+        k_e = \\frac{EI}{l^3}\\begin{bmatrix}12 & 6l & -12 & 6l\\\\ 6l & 4l^2 & -6l & 2l^2\\\\
+              -12 & -6l & 12 & -6l\\\\ 6l & 2l^2 & -6l & 4l^2\\end{bmatrix},\\quad
+        m_e = \\frac{\\rho A\\, l}{420}\\begin{bmatrix}156 & 22l & 54 & -13l\\\\ 22l & 4l^2 & 13l & -3l^2\\\\
+              54 & 13l & 156 & -22l\\\\ -13l & -3l^2 & -22l & 4l^2\\end{bmatrix}
+
+    are assembled over ``ne`` elements of length l = L / ne; coordinates
+    (w_i [m], theta_i [rad]), i = 1..ne, after clamping node 0.  Defaults: a
+    2 m steel strip.  Deflections and rotations mix in one vector, so K spans
+    many decades: the badly scaled damped beam of SPEC section 4.
+
+    Parameters
+    ----------
+    ne : int
+        Number of elements (n = 2 ne coordinates).
+    L, E, I, rhoA : float
+        Length [m], Young's modulus [Pa], second moment of area [m^4], mass per length [kg/m].
+    c : float
+        Dashpot [N s/m] on the transverse displacement of node ``at`` (default the tip).
+    at : int, optional
+        Node 1..ne carrying the dashpot.
+
+    Returns
+    -------
+    LinearizedSystem
+    """
+    from .system import LinearizedSystem
+
+    if not isinstance(ne, (int, np.integer)) or ne < 1:
+        raise ParameterError("ne", f"expected an integer >= 1, got {ne!r}")
+    node = ne if at is None else at
+    if not isinstance(node, (int, np.integer)) or not 1 <= node <= ne:
+        raise ParameterError("at", f"expected a node in 1..{ne}, got {at!r}")
+    l = L / ne
+    k = E * I / l**3 * np.array(
+        [[12, 6 * l, -12, 6 * l], [6 * l, 4 * l * l, -6 * l, 2 * l * l], [-12, -6 * l, 12, -6 * l],
+         [6 * l, 2 * l * l, -6 * l, 4 * l * l]]
+    )
+    m = rhoA * l / 420 * np.array(
+        [[156, 22 * l, 54, -13 * l], [22 * l, 4 * l * l, 13 * l, -3 * l * l], [54, 13 * l, 156, -22 * l],
+         [-13 * l, -3 * l * l, -22 * l, 4 * l * l]]
+    )
+    nd = 2 * (ne + 1)
+    K = np.zeros((nd, nd))
+    M = np.zeros((nd, nd))
+    for e in range(ne):
+        ix = np.ix_(range(2 * e, 2 * e + 4), range(2 * e, 2 * e + 4))
+        K[ix] += k
+        M[ix] += m
+    K, M = K[2:, 2:], M[2:, 2:]
+    D = np.zeros_like(K)
+    j = 2 * (node - 1)
+    D[j, j] = c
+    Z = np.zeros_like(K)
+    return LinearizedSystem(M, D, Z, K, Z)
