@@ -70,6 +70,8 @@ def main(argv=None) -> int:
         t = time.perf_counter()
         mod = importlib.import_module(f"benchmarks.{module}")
         report = mod.run(quick=args.quick)
+        if args.quick:  # a smoke run never overwrites the tables of a full run
+            report.name += "_quick"
         report.elapsed = time.perf_counter() - t
         path = write_report(report)
         elapsed[report.name] = report.elapsed

@@ -257,7 +257,7 @@ def run(quick: bool = False) -> Report:
     p_table, p_summary = polynomial_table(quick)
     summary.update(p_summary)
     tables = [fr_table] + ([ref_table] if ref_table is not None else []) + [p_table]
-    return Report("adjoint_quick" if quick else "adjoint", tables, summary)
+    return Report("adjoint", tables, summary)
 
 
 if __name__ == "__main__":

@@ -41,7 +41,15 @@ from scipy.optimize import linear_sum_assignment
 import pinlin
 from pinlin import JointDamper, JointSpring, LinearizedSystem, testing
 
-from .common import RESULTS, Report, Table, median_time, work_precision_plot, write_report
+from .common import (
+    Report,
+    Table,
+    median_time,
+    result_path,
+    save_figure,
+    work_precision_plot,
+    write_report,
+)
 
 DIGITS = 50
 #: Largest n with an mpmath reference (mpmath.eig of the 2n x 2n companion matrix: ~11 s at n = 30).
@@ -343,7 +351,7 @@ def run(quick: bool = False) -> Report:
         "with backward errors for all sizes and eigenvalue errors against a 50-digit mpmath reference up to n = 30. "
         "Then the breakdown of the roots of the characteristic polynomial as chains grow."
     )
-    report = Report("catalog_quick" if quick else "catalog", [t1, sweep_table], summary, figures, text=text)
+    report = Report("catalog", [t1, sweep_table], summary, figures, text=text)
     report.elapsed = time.perf_counter() - t_start
     return report
 
@@ -438,12 +446,8 @@ def _plot(plot, sweep, quick: bool) -> list[str]:
     ax2.set_title("Where roots of p break down", fontsize=10)
     ax2.grid(True, which="both", alpha=0.3)
     ax2.legend(fontsize=8)
-    path = RESULTS / ("catalog_quick.png" if quick else "catalog.png")
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return [str(path)]
+    path = save_figure(fig, result_path("catalog", quick))
+    return [path]
 
 
 if __name__ == "__main__":

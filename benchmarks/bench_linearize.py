@@ -45,11 +45,12 @@ import pinlin
 from pinlin.assembly import assemble
 
 from .common import (
-    RESULTS,
     Report,
     Table,
     interleaved_medians,
     median_time,
+    result_path,
+    save_figure,
     work_precision_plot,
     write_report,
 )
@@ -709,12 +710,8 @@ def _plot(series, sweep_plot, sweep, quick: bool) -> list[str]:
     ax1.grid(True, which="both", alpha=0.3)
     ax1.legend(fontsize=6, ncol=2)
     work_precision_plot(None, series, "Linearization: error against run time", ax=ax2)
-    path = RESULTS / ("linearize_quick.png" if quick else "linearize.png")
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return [str(path)]
+    path = save_figure(fig, result_path("linearize", quick))
+    return [path]
 
 
 if __name__ == "__main__":

@@ -47,7 +47,7 @@ from scipy.integrate import solve_ivp  # noqa: E402
 import pinlin  # noqa: E402
 from pinlin.response import first_order  # noqa: E402
 
-from .common import RESULTS, Report, Table, median_time, write_report  # noqa: E402
+from .common import Report, Table, median_time, result_path, save_figure, write_report  # noqa: E402
 
 POINTS = 1000
 DURATION = 10.0
@@ -212,12 +212,8 @@ def _plot(rows, quick: bool) -> str | None:
     ax.set_title(f"Free response, {POINTS} points: work-precision")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    path = RESULTS / ("response_quick.png" if quick else "response.png")
-    fig.tight_layout()
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return str(path)
+    path = save_figure(fig, result_path("response", quick), dpi=120)
+    return path
 
 
 if __name__ == "__main__":

@@ -188,7 +188,7 @@ def _fit(ns, ts) -> float:
 
 
 def run(quick: bool = False):
-    from .common import RESULTS, Report, Table, work_precision_plot
+    from .common import Report, Table, result_path, work_precision_plot
 
     t_start = time.perf_counter()
     sizes = QUICK_SIZES if quick else SIZES
@@ -252,14 +252,14 @@ def run(quick: bool = False):
     figures = []
     series = {s: [(n, r["stages"][s]["time"]) for n, r in zip(ns, results)] for s in STAGES}
     series["total"] = list(zip(ns, totals))
-    path = work_precision_plot(RESULTS / ("scaling_quick.png" if quick else "scaling.png"), series,
+    path = work_precision_plot(result_path("scaling", quick), series,
                                f"Pipeline time against n (fitted exponent {exponent:.2f})", xlabel="links n",
                                ylabel="time [s]", connect=tuple(series))
     if path:
         figures.append(path)
     text = ("Time and memory of every stage of the data flow for growing pendulum chains (SPEC 7.4), and the memory "
             "guard of SPEC section 1 refusing models whose Pinocchio data would not fit.")
-    report = Report("scaling_quick" if quick else "scaling", [t1, t2, t3], summary, figures, text=text)
+    report = Report("scaling", [t1, t2, t3], summary, figures, text=text)
     report.elapsed = time.perf_counter() - t_start
     return report
 

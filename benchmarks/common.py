@@ -221,11 +221,24 @@ def work_precision_plot(
     ax.legend(fontsize=7)
     if not own:
         return None
+    return save_figure(fig, path)
+
+
+def save_figure(fig, path: Path, dpi: int = 110) -> str:
+    """Lay out, write and close a benchmark figure; returns the path as a string."""
+    import matplotlib.pyplot as plt
+
+    path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return str(path)
+
+
+def result_path(name: str, quick: bool, suffix: str = "png") -> Path:
+    """``results/<name>.<suffix>``, or ``<name>_quick.<suffix>`` for a quick run."""
+    return RESULTS / f"{name}{'_quick' if quick else ''}.{suffix}"
 
 
 def interleaved_medians(fns: Sequence[Callable[[], object]], repeats: int = 7, min_time: float = 0.01) -> list[float]:

@@ -32,20 +32,10 @@ import numpy as np
 import pinocchio as pin
 
 from .elements import Evaluation
+from .elements.base import symmetric_from_upper
 from .scene import Scene
 
-__all__ = ["Assembly", "assemble", "external_forces", "fro", "symmetric_from_upper"]
-
-
-def symmetric_from_upper(a: np.ndarray, lower: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
-    """A copy of ``a`` with its strictly lower triangle mirrored from the upper one.
-
-    Pinocchio's C++ ``crba`` fills only the upper triangle of M (its Python
-    binding may or may not mirror it, depending on the version).
-    """
-    a = np.array(a)
-    a[lower] = a.T[lower]
-    return a
+__all__ = ["Assembly", "assemble", "external_forces", "fro"]
 
 
 def fro(a: np.ndarray) -> float:

@@ -205,7 +205,7 @@ class Scene:
             Wrong size or non-finite entries.
         """
         try:
-            q = np.array(q, dtype=float).reshape(-1) if np.ndim(q) <= 1 else np.array(q, dtype=float)
+            q = np.atleast_1d(np.array(q, dtype=float))  # a copy: the result may be frozen read-only
         except (TypeError, ValueError):
             raise ConfigurationError(f"{label} must be an array of numbers, got {q!r}") from None
         if q.shape != (self.robot.nq,):

@@ -26,7 +26,18 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..robot import Robot
     from ..scene import Scene
 
-__all__ = ["Element", "ElementGroup", "WrenchElement", "Evaluation"]
+__all__ = ["Element", "ElementGroup", "WrenchElement", "Evaluation", "symmetric_from_upper"]
+
+
+def symmetric_from_upper(a: np.ndarray, lower: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """A copy of ``a`` with its strictly lower triangle mirrored from the upper one.
+
+    Pinocchio's C++ ``crba`` fills only the upper triangle of M (its Python
+    binding may or may not mirror it, depending on the version).
+    """
+    a = np.array(a)
+    a[lower] = a.T[lower]
+    return a
 
 
 class Evaluation:
@@ -89,8 +100,6 @@ class Evaluation:
     def mass_matrix(self) -> np.ndarray:
         """The full mass matrix M(q) (nv x nv), exactly symmetric."""
         if self._mass is None:
-            from ..assembly import symmetric_from_upper
-
             M = self.call("crba", pin.crba, self.model, self.data, self.q)
             self._mass = symmetric_from_upper(M, self.scene.lower)
         return self._mass
