@@ -42,7 +42,8 @@ import numpy as np
 import pinocchio as pin
 
 import pinlin
-from pinlin.assembly import assemble
+from pinlin.linearization.assembly import assemble
+from pinlin.linearization.workspace import workspace
 
 from .common import (
     Report,
@@ -95,7 +96,7 @@ def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str =
         else:
             K[:, k] = (rp - r0) / h
             C[:, k] = (vp - r0) / h
-    M = pin.crba(model, scene.data, q)
+    M = pin.crba(model, workspace(scene).data, q)
     M = np.triu(M) + np.triu(M, 1).T
     ix = np.ix_(f, f)
     return M[ix], C[ix], K[ix]
@@ -151,7 +152,7 @@ def richardson_reference(scene: pinlin.Scene, q: np.ndarray):
         eK = np.hypot(eK, err)
         C[:, k], err = ridders(dv)
         eC = np.hypot(eC, err)
-    M = pin.crba(model, scene.data, q)
+    M = pin.crba(model, workspace(scene).data, q)
     M = np.triu(M) + np.triu(M, 1).T
     ix = np.ix_(f, f)
     return M[ix], C[ix], K[ix], (eC, eK)

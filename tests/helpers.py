@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from pinlin.assembly import assemble
+from pinlin.linearization.assembly import assemble
 
 
 def residual(scene, q, v):

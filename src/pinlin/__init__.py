@@ -1,26 +1,34 @@
 """pinlin: linearized equations of motion of multibody systems, from a URDF.
 
-URDF -> :class:`Robot` -> :class:`Scene` (elements, gravity, prescribed joints)
--> :func:`find_equilibrium` -> :func:`linearize` -> :class:`LinearizedSystem`
-(M, D, G, S, N) -> adjoint, spectral and response analyses.
+The packages follow the data flow:
+
+- :mod:`pinlin.model` -- URDF -> :class:`Robot` -> :class:`Scene` (elements, gravity,
+  prescribed joints): descriptions, immutable;
+- :mod:`pinlin.linearization` -- :func:`find_equilibrium`, :func:`linearize` ->
+  :class:`LinearizedSystem` (M, D, G, S, N), each call in its own Pinocchio workspace;
+- :mod:`pinlin.spectral` -- eigenvalues, eigenvectors, Jordan chains, stability;
+- :mod:`pinlin.adjoint` -- characteristic polynomial, adjugate, eigenvectors from it;
+- :mod:`pinlin.frf` -- H(s), frequency and harmonic responses, residues;
+- :mod:`pinlin.response` -- free and forced responses in time, energy budgets;
+- :mod:`pinlin.nonlinear` -- the nonlinear reference simulation;
+- :mod:`pinlin.studies` -- parameter sweeps and mode tracking;
+- :mod:`pinlin.cli`, :mod:`pinlin.plot`, :mod:`pinlin.testing` -- around them.
+
+Conventions (names, units, axis orders, what ``.error`` means per result) are in
+``docs/conventions.md``.
 """
 
+from . import _compat
 from .adjoint import (
     AdjugateMatrix,
     CharacteristicPolynomial,
-    FlexibilityArray,
-    FrequencyResponse,
-    Residues,
     adjugate,
     adjugate_eigenvectors,
     characteristic_polynomial,
     check_free_response,
-    flexibility,
-    frequency_response,
-    residues,
 )
-from .elements import DeadWrench, Element, FollowerWrench, JointDamper, JointSpring, RayleighDamping
-from .equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
+from .model.elements import DeadWrench, Element, FollowerWrench, JointDamper, JointSpring, RayleighDamping
+from .linearization.equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
 from .errors import (
     AccuracyWarning,
     ComputationError,
@@ -43,28 +51,29 @@ from .errors import (
     TimePeriodicError,
     UrdfError,
 )
-from .linearize import generalized_force, linearize
-from .models import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
-from .response import (
-    EnergyBudget,
-    ForcedResponse,
-    FreeResponse,
+from .linearization.linearize import generalized_force, linearize
+from .model.generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
+from .frf import (
+    FlexibilityArray,
+    FrequencyResponse,
     HarmonicResponse,
-    Simulation,
-    energy_budget,
-    forced_response,
-    free_response,
+    Residues,
+    flexibility,
+    frequency_response,
     harmonic_response,
-    linear_coordinates,
-    simulate,
+    residues,
 )
-from .robot import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
-from .scene import Scene
+from .nonlinear import Simulation, linear_coordinates, simulate
+from .response import EnergyBudget, ForcedResponse, FreeResponse, energy_budget, forced_response, free_response
+from .model import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
+from .model.scene import Scene
 from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
-from .sweep import SweepFailure, SweepResult, sweep
-from .system import LinearizedSystem
+from .studies.sweep import SweepFailure, SweepResult, sweep
+from .linearization.system import LinearizedSystem
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
+
+_compat.install()
 
 __all__ = [
     "__version__",

@@ -21,8 +21,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from . import __version__
-from .elements import JointDamper, JointSpring
-from .equilibrium import find_equilibrium
+from .model.elements import JointDamper, JointSpring
+from .linearization.equilibrium import find_equilibrium
 from .errors import (
     ComputationError,
     InputError,
@@ -31,12 +31,12 @@ from .errors import (
     ParameterError,
     PinlinError,
 )
-from .linearize import linearize
-from .robot import EXAMPLES, load_example
-from .scene import Scene
-from .scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
+from .linearization.linearize import linearize
+from .model.loading import EXAMPLES, load_example
+from .model.scene import Scene
+from .model.scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
 from .spectral import modal_analysis
-from .system import MATRIX_NAMES, LinearizedSystem
+from .linearization.system import MATRIX_NAMES, LinearizedSystem
 
 __all__ = ["main", "analyze", "render_text", "REPORT_SCHEMA"]
 
@@ -347,7 +347,7 @@ def write_plot(path: str, sys_: LinearizedSystem, modes) -> None:
     except ImportError:
         raise MissingDependencyError("--plot needs matplotlib: pip install 'pinlin[plot]'") from None
     from . import plot
-    from .adjoint import frequency_response
+    from .frf import frequency_response
 
     fig = plt.figure(figsize=(11, 4.5))
     grid = fig.add_gridspec(2, 2, width_ratios=(1, 1.2))

@@ -14,7 +14,8 @@ import numpy as np
 import pinocchio as pin
 
 from .errors import MissingDependencyError, ParameterError
-from .tracking import track_modes
+from .linearization.workspace import workspace
+from .studies.tracking import track_modes
 
 __all__ = [
     "eigenvalue_map",
@@ -338,8 +339,8 @@ def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str 
     if len(axes) != 2:
         raise ParameterError("plane", f"expected two of x, y, z, got {plane!r}")
     model = scene.model
-    data = model.createData()
     q = scene.check_configuration(q)
+    data = workspace(scene).data  # behind the memory guard, owned by this thread
     x = np.asarray(mode)
     if x.shape != (scene.n,):
         raise ParameterError("mode", f"expected {scene.n} values (the free coordinates), got shape {x.shape}")

@@ -140,7 +140,7 @@ def cantilever_beam(
     -------
     LinearizedSystem
     """
-    from .system import LinearizedSystem
+    from .linearization.system import LinearizedSystem
 
     if not isinstance(ne, (int, np.integer)) or ne < 1:
         raise ParameterError("ne", f"expected an integer >= 1, got {ne!r}")

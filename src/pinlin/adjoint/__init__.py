@@ -1,4 +1,4 @@
-"""The adjoint module: characteristic polynomial, adjugate, flexibility, residues (SPEC section 4).
+"""The adjoint module: characteristic polynomial, adjugate, eigenvectors from the adjugate (SPEC section 4).
 
 Paper Sec. 6-10 and 12, in the order of the data flow:
 
@@ -8,11 +8,9 @@ Paper Sec. 6-10 and 12, in the order of the data flow:
 - :mod:`.eigenvectors`: eigenvectors, ``p'(lam_k)`` and Jordan chains read
   off the adjugate (Sec. 8, 9).
 - :mod:`.cde`: the characteristic differential equation ``p(d/dt) x_i = 0`` (Sec. 7).
-- :mod:`.flexibility`: ``H(s) = L(s)^-1`` direct and modal; the spectral form
-  of the adjugate (Sec. 10).
-- :mod:`.residues`: principal parts of H at roots of any multiplicity by
-  contour integrals (Sec. 10, Theorem 10.2).
-- :mod:`.response`: frequency responses ``H(i omega)`` (Sec. 12).
+
+The dynamic flexibility ``H(s) = adj L(s) / p(s)``, its residues and the frequency
+responses built on it live in :mod:`pinlin.frf`.
 """
 
 from .adjugate import (
@@ -37,10 +35,7 @@ from .eigenvectors import (
     adjugate_eigenvectors,
     chain_residual,
 )
-from .flexibility import FlexibilityArray, flexibility, modal_adjugate
 from .polynomial import CharacteristicPolynomial, characteristic_polynomial
-from .residues import Residues, principal_part_residual, residues
-from .response import FrequencyResponse, frequency_response
 
 __all__ = [
     "CharacteristicPolynomial",
@@ -61,12 +56,11 @@ __all__ = [
     "characteristic_differential_equation",
     "CDECheck",
     "check_free_response",
-    "FlexibilityArray",
-    "flexibility",
-    "modal_adjugate",
-    "Residues",
-    "residues",
-    "principal_part_residual",
-    "FrequencyResponse",
-    "frequency_response",
 ]
+
+
+def __getattr__(name: str):
+    # Names that moved to pinlin.frf in 0.2; importable from here for one release.
+    from .._compat import moved_name
+
+    return moved_name(__name__, name, "pinlin.frf")

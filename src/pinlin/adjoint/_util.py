@@ -12,7 +12,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..errors import ComputationError, ParameterError
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 
 EPS = float(np.finfo(float).eps)
 #: Natural log of the largest and smallest positive normal doubles.

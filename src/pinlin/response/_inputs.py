@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 
 __all__ = ["check_system", "check_times", "check_vector", "check_samples", "check_tolerance"]
 

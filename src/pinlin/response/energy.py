@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 from ._inputs import check_samples, check_system, check_times
 from .signal import SampledForce
 

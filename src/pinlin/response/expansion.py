@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ComputationError, ParameterError
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 
 __all__ = [
     "JordanBlock",

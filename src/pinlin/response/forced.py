@@ -17,7 +17,7 @@ import numpy as np
 import scipy.linalg
 
 from ..errors import AccuracyWarning, ParameterError
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 from ._inputs import check_samples, check_system, check_times, check_tolerance, check_vector
 from .energy import EnergyBudget, energy_budget
 from .signal import INTERPOLATIONS, SampledForce

@@ -9,7 +9,7 @@ from math import factorial
 import numpy as np
 
 from ..errors import AccuracyWarning, ParameterError
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 from ._array import ResponseArray
 from ._inputs import check_system, check_times, check_tolerance, check_vector
 from .expansion import CHUNK_ROWS, ModalExpansion, complex_matmul, modal_expansion

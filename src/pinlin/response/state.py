@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 from ._inputs import check_system
 
 __all__ = ["first_order", "second_derivatives"]

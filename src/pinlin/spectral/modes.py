@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 from .jordan import Cluster
 from .problem import Scaling
 from .qualitative import ModeConstants, StructuralFacts

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError, SingularMassError
-from ..system import LinearizedSystem
+from ..linearization.system import LinearizedSystem
 
 __all__ = ["QuadraticProblem", "Scaling", "fan_lin_van_dooren", "as_problem", "check_tolerance"]
 

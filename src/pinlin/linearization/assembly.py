@@ -1,0 +1,186 @@
+"""Evaluate the equation of motion of a scene and its analytic derivatives at one point.
+
+The equation of the free coordinates is r(q, v, a) = tau(q, v, a, fext) - Q_e(q, v)
+= 0 (SPEC section 1).  :func:`assemble` evaluates r at (q, v0, a = 0) and,
+on request, M = dr/da, C = dr/dv and K = dr/dq on the whole tangent space,
+running only the Pinocchio algorithms the scene calls for:
+
+============================  ==========================================================
+scene                          Pinocchio algorithms
+============================  ==========================================================
+no prescribed joint            ``crba`` for M (if asked); for K and the residual
+                               ``computeStaticTorqueDerivatives`` with ``fext`` when the
+                               scene has wrenches, else ``computeGeneralizedGravityDerivatives``
+                               when gravity is nonzero, else nothing.  No velocity
+                               derivative is computed: C comes from the elements alone.
+prescribed joint velocities    ``computeRNEADerivatives`` (with ``fext`` only when the
+                               scene has wrenches): K, C and M in one pass.
+dead wrench                    adds ``computeJointJacobians`` + ``updateFramePlacements``
+                               (its orientation and Jacobian; no kinematic Hessian).
+Rayleigh damping (alpha > 0)   M, from the pass above or ``crba``.
+residual only                  ``computeStaticTorque`` / ``computeGeneralizedGravity`` /
+                               ``rnea``, or nothing.
+============================  ==========================================================
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from ..model.scene import Scene
+from .workspace import Evaluation, Workspace, symmetric_from_upper
+
+__all__ = ["Assembly", "assemble", "external_forces", "fro"]
+
+
+def fro(a: np.ndarray) -> float:
+    """Frobenius norm (cheaper than ``np.linalg.norm`` on small arrays)."""
+    flat = a.ravel()
+    return math.sqrt(float(np.dot(flat, flat)))
+
+
+@dataclass
+class Assembly:
+    """Residual and derivatives of one scene at one point, on the full tangent space.
+
+    Attributes
+    ----------
+    residual : (nv,) ndarray
+        r = tau(q, v, 0, fext) - Q_e(q, v).
+    force_scale : float
+        ||tau|| + ||Q_e|| (+ ||K||_F when K is computed): the size of the forces
+        that should balance, or that a unit displacement [rad or m] would create,
+        used for relative residuals.  The stiffness term keeps the scale honest
+        when nothing is loaded in the generalized sense at equilibrium (a load
+        along a bar, or a wrench alone balancing a spring, where tau vanishes).
+    M, C, K : (nv, nv) ndarray or None
+        dr/da, dr/dv, dr/dq when asked for.
+    rounding_scale_C, rounding_scale_K : float
+        Norm of the parts of C and K that carry rounding breaking their exact
+        (skew-)symmetry: what Pinocchio computed, plus the elements whose
+        stiffness is not exactly symmetric.
+    coriolis_D : (nv, nv) ndarray or None
+        Symmetric part of Pinocchio's dtau/dv (zero in exact arithmetic for a
+        time-invariant steady motion; rounding otherwise).
+    calls : list of str
+        The Pinocchio algorithms run.
+    """
+
+    residual: np.ndarray
+    force_scale: float
+    M: np.ndarray | None
+    C: np.ndarray | None
+    K: np.ndarray | None
+    rounding_scale_C: float
+    rounding_scale_K: float
+    coriolis_D: np.ndarray | None
+    calls: list[str]
+
+
+def external_forces(scene: Scene, ev: Evaluation) -> pin.StdVec_Force | None:
+    """The scene's wrenches as Pinocchio's ``fext`` (one force per joint, joint frames), or None.
+
+    Follower wrenches come from the scene's precomputed constant part; world-fixed
+    wrenches are re-expressed at ``ev.q``.
+    """
+    if scene.constant_fext is None:
+        return None
+    if not scene.varying_wrenches:
+        return scene.constant_fext
+    fext = pin.StdVec_Force(scene.constant_fext)
+    for wrench in scene.varying_wrenches:
+        jid, f = wrench.joint_wrench(ev, scene.model, scene.robot)
+        fext[jid] = fext[jid] + f
+    return fext
+
+
+def assemble(
+    scene: Scene,
+    q: np.ndarray,
+    v: np.ndarray | None = None,
+    *,
+    stiffness: bool = True,
+    damping: bool = False,
+    mass: bool = False,
+    ws: Workspace | None = None,
+) -> Assembly:
+    """Evaluate r and, as asked, K, C and M of ``scene`` at (q, v), with a = 0.
+
+    ``q`` must already be checked (:meth:`Scene.check_configuration`); ``v``
+    defaults to the steady velocity ``scene.v0``.  The static algorithms are
+    used whenever v = 0.  Pinocchio writes into ``ws`` (default: the calling
+    thread's workspace for the scene).
+    """
+    v0 = scene.v0 if v is None else np.asarray(v, dtype=float)
+    ev = Evaluation(scene, q, v0, ws)
+    model, data = scene.model, ev.data
+    nv = model.nv
+    fext = external_forces(scene, ev)
+    extra = () if fext is None else (fext,)
+    M = C = K = coriolis_D = None
+    scale_C = 0.0
+
+    if not ev.at_rest:
+        zero = np.zeros(nv)
+        if stiffness or damping or mass:
+            dq, dv, Mu = ev.call("computeRNEADerivatives", pin.computeRNEADerivatives, model, data, q, v0, zero, *extra)
+            K, C = np.array(dq), np.array(dv)
+            ev.provide_mass_matrix(symmetric_from_upper(Mu, ev.ws.lower))
+            tau = data.tau.copy()
+            coriolis_D = (C + C.T) / 2
+            scale_C = fro(C)
+        else:
+            tau = np.array(ev.call("rnea", pin.rnea, model, data, q, v0, zero, *extra))
+    elif fext is not None:
+        if stiffness:
+            K = np.array(ev.call("computeStaticTorqueDerivatives", pin.computeStaticTorqueDerivatives, model, data, q, fext))
+            tau = data.tau.copy()
+        else:
+            tau = np.array(ev.call("computeStaticTorque", pin.computeStaticTorque, model, data, q, fext))
+    elif scene.has_gravity:
+        if stiffness:
+            K = np.array(ev.call("computeGeneralizedGravityDerivatives", pin.computeGeneralizedGravityDerivatives, model, data, q))
+            tau = data.g.copy()
+        else:
+            tau = np.array(ev.call("computeGeneralizedGravity", pin.computeGeneralizedGravity, model, data, q))
+    else:
+        tau = np.zeros(nv)
+        if stiffness:
+            K = np.zeros((nv, nv))
+    if damping and C is None:
+        C = np.zeros((nv, nv))
+    if mass:
+        M = ev.mass_matrix()
+
+    scale_K = fro(K) if stiffness else 0.0
+    Q = np.zeros(nv)
+    symmetric = True
+    for group in scene.groups:
+        group.add_force(ev, Q)
+        if stiffness:
+            group.add_stiffness(ev, K)
+            symmetric = symmetric and group.symmetric_stiffness
+        if damping:
+            group.add_damping(ev, C)
+    if stiffness:
+        for wrench in scene.varying_wrenches:
+            wrench.add_stiffness(ev, K)
+            symmetric = symmetric and wrench.symmetric_stiffness
+    K_norm = fro(K) if stiffness else 0.0
+    if not symmetric:
+        scale_K += K_norm
+    return Assembly(
+        residual=tau - Q,
+        force_scale=fro(tau) + fro(Q) + K_norm,
+        M=M,
+        C=C,
+        K=K,
+        rounding_scale_C=scale_C,
+        rounding_scale_K=scale_K,
+        coriolis_D=coriolis_D,
+        calls=ev.calls,
+    )

@@ -1,0 +1,165 @@
+"""Equilibria and steady motions: Newton on the configuration manifold (SPEC section 3)."""
+
+from __future__ import annotations
+
+import time
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+
+from .assembly import assemble
+from ..errors import ConvergenceError, ParameterError
+from ..model.scene import Scene
+
+__all__ = ["EquilibriumResult", "find_equilibrium", "equilibrium_residual"]
+
+
+@dataclass(frozen=True)
+class EquilibriumResult:
+    """An equilibrium (or steady motion) found by :func:`find_equilibrium`.
+
+    Attributes
+    ----------
+    q : (nq,) ndarray
+        The configuration (prescribed joints included, at their starting position).
+    residual : float
+        ||r(q)|| on the free coordinates [N, N m].
+    relative_residual : float
+        ||r|| / (||tau|| + ||Q_e|| + ||K||), see :class:`pinlin.assembly.Assembly`.
+    iterations : int
+        Newton steps taken.
+    history : tuple of float
+        ||r|| before each step and at the end.
+    elapsed : float
+        Seconds.
+    """
+
+    q: np.ndarray
+    residual: float
+    relative_residual: float
+    iterations: int
+    history: tuple[float, ...]
+    elapsed: float
+
+    def __repr__(self) -> str:
+        return (
+            f"EquilibriumResult(q={np.array2string(self.q, precision=6)}, residual={self.residual:.2e}, "
+            f"iterations={self.iterations}, elapsed={self.elapsed * 1e3:.2f} ms)"
+        )
+
+
+def _relative(r: np.ndarray, scale: float) -> float:
+    norm = float(np.linalg.norm(r))
+    return norm / scale if scale > 0 else 0.0
+
+
+def equilibrium_residual(scene: Scene, q) -> np.ndarray:
+    """r(q) = tau(q, v0, 0, fext) - Q_e(q, v0) on the free coordinates (n,)."""
+    q = scene.check_configuration(q)
+    return assemble(scene, q, stiffness=False).residual[scene.free_dofs]
+
+
+def _newton_step(K: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """Solve K dx = -r; least squares (minimum norm) when K is singular or nearly so."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
+        try:
+            step = scipy.linalg.solve(K, -r, check_finite=False)
+            if np.all(np.isfinite(step)):
+                return step
+        except (np.linalg.LinAlgError, scipy.linalg.LinAlgWarning):
+            pass
+    return scipy.linalg.lstsq(K, -r, check_finite=False)[0]
+
+
+def find_equilibrium(
+    scene: Scene,
+    q0=None,
+    *,
+    tol: float = 1e-12,
+    max_iterations: int = 50,
+    min_step: float = 1e-10,
+) -> EquilibriumResult:
+    """Newton's method for r(q) = 0 on the configuration manifold (SPEC section 3).
+
+    Each step solves K dx = -r with the analytic stiffness K of the free
+    coordinates (least squares if K is singular), then backtracks along
+    ``pin.integrate(q, alpha dx)`` until ||r|| decreases (Armijo).  Prescribed
+    joints stay where ``q0`` puts them.  Several equilibria may exist: the one
+    found depends on the start.  The line search works on ||r||, so far from an
+    equilibrium (a chain curled by several radians against its springs) it can
+    stall at a local minimum of ||r|| where K is nearly singular; the error then
+    says so.  Start closer, or raise the load in steps (continuation).
+
+    Parameters
+    ----------
+    scene : Scene
+    q0 : (nq,) array, optional
+        Start; default Pinocchio's neutral configuration.
+    tol : float
+        Stop when ||r|| / (||tau|| + ||Q_e|| + ||K||) <= tol.
+    max_iterations : int
+    min_step : float
+        Smallest line-search fraction before giving up.
+
+    Raises
+    ------
+    ConfigurationError
+        q0 has the wrong size or is not finite.
+    ConvergenceError
+        No convergence; ``.history`` holds the residual norms.
+    """
+    t0 = time.perf_counter()
+    if not (np.isfinite(tol) and tol > 0):
+        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
+    if not isinstance(max_iterations, (int, np.integer)) or max_iterations < 0:
+        raise ParameterError("max_iterations", f"must be an integer >= 0, got {max_iterations!r}")
+    q = scene.check_configuration(scene.neutral() if q0 is None else q0, "q0")
+    f = scene.free_dofs
+    model = scene.model
+    history: list[float] = []
+    for iteration in range(max_iterations + 1):
+        asm = assemble(scene, q, stiffness=True)
+        r = asm.residual[f]
+        norm = float(np.linalg.norm(r))
+        history.append(norm)
+        rel = _relative(r, asm.force_scale)
+        if rel <= tol:
+            return EquilibriumResult(q, norm, rel, iteration, tuple(history), time.perf_counter() - t0)
+        if iteration == max_iterations:
+            break
+        dx = np.zeros(model.nv)
+        dx[f] = _newton_step(asm.K[np.ix_(f, f)], r)
+        alpha = 1.0
+        while True:
+            trial = pin.integrate(model, q, alpha * dx)
+            r_trial = assemble(scene, trial, stiffness=False).residual[f]
+            if np.all(np.isfinite(r_trial)) and np.linalg.norm(r_trial) <= (1 - 1e-4 * alpha) * norm:
+                q = trial
+                break
+            alpha /= 2
+            if alpha < min_step:
+                raise ConvergenceError(
+                    f"find_equilibrium: the line search found no decrease of the residual at iteration "
+                    f"{iteration} (||r|| = {norm:.3e}, relative {rel:.2e}); the scene may have no "
+                    f"equilibrium near q0 (a floating base under gravity, a load beyond collapse); "
+                    f"residual history: {[f'{h:.2e}' for h in history]}",
+                    history,
+                )
+    stalled = len(history) > 4 and history[-1] > 0.9 * history[-4]
+    raise ConvergenceError(
+        f"find_equilibrium: no convergence in {max_iterations} iterations (relative residual "
+        f"{rel:.2e} > tol {tol:g})"
+        + (
+            "; the residual has stalled at a local minimum of ||r||, which Newton's line search "
+            "cannot leave: start closer to the equilibrium, or raise the load in steps from a "
+            "known equilibrium (continuation)"
+            if stalled
+            else ""
+        )
+        + f"; residual history: {[f'{h:.2e}' for h in history]}",
+        history,
+    )

@@ -1,0 +1,268 @@
+"""The linearized equations of motion as a frozen value (SPEC section 1).
+
+.. math::  M \\ddot x + (D + G) \\dot x + (S + N) x = f(t)
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ParameterError, SingularMassError
+
+__all__ = ["LinearizedSystem", "MATRIX_NAMES"]
+
+#: The five matrices of the linearized equation, in the paper's order.
+MATRIX_NAMES = ("M", "D", "G", "S", "N")
+
+#: Default relative tolerance of the (skew-)symmetry checks of the constructor.
+SYMMETRY_TOL = 1e-10
+
+
+def _readonly(a: np.ndarray | None) -> np.ndarray | None:
+    if a is None:
+        return None
+    a = np.array(a, dtype=float, copy=True)
+    a.flags.writeable = False
+    return a
+
+
+def _fro(a: np.ndarray) -> float:
+    return float(np.linalg.norm(a))
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class LinearizedSystem:
+    """``M x'' + (D + G) x' + (S + N) x = f(t)`` around an operating point.
+
+    Build one with :func:`pinlin.linearize` from a scene, or with
+    :meth:`from_matrices` from plain matrices.  The arrays are copies and
+    read-only; C = D + G and K = S + N are available as attributes.
+
+    Attributes
+    ----------
+    M : (n, n) ndarray
+        Mass matrix, symmetric positive definite [kg, kg m^2].
+    D : (n, n) ndarray
+        Damping, symmetric.
+    G : (n, n) ndarray
+        Gyroscopic, skew-symmetric.
+    S : (n, n) ndarray
+        Stiffness, symmetric.
+    N : (n, n) ndarray
+        Circulatory, skew-symmetric.
+    dof_names : tuple of str
+        Name of each coordinate.
+    q, v : ndarray or None
+        The operating point (full Pinocchio configuration and velocity, prescribed
+        joints included) when built from a scene.
+    residual : float
+        Relative equilibrium residual at q (0 for plain matrices).
+    balancing : ndarray or None
+        Constant generalized forces held by actuators (``balancing=True``).
+    elapsed : float
+        Seconds spent building the system.
+    calls : tuple of str
+        Pinocchio algorithms run to build it, in order.
+    dropped : mapping
+        Relative size of parts set to exactly zero as rounding noise (for
+        example the skew part of a gravity stiffness).
+    notes : tuple of str
+        Anything the builder wants the user to know.
+
+    Raises
+    ------
+    ParameterError
+        Matrices of the wrong shape, non-finite, or violating their symmetry.
+    SingularMassError
+        M is not positive definite.
+    """
+
+    M: np.ndarray
+    D: np.ndarray
+    G: np.ndarray
+    S: np.ndarray
+    N: np.ndarray
+    dof_names: tuple[str, ...] = ()
+    q: np.ndarray | None = None
+    v: np.ndarray | None = None
+    residual: float = 0.0
+    balancing: np.ndarray | None = None
+    elapsed: float = 0.0
+    calls: tuple[str, ...] = ()
+    dropped: Mapping[str, float] = field(default_factory=dict)
+    notes: tuple[str, ...] = ()
+    C: np.ndarray = field(init=False)
+    K: np.ndarray = field(init=False)
+
+    def __post_init__(self):
+        mats = {}
+        n = None
+        for name in MATRIX_NAMES:
+            try:
+                a = np.array(getattr(self, name), dtype=float)
+            except (TypeError, ValueError):
+                raise ParameterError(name, "expected a real matrix") from None
+            if a.ndim != 2 or a.shape[0] != a.shape[1]:
+                raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
+            if n is None:
+                n = a.shape[0]
+                if n == 0:
+                    raise ParameterError(name, "the system has no coordinates (n = 0)")
+            elif a.shape != (n, n):
+                raise ParameterError(name, f"expected shape {(n, n)} like M, got {a.shape}")
+            if not np.all(np.isfinite(a)):
+                raise ParameterError(name, "has non-finite entries")
+            mats[name] = a
+        for name, sign in (("M", 1), ("D", 1), ("S", 1), ("G", -1), ("N", -1)):
+            a = mats[name]
+            defect = _fro(a - sign * a.T)
+            if defect > SYMMETRY_TOL * max(_fro(a), np.finfo(float).tiny):
+                kind = "symmetric" if sign == 1 else "skew-symmetric"
+                raise ParameterError(
+                    name, f"must be {kind}; relative defect {defect / _fro(a):.2e} > {SYMMETRY_TOL:g}"
+                )
+            mats[name] = (a + sign * a.T) / 2
+        names = tuple(str(s) for s in self.dof_names) or tuple(f"x{i + 1}" for i in range(n))
+        if len(names) != n:
+            raise ParameterError("dof_names", f"expected {n} names, got {len(names)}")
+        if len(set(names)) != n:
+            raise ParameterError("dof_names", f"names must be unique, got {names}")
+        try:
+            np.linalg.cholesky(mats["M"])
+        except np.linalg.LinAlgError:
+            w, V = np.linalg.eigh(mats["M"])
+            weak = [names[i] for i in np.flatnonzero(np.abs(V[:, 0]) > 0.3)]
+            raise SingularMassError(
+                f"the mass matrix is not positive definite (smallest eigenvalue {w[0]:.3g}); "
+                f"the coordinates {weak} carry no inertia",
+                weak,
+            ) from None
+        for name, a in mats.items():
+            object.__setattr__(self, name, _readonly(a))
+        object.__setattr__(self, "C", _readonly(mats["D"] + mats["G"]))
+        object.__setattr__(self, "K", _readonly(mats["S"] + mats["N"]))
+        object.__setattr__(self, "dof_names", names)
+        object.__setattr__(self, "q", _readonly(self.q))
+        object.__setattr__(self, "v", _readonly(self.v))
+        object.__setattr__(self, "balancing", _readonly(self.balancing))
+        object.__setattr__(self, "dropped", dict(self.dropped))
+        object.__setattr__(self, "calls", tuple(self.calls))
+        object.__setattr__(self, "notes", tuple(self.notes))
+
+    # ------------------------------------------------------------------ construction
+
+    @classmethod
+    def from_matrices(
+        cls,
+        M,
+        C=None,
+        K=None,
+        *,
+        dof_names: Sequence[str] = (),
+    ) -> LinearizedSystem:
+        """Build a system from M, C = D + G and K = S + N.
+
+        C and K are split exactly into their symmetric and skew parts; omitted
+        ones are zero.  M must be symmetric positive definite.
+        """
+        try:
+            M = np.array(M, dtype=float)
+        except (TypeError, ValueError):
+            raise ParameterError("M", "expected a real matrix") from None
+        parts = {}
+        for name, a in (("C", C), ("K", K)):
+            if a is None:
+                a = np.zeros_like(M)
+            try:
+                a = np.array(a, dtype=float)
+            except (TypeError, ValueError):
+                raise ParameterError(name, "expected a real matrix") from None
+            if a.shape != M.shape:
+                raise ParameterError(name, f"expected shape {M.shape} like M, got {a.shape}")
+            parts[name] = ((a + a.T) / 2, (a - a.T) / 2)
+        (D, G), (S, N) = parts["C"], parts["K"]
+        return cls(M, D, G, S, N, dof_names=tuple(dof_names))
+
+    @classmethod
+    def trusted(
+        cls,
+        M: np.ndarray,
+        D: np.ndarray,
+        G: np.ndarray,
+        S: np.ndarray,
+        N: np.ndarray,
+        *,
+        dof_names: tuple[str, ...],
+        q: np.ndarray | None = None,
+        v: np.ndarray | None = None,
+        residual: float = 0.0,
+        balancing: np.ndarray | None = None,
+        elapsed: float = 0.0,
+        calls: tuple[str, ...] = (),
+        dropped: Mapping[str, float] | None = None,
+        notes: tuple[str, ...] = (),
+    ) -> LinearizedSystem:
+        """Wrap matrices that are valid by construction, without re-validating them.
+
+        For builders (such as :func:`pinlin.linearize`) that produce M, D, S
+        exactly symmetric and G, N exactly skew, with M already checked positive
+        definite and every entry finite, and ``dof_names`` of the right length.
+        The arrays are taken over (not copied) and made read-only.  Everyone else
+        should call the constructor, which validates.
+        """
+        obj = object.__new__(cls)
+        C, K = D + G, S + N
+        for a in (M, D, G, S, N, C, K, q, v, balancing):
+            if a is not None:
+                a.flags.writeable = False
+        set_ = object.__setattr__
+        for name, value in (
+            ("M", M), ("D", D), ("G", G), ("S", S), ("N", N), ("C", C), ("K", K),
+            ("dof_names", tuple(dof_names)), ("q", q), ("v", v), ("residual", residual),
+            ("balancing", balancing), ("elapsed", elapsed), ("calls", tuple(calls)),
+            ("dropped", dict(dropped or {})), ("notes", tuple(notes)),
+        ):  # fmt: skip
+            set_(obj, name, value)
+        return obj
+
+    def replace(self, **changes) -> LinearizedSystem:
+        """A copy with some fields changed (validated again)."""
+        changes.pop("C", None)
+        changes.pop("K", None)
+        return dataclasses.replace(self, **changes)
+
+    # ------------------------------------------------------------------ structure
+
+    @property
+    def n(self) -> int:
+        """Number of coordinates."""
+        return self.M.shape[0]
+
+    def is_zero(self, name: str) -> bool:
+        """True when matrix ``name`` (one of M, D, G, S, N, C, K) is exactly zero."""
+        if name not in MATRIX_NAMES + ("C", "K"):
+            raise ParameterError("name", f"expected one of {MATRIX_NAMES + ('C', 'K')}, got {name!r}")
+        return not np.any(getattr(self, name))
+
+    @property
+    def nonzero(self) -> tuple[str, ...]:
+        """Names of the matrices among M, D, G, S, N that are not exactly zero."""
+        return tuple(name for name in MATRIX_NAMES if not self.is_zero(name))
+
+    # ------------------------------------------------------------------ dynamic stiffness
+
+    def dynamic_stiffness(self, lam) -> np.ndarray:
+        """L(lam) = lam^2 M + lam C + K: (n, n) for a scalar, (len(lam), n, n) for an array."""
+        lam = np.asarray(lam)
+        if lam.ndim == 0:
+            return lam * lam * self.M + lam * self.C + self.K
+        lam = lam.reshape(-1, 1, 1)
+        return lam * lam * self.M + lam * self.C + self.K
+
+    def __repr__(self) -> str:
+        names = self.dof_names if self.n <= 6 else self.dof_names[:3] + ("...",) + self.dof_names[-2:]
+        return f"LinearizedSystem(n={self.n}, dofs={names}, nonzero={'+'.join(self.nonzero)})"

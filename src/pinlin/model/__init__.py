@@ -1,0 +1,43 @@
+"""What is being linearized: robots, scenes and their elements (the first stage of the data flow).
+
+One concept per module:
+
+- :mod:`.robot` -- :class:`Robot` (a Pinocchio model without geometry), URDF and
+  example-robot-data loading, the memory guard in front of every ``createData``;
+- :mod:`.generators` -- URDF text of the reference models (pendulum chains, the
+  paper's double pendulum, turntable, rotating ring);
+- :mod:`.elements` -- force elements: a base class and one file per kind;
+- :mod:`.scene` -- :class:`Scene`, an immutable description (robot, elements,
+  gravity, prescribed joints) that holds no Pinocchio workspace;
+- :mod:`.scenefile` -- scenes from TOML files.
+"""
+
+from .elements import DeadWrench, Element, FollowerWrench, JointDamper, JointSpring, RayleighDamping, WrenchElement
+from .generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
+from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
+from .robot import Robot
+from .scene import Scene
+from .scenefile import SceneSpec, load_scene
+
+__all__ = [
+    "Robot",
+    "load_urdf",
+    "load_urdf_string",
+    "load_example",
+    "EXAMPLES",
+    "data_path",
+    "pendulum_chain_urdf",
+    "double_pendulum_urdf",
+    "turntable_urdf",
+    "rotating_ring_urdf",
+    "Element",
+    "WrenchElement",
+    "JointSpring",
+    "JointDamper",
+    "RayleighDamping",
+    "FollowerWrench",
+    "DeadWrench",
+    "Scene",
+    "SceneSpec",
+    "load_scene",
+]

@@ -1,0 +1,215 @@
+"""The element interface: what every force element of a scene implements.
+
+An element is a small frozen value naming a joint or frame and its parameters.
+At a point (q, v) it gives its generalized force Q_e(q, v) and adds its analytic
+derivatives to the linearized matrices:
+
+    K += -dQ_e/dq,    C += -dQ_e/dv          (SPEC section 1)
+
+Wrench elements (forces on a frame) do not compute Q_e themselves during
+assembly: they hand Pinocchio a wrench in their joint's frame (``fext``) and add
+only what Pinocchio's derivative, taken with that wrench held constant in the
+joint frame, leaves out.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+import pinocchio as pin
+
+from ...errors import ParameterError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ...linearization.workspace import Evaluation
+    from ..robot import Robot
+
+__all__ = ["Element", "ElementGroup", "WrenchElement", "as_matrix", "check_psd", "check_vector3"]
+
+
+def as_matrix(value, size: int, label: str) -> np.ndarray:
+    """A scalar, vector (diagonal) or symmetric psd matrix as a (size x size) matrix.
+
+    Raises
+    ------
+    ParameterError
+        Wrong shape, non-finite, negative, asymmetric or indefinite values.
+    """
+    arr = np.asarray(value, dtype=float)
+    if arr.ndim == 0:
+        arr = np.eye(size) * float(arr)
+    elif arr.ndim == 1:
+        if arr.shape != (size,):
+            raise ParameterError(label, f"expected a number, {size} values or a {size}x{size} matrix, got shape {arr.shape}")
+        arr = np.diag(arr)
+    elif arr.shape != (size, size):
+        raise ParameterError(label, f"expected a number, {size} values or a {size}x{size} matrix, got shape {arr.shape}")
+    return arr
+
+
+def check_psd(value, label: str) -> np.ndarray:
+    """Validate a scalar / vector / matrix coefficient: finite, >= 0 or symmetric psd."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(label, f"expected a number, a vector or a matrix, got {value!r}") from None
+    if arr.ndim > 2:
+        raise ParameterError(label, f"expected at most 2 dimensions, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(label, f"must be finite, got {value!r}")
+    if arr.ndim < 2:
+        if np.any(arr < 0):
+            raise ParameterError(label, f"must be non-negative, got {value!r}")
+        return arr
+    if arr.shape[0] != arr.shape[1]:
+        raise ParameterError(label, f"a matrix must be square, got shape {arr.shape}")
+    scale = max(np.abs(arr).max(), np.finfo(float).tiny)
+    if np.abs(arr - arr.T).max() > 1e-12 * scale:
+        raise ParameterError(label, "a matrix must be symmetric")
+    arr = (arr + arr.T) / 2
+    if np.linalg.eigvalsh(arr).min() < -1e-12 * scale:
+        raise ParameterError(label, "a matrix must be positive semi-definite")
+    return arr
+
+
+def check_vector3(value, label: str) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(label, f"expected 3 numbers, got {value!r}") from None
+    if arr.shape != (3,):
+        raise ParameterError(label, f"expected 3 numbers, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(label, f"must be finite, got {value!r}")
+    return arr
+
+
+class ElementGroup:
+    """All elements of one class in a scene, evaluated together.
+
+    The default group loops over its elements; element classes whose elements
+    are many and simple (1-DOF springs and dampers) return a vectorized group
+    from :meth:`Element.group`, so a 200-joint chain costs a few array
+    operations, not 200 Python calls.
+
+    Attributes
+    ----------
+    symmetric_stiffness : bool
+        True when :meth:`add_stiffness` adds an exactly symmetric matrix (it then
+        adds no rounding to the skew part N).
+    """
+
+    def __init__(self, elements: tuple[Element, ...]):
+        self.elements = elements
+        self.symmetric_stiffness = all(type(e).symmetric_stiffness for e in elements)
+
+    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+        """Add the elements' generalized forces Q_e(q, v) to Q (nv,)."""
+        for element in self.elements:
+            Q += element.generalized_force(ev)
+
+    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        """Add -dQ_e/dq to K (nv x nv)."""
+        for element in self.elements:
+            element.add_stiffness(ev, K)
+
+    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+        """Add -dQ_e/dv to C (nv x nv)."""
+        for element in self.elements:
+            element.add_damping(ev, C)
+
+    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        """Add the elements' elastic stiffness (psd, Rayleigh's K_e) to K (nv x nv)."""
+        for element in self.elements:
+            element.add_elastic_stiffness(ev, K)
+
+
+class Element(ABC):
+    """A force element of a scene (SPEC section 2).
+
+    Subclasses are frozen dataclasses that name a joint or frame; they are
+    checked against a robot by :meth:`check` when a :class:`~pinlin.Scene` is
+    built, and evaluated through an :class:`Evaluation`.
+    """
+
+    #: Short label used in reports and scene files.
+    kind: ClassVar[str] = "element"
+    #: True for elements that act through Pinocchio's ``fext``.
+    is_wrench: ClassVar[bool] = False
+    #: True when the element's stiffness -dQ_e/dq is always exactly symmetric.
+    symmetric_stiffness: ClassVar[bool] = False
+
+    @abstractmethod
+    def check(self, robot: Robot) -> None:
+        """Raise a :class:`~pinlin.PinlinError` if the element does not fit the robot."""
+
+    @abstractmethod
+    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+        """Generalized force Q_e(q, v) of the element (nv,) [N or N m]."""
+
+    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
+        """Add -dQ_e/dq (tangent space, nv x nv) to K; nothing by default."""
+
+    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:  # noqa: B027 (optional hook)
+        """Add -dQ_e/dv (nv x nv) to C; nothing by default."""
+
+    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
+        """Add the element's elastic stiffness to K (nv x nv); nothing by default.
+
+        The elastic stiffness is the psd part that stores strain energy (a
+        spring's k, not the geometric term of its preload, not gravity nor
+        loads); :class:`~pinlin.RayleighDamping` uses it as K_e in beta K_e.
+        """
+
+    def needs(self) -> frozenset[str]:
+        """What the element reads from an :class:`~pinlin.linearization.Evaluation`.
+
+        A subset of ``{"frame_kinematics", "mass_matrix"}``: frame placements and
+        Jacobians (``computeJointJacobians`` + ``updateFramePlacements``), and the
+        mass matrix (``crba`` unless the dynamics pass already gave it).  Joint-space
+        elements need neither.  :attr:`pinlin.Scene.needs` collects them, and a test
+        checks that ``sys.calls`` runs nothing else beyond the dynamics.
+        """
+        return frozenset()
+
+    @classmethod
+    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+        """The elements of this class in one scene, for evaluation together."""
+        return ElementGroup(elements)
+
+
+class WrenchElement(Element):
+    """A wrench applied at a frame origin; it reaches Pinocchio as ``fext``."""
+
+    is_wrench: ClassVar[bool] = True
+    #: True when the wrench is constant in its joint's frame (then ``fext`` does not depend on q).
+    body_fixed: ClassVar[bool] = False
+    frame: str
+    force: np.ndarray
+    torque: np.ndarray
+
+    def check(self, robot: Robot) -> None:
+        robot.frame_id(self.frame)
+
+    def needs(self) -> frozenset[str]:
+        return frozenset() if self.body_fixed else frozenset({"frame_kinematics"})
+
+    @abstractmethod
+    def local_wrench(self, ev: Evaluation) -> np.ndarray:
+        """The wrench (force, torque) at the frame origin, in the frame's axes (6,)."""
+
+    def joint_wrench(self, ev: Evaluation | None, model: pin.Model, robot: Robot) -> tuple[int, pin.Force]:
+        """The wrench in its parent joint's frame, as Pinocchio's ``fext`` wants it.
+
+        ``ev`` may be None for a body-fixed wrench (its local wrench does not depend on q).
+        """
+        frame = model.frames[robot.frame_id(self.frame)]
+        w = self.local_wrench(ev)
+        return frame.parentJoint, frame.placement.act(pin.Force(w[:3], w[3:]))
+
+    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+        """Q = J^T w with J the frame Jacobian in the frame's axes (nv,)."""
+        return ev.frame_jacobian(ev.robot.frame_id(self.frame)).T @ self.local_wrench(ev)
+

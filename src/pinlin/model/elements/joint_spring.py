@@ -1,0 +1,157 @@
+"""Joint torsion / translational springs."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+import pinocchio as pin
+
+from ...errors import ParameterError
+from .base import Element, ElementGroup, as_matrix, check_psd
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ...linearization.workspace import Evaluation
+    from ..robot import JointInfo, Robot
+
+__all__ = ["JointSpring", "SpringGroup"]
+
+
+@dataclass(frozen=True, eq=False)
+class JointSpring(Element):
+    """A linear spring on one joint (SPEC section 2).
+
+    .. math::  Q = -K_s\\, e(q), \\qquad e = \\mathrm{difference}(q_{rest}, q_j)
+
+    For a 1-DOF joint e is the joint angle [rad] or displacement [m] from rest;
+    for a multi-DOF joint (spherical, planar, free-flyer) e is Pinocchio's
+    ``difference`` on the joint's Lie group, and dQ/dq = -K_s de/dq uses the
+    group's analytic ``dDifference``.  Near rest de/dq = I.  For an anisotropic
+    K_s on a rotation group far from rest this force is not a gradient, so its
+    stiffness may have a skew part; an isotropic K_s is conservative.
+
+    Parameters
+    ----------
+    joint : str
+        Joint name.
+    stiffness : float, (nv,) or (nv, nv) array
+        [N m/rad] or [N/m]; a number, a diagonal, or a symmetric psd matrix.
+    rest : float or (nq,) array, optional
+        Unstressed configuration of the joint: an angle / displacement for a
+        1-DOF joint (continuous joints too), else a configuration vector of the
+        joint.  Default: Pinocchio's neutral (zero angle).
+    """
+
+    joint: str
+    stiffness: float | np.ndarray
+    rest: float | np.ndarray | None = None
+
+    kind: ClassVar[str] = "spring"
+
+    def __post_init__(self):
+        object.__setattr__(self, "stiffness", check_psd(self.stiffness, f"JointSpring({self.joint!r}).stiffness"))
+        if self.rest is not None:
+            rest = np.asarray(self.rest, dtype=float)
+            if rest.ndim > 1 or not np.all(np.isfinite(rest)):
+                raise ParameterError(f"JointSpring({self.joint!r}).rest", f"must be finite numbers, got {self.rest!r}")
+            object.__setattr__(self, "rest", rest)
+
+    def matrix(self, j: JointInfo) -> np.ndarray:
+        """The stiffness as a (nv_j x nv_j) matrix."""
+        return as_matrix(self.stiffness, j.nv, f"JointSpring({self.joint!r}).stiffness")
+
+    def rest_configuration(self, robot: Robot) -> np.ndarray:
+        """Rest configuration of the joint (nq_j,)."""
+        j = robot.joint(self.joint)
+        jm = robot.model.joints[j.id]
+        if self.rest is None:
+            return np.zeros(1) if j.nq == 1 else np.asarray(jm.lieGroup().neutral, dtype=float)
+        rest = np.atleast_1d(self.rest)
+        if j.nq == 2 and j.nv == 1 and rest.size == 1:
+            return np.array([np.cos(rest[0]), np.sin(rest[0])])
+        if rest.shape != (j.nq,):
+            raise ParameterError(
+                f"JointSpring({self.joint!r}).rest",
+                f"joint {self.joint!r} ({j.kind}) needs a rest of {j.nq} value(s), got shape {rest.shape}",
+            )
+        return rest
+
+    def check(self, robot: Robot) -> None:
+        j = robot.joint(self.joint)
+        self.matrix(j)
+        self.rest_configuration(robot)
+
+    def deflection(self, ev: Evaluation) -> tuple[np.ndarray, np.ndarray | None]:
+        """e (nv_j,) and de/dq (nv_j x nv_j), the latter None when it is the identity."""
+        j = ev.robot.joint(self.joint)
+        rest = self.rest_configuration(ev.robot)
+        qj = ev.q[j.q_slice]
+        if j.nq == 1:
+            return qj - rest, None
+        group = ev.model.joints[j.id].lieGroup()
+        e = np.asarray(group.difference(rest, qj), dtype=float)
+        if j.nv == 1:  # SO(2): the derivative of the angle difference is 1
+            return e, None
+        return e, np.asarray(group.dDifference(rest, qj, pin.ARG1), dtype=float)
+
+    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+        j = ev.robot.joint(self.joint)
+        Q = np.zeros(ev.model.nv)
+        e, _ = self.deflection(ev)
+        Q[j.v_slice] = -self.matrix(j) @ e
+        return Q
+
+    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        j = ev.robot.joint(self.joint)
+        _, jac = self.deflection(ev)
+        Ks = self.matrix(j)
+        K[j.v_slice, j.v_slice] += Ks if jac is None else Ks @ jac
+
+    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        """The spring's matrix K_s: psd, the elastic stiffness in Rayleigh's beta K_e."""
+        j = ev.robot.joint(self.joint)
+        K[j.v_slice, j.v_slice] += self.matrix(j)
+
+    @classmethod
+    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+        return SpringGroup(elements, robot)
+
+
+class SpringGroup(ElementGroup):
+    """Springs on joints with nq = nv = 1 as arrays; the others one by one.
+
+    Q[iv] -= k (q[iq] - rest) and K[iv, iv] += k in a few array operations.
+    """
+
+    def __init__(self, elements: tuple[JointSpring, ...], robot: Robot):
+        simple = [e for e in elements if robot.joint(e.joint).nq == 1 and e.stiffness.ndim < 2]
+        super().__init__(tuple(e for e in elements if e not in simple))
+        joints = [robot.joint(e.joint) for e in simple]
+        self.iq = np.array([j.idx_q for j in joints], dtype=int)
+        self.iv = np.array([j.idx_v for j in joints], dtype=int)
+        self.k = np.array([float(np.ravel(e.stiffness)[0]) for e in simple])
+        self.rest = np.array([0.0 if e.rest is None else float(np.ravel(e.rest)[0]) for e in simple])
+        self.unique = len(set(self.iv.tolist())) == len(self.iv)
+        self.symmetric_stiffness = all(robot.joint(e.joint).nv == 1 for e in self.elements)
+
+    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+        if len(self.iv):
+            if self.unique:
+                Q[self.iv] -= self.k * (ev.q[self.iq] - self.rest)
+            else:
+                np.subtract.at(Q, self.iv, self.k * (ev.q[self.iq] - self.rest))
+        super().add_force(ev, Q)
+
+    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        if len(self.iv):
+            if self.unique:
+                K[self.iv, self.iv] += self.k
+            else:
+                np.add.at(K, (self.iv, self.iv), self.k)
+        super().add_stiffness(ev, K)
+
+    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        if len(self.iv):
+            np.add.at(K, (self.iv, self.iv), self.k)
+        super().add_elastic_stiffness(ev, K)

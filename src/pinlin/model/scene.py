@@ -1,0 +1,235 @@
+"""A scene: a robot, its force elements, gravity and prescribed joint velocities."""
+
+from __future__ import annotations
+
+import types
+from collections.abc import Iterable, Mapping
+
+import numpy as np
+import pinocchio as pin
+
+from .elements import Element, JointDamper, WrenchElement
+from .elements.base import check_vector3
+from ..errors import ConfigurationError, ParameterError, PrescribedJointError
+from .robot import Robot
+
+__all__ = ["Scene"]
+
+
+class Scene:
+    """What acts on a robot: elements, gravity, prescribed joint velocities (SPEC section 2).
+
+    A scene is an immutable description: it owns a copy of the robot's model
+    (with the scene's gravity) and no Pinocchio ``Data``.  Each computation runs
+    in a workspace of its own thread (:mod:`pinlin.linearization.workspace`), so one
+    scene can be shared by any number of threads.
+    The coordinates of the linearized equations are the *free* degrees of
+    freedom: all velocity coordinates except those of prescribed joints.
+
+    Parameters
+    ----------
+    robot : Robot
+    elements : iterable of Element
+        Springs, dampers, Rayleigh damping, follower and dead wrenches.
+    gravity : 3 floats
+        Gravity vector [m/s^2] in world axes; zero is allowed.
+    prescribed : mapping of str to float, optional
+        Joint name -> constant velocity [rad/s or m/s] of a 1-DOF joint (a
+        turntable, a rotor).  These joints are not coordinates of the result.
+    urdf_damping : bool
+        Add the URDF's ``<dynamics damping>`` as joint dampers (Pinocchio reads
+        it into ``model.damping`` but its dynamics ignore it).  Off by default.
+    memory_limit : int, optional
+        Bytes allowed for Pinocchio's data, see :func:`pinlin.load_urdf`.
+
+    Raises
+    ------
+    ParameterError
+        An element is not an :class:`Element`, gravity is not 3 finite numbers,
+        a prescribed velocity is not finite.
+    JointNotFoundError, FrameNotFoundError
+        An element or prescribed velocity names something the robot lacks.
+    PrescribedJointError
+        A prescribed joint is not 1-DOF, or every joint is prescribed.
+    """
+
+    def __init__(
+        self,
+        robot: Robot,
+        elements: Iterable[Element] = (),
+        *,
+        gravity=(0.0, 0.0, -9.81),
+        prescribed: Mapping[str, float] | None = None,
+        urdf_damping: bool = False,
+        memory_limit: int | None = None,
+    ):
+        if not isinstance(robot, Robot):
+            raise ParameterError("robot", f"expected a pinlin.Robot, got {type(robot).__name__}")
+        self.robot = robot
+        elements = tuple(elements)
+        for i, element in enumerate(elements):
+            if not isinstance(element, Element):
+                raise ParameterError(
+                    f"elements[{i}]", f"expected a pinlin element (JointSpring, ...), got {element!r}"
+                )
+            element.check(robot)
+        self._user_elements = elements
+        self.urdf_damping = bool(urdf_damping)
+        if self.urdf_damping:
+            elements = elements + self._urdf_dampers(robot)
+        self.elements: tuple[Element, ...] = elements
+        self.gravity = check_vector3(gravity, "gravity")
+        self.gravity.flags.writeable = False
+
+        pres: dict[str, float] = {}
+        for name, omega in dict(prescribed or {}).items():
+            j = robot.joint(name)
+            if j.nv != 1:
+                raise PrescribedJointError(
+                    f"prescribed joint {name!r} is a {j.kind} with {j.nv} degrees of freedom; "
+                    f"only 1-DOF joints (revolute, continuous, prismatic) can have a prescribed velocity"
+                )
+            try:
+                omega = float(omega)
+            except (TypeError, ValueError):
+                raise ParameterError(f"prescribed[{name!r}]", f"expected a number, got {omega!r}") from None
+            if not np.isfinite(omega):
+                raise ParameterError(f"prescribed[{name!r}]", f"must be finite, got {omega!r}")
+            pres[name] = omega
+        self.prescribed = types.MappingProxyType(pres)
+        self.memory_limit = memory_limit
+
+        mask = np.ones(robot.nv, dtype=bool)
+        self.v0 = np.zeros(robot.nv)
+        for name, omega in pres.items():
+            j = robot.joint(name)
+            mask[j.idx_v] = False
+            self.v0[j.idx_v] = omega
+        if not mask.any():
+            raise PrescribedJointError("every joint is prescribed: no free degree of freedom is left")
+        self.v0.flags.writeable = False
+        self.free_dofs = np.flatnonzero(mask)
+        self.prescribed_dofs = np.flatnonzero(~mask)
+        self.free_dofs.flags.writeable = False
+        self.prescribed_dofs.flags.writeable = False
+        all_names = robot.dof_names
+        self.dof_names = tuple(all_names[i] for i in self.free_dofs)
+
+        self.model = pin.Model(robot.model)
+        self.model.gravity = pin.Motion(self.gravity, np.zeros(3))
+        robot.check_memory(memory_limit)  # refuse a model whose workspace would not fit, now
+        self._compile()
+
+    def _compile(self) -> None:
+        """Group the elements for evaluation and precompute what does not depend on q.
+
+        Joint-space elements are grouped by class (vectorized where the class
+        allows).  Body-fixed wrenches (followers) are constant in their joint's
+        frame, so their part of Pinocchio's ``fext`` is built once here; only
+        world-fixed wrenches are re-expressed at each q.
+        """
+        by_class: dict[type, list[Element]] = {}
+        for element in self.elements:
+            if not element.is_wrench:
+                by_class.setdefault(type(element), []).append(element)
+        self.groups = tuple(cls.group(tuple(els), self.robot) for cls, els in by_class.items())
+        wrenches = self.wrenches
+        self.varying_wrenches = tuple(w for w in wrenches if not w.body_fixed)
+        self.constant_fext = None
+        if wrenches:
+            fext = pin.StdVec_Force()
+            for _ in range(self.model.njoints):
+                fext.append(pin.Force.Zero())
+            for w in wrenches:
+                if w.body_fixed:
+                    jid, f = w.joint_wrench(None, self.model, self.robot)
+                    fext[jid] = fext[jid] + f
+            self.constant_fext = fext
+
+    @staticmethod
+    def _urdf_dampers(robot: Robot) -> tuple[Element, ...]:
+        dampers = []
+        for j in (robot.joint(n) for n in robot.joint_names):
+            c = np.asarray(robot.model.damping[j.v_slice], dtype=float)
+            if np.any(c != 0):
+                dampers.append(JointDamper(j.name, c if j.nv > 1 else float(c[0])))
+        return tuple(dampers)
+
+    # ------------------------------------------------------------------ structure
+
+    @property
+    def n(self) -> int:
+        """Number of free degrees of freedom (size of the linearized system)."""
+        return len(self.free_dofs)
+
+    @property
+    def wrenches(self) -> tuple[WrenchElement, ...]:
+        return tuple(e for e in self.elements if isinstance(e, WrenchElement))
+
+    @property
+    def needs(self) -> frozenset[str]:
+        """What the scene's elements read beyond the dynamics (see :meth:`Element.needs`)."""
+        out: frozenset[str] = frozenset()
+        for element in self.elements:
+            out = out | element.needs()
+        return out
+
+    @property
+    def has_gravity(self) -> bool:
+        return bool(np.any(self.gravity != 0))
+
+    def replace(self, **changes) -> Scene:
+        """A new scene with some constructor arguments changed (for sweeps)."""
+        args = dict(
+            robot=self.robot,
+            elements=self._user_elements,
+            gravity=self.gravity,
+            prescribed=dict(self.prescribed),
+            urdf_damping=self.urdf_damping,
+            memory_limit=self.memory_limit,
+        )
+        unknown = set(changes) - set(args)
+        if unknown:
+            raise ParameterError("replace", f"unknown scene arguments {sorted(unknown)}; valid: {sorted(args)}")
+        args.update(changes)
+        robot = args.pop("robot")
+        elements = args.pop("elements")
+        return Scene(robot, elements, **args)
+
+    def neutral(self) -> np.ndarray:
+        """Pinocchio's neutral configuration of the robot (nq,)."""
+        return self.robot.neutral()
+
+    def check_configuration(self, q, label: str = "q") -> np.ndarray:
+        """A finite configuration of size nq, normalized on its manifold.
+
+        Raises
+        ------
+        ConfigurationError
+            Wrong size or non-finite entries.
+        """
+        try:
+            q = np.atleast_1d(np.array(q, dtype=float))  # a copy: the result may be frozen read-only
+        except (TypeError, ValueError):
+            raise ConfigurationError(f"{label} must be an array of numbers, got {q!r}") from None
+        if q.shape != (self.robot.nq,):
+            raise ConfigurationError(
+                f"{label} has shape {q.shape}; robot {self.robot.name!r} needs a full Pinocchio "
+                f"configuration of size nq = {self.robot.nq} (prescribed joints included)"
+            )
+        if not np.isfinite(q).all():
+            raise ConfigurationError(f"{label} has non-finite entries: {q}")
+        if self.robot.nq == self.robot.nv:  # a vector space: nothing to normalize
+            return q
+        q = pin.normalize(self.model, q)
+        if not np.isfinite(q).all():
+            raise ConfigurationError(f"{label} cannot be normalized (a zero quaternion or complex number?)")
+        return q
+
+    def __repr__(self) -> str:
+        kinds: dict[str, int] = {}
+        for e in self.elements:
+            kinds[e.kind] = kinds.get(e.kind, 0) + 1
+        parts = ", ".join(f"{v} {k}" for k, v in kinds.items()) or "no elements"
+        pres = f", prescribed={dict(self.prescribed)}" if self.prescribed else ""
+        return f"Scene({self.robot.name!r}, n={self.n}, {parts}, gravity={self.gravity.tolist()}{pres})"

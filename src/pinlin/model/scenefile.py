@@ -1,0 +1,322 @@
+"""Scene files: a robot, its elements and a starting point in TOML.
+
+Format (every table is optional except ``[robot]``)::
+
+    [robot]
+    urdf = "double_pendulum.urdf"   # relative to this file, else a bundled URDF of that name
+    # example = "ur5"               # or an example-robot-data model (instead of urdf)
+    free_flyer = false
+    locked = ["joint3"]             # or a table: locked = { joint3 = 0.5 }
+
+    [scene]
+    gravity = [0.0, 0.0, -9.81]     # [m/s^2]
+    urdf_damping = false            # take <dynamics damping> in as joint dampers
+
+    [prescribed]                    # joint = constant velocity [rad/s or m/s]
+    table = 3.0
+
+    [start]
+    q = [0.0, 0.0]                  # full configuration (nq); or joints = { joint1 = 0.1 }
+    # reference = "half_sitting"    # a named SRDF configuration of an example robot
+    equilibrium = true              # run find_equilibrium from q before linearizing
+    balancing = false               # hold q with constant actuator forces instead
+
+    [[spring]]                      # one table per spring
+    joint = "joint1"
+    stiffness = 3.0                 # number, list (diagonal) or matrix
+    rest = 0.0
+
+    [[damper]]
+    joint = "joint1"
+    damping = 0.1
+
+    [rayleigh]
+    alpha = 0.0
+    beta = 1e-3
+
+    [[follower]]                    # force/torque in the frame's axes
+    frame = "tip"
+    force = [0.0, 0.0, 4.0]
+    torque = [0.0, 0.0, 0.0]
+
+    [[dead]]                        # force/torque in world axes
+    frame = "tip"
+    force = [1.0, 0.0, 0.0]
+
+Errors name the file and the key (``spring[2].stiffness``).
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .elements import DeadWrench, FollowerWrench, JointDamper, JointSpring, RayleighDamping
+from ..errors import PinlinError, SceneFileError
+from .loading import data_path, load_example, load_urdf
+from .robot import Robot
+from .scene import Scene
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+__all__ = ["SceneSpec", "load_scene", "default_scene_path", "SCENE_FORMAT"]
+
+SCENE_FORMAT = __doc__.split("Format (every table is optional except ``[robot]``)::")[1].split("Errors name")[0]
+
+_TOP = {"robot", "scene", "prescribed", "start", "spring", "damper", "rayleigh", "follower", "dead"}
+_KEYS = {
+    "robot": {"urdf", "example", "free_flyer", "locked"},
+    "scene": {"gravity", "urdf_damping"},
+    "start": {"q", "joints", "reference", "equilibrium", "balancing"},
+    "spring": {"joint", "stiffness", "rest"},
+    "damper": {"joint", "damping"},
+    "rayleigh": {"alpha", "beta"},
+    "follower": {"frame", "force", "torque"},
+    "dead": {"frame", "force", "torque"},
+}
+
+
+@dataclass(frozen=True)
+class SceneSpec:
+    """A scene read from a file, with where to start and how to treat the start.
+
+    Attributes
+    ----------
+    scene : Scene
+    q0 : (nq,) ndarray
+        Starting configuration.
+    equilibrium : bool
+        Run :func:`~pinlin.find_equilibrium` from q0 before linearizing.
+    balancing : bool
+        Linearize at q0 held by constant actuator forces.
+    path : str
+        The file.
+    """
+
+    scene: Scene
+    q0: np.ndarray
+    equilibrium: bool
+    balancing: bool
+    path: str
+
+
+def default_scene_path() -> Path:
+    """The bundled default scene: the paper's double pendulum with follower load (SPEC 7.1)."""
+    return data_path("scenes/double_pendulum.toml")
+
+
+class _Reader:
+    def __init__(self, path: str):
+        self.path = path
+
+    def fail(self, key: str | None, message: str, exc: BaseException | None = None):
+        raise SceneFileError(message, self.path, key) from exc
+
+    def check_keys(self, table: dict, allowed: set, where: str | None) -> None:
+        if not isinstance(table, dict):
+            self.fail(where, f"expected a table, got {type(table).__name__}")
+        unknown = sorted(set(table) - allowed)
+        if unknown:
+            key = f"{where}.{unknown[0]}" if where else unknown[0]
+            self.fail(key, f"unknown key; expected one of {sorted(allowed)}")
+
+    def get(self, table: dict, key: str, where: str, kind, default=None, required=False):
+        full = f"{where}.{key}" if where else key
+        if key not in table:
+            if required:
+                self.fail(full, "missing required key")
+            return default
+        value = table[key]
+        if kind is float:
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                self.fail(full, f"expected a number, got {value!r}")
+            return float(value)
+        if kind is bool:
+            if not isinstance(value, bool):
+                self.fail(full, f"expected true or false, got {value!r}")
+            return value
+        if kind is str:
+            if not isinstance(value, str):
+                self.fail(full, f"expected a string, got {value!r}")
+            return value
+        if kind == "numbers":
+            try:
+                arr = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                self.fail(full, f"expected a number or a list of numbers, got {value!r}")
+            if isinstance(value, bool) or arr.dtype == bool:
+                self.fail(full, f"expected numbers, got {value!r}")
+            return arr
+        return value
+
+
+def _robot(r: _Reader, table: dict, base: Path) -> Robot:
+    r.check_keys(table, _KEYS["robot"], "robot")
+    urdf = r.get(table, "urdf", "robot", str)
+    example = r.get(table, "example", "robot", str)
+    if (urdf is None) == (example is None):
+        r.fail("robot", "give exactly one of 'urdf' (a file) or 'example' (an example-robot-data name)")
+    free_flyer = r.get(table, "free_flyer", "robot", bool)
+    locked = table.get("locked")
+    if locked is not None and not (
+        (isinstance(locked, list) and all(isinstance(x, str) for x in locked)) or isinstance(locked, dict)
+    ):
+        r.fail("robot.locked", f"expected a list of joint names or a table joint = value, got {locked!r}")
+    try:
+        if example is not None:
+            return load_example(example, free_flyer=free_flyer, locked=locked)
+        path = (base / urdf) if not Path(urdf).is_absolute() else Path(urdf)
+        if not path.is_file():
+            try:
+                path = data_path(f"urdf/{urdf}")
+            except PinlinError:
+                r.fail("robot.urdf", f"URDF file not found: {base / urdf} (nor a bundled URDF of that name)")
+        return load_urdf(path, free_flyer=bool(free_flyer), locked=locked)
+    except SceneFileError:
+        raise
+    except PinlinError as exc:
+        r.fail("robot", str(exc), exc)
+
+
+def _elements(r: _Reader, doc: dict, robot: Robot) -> list:
+    elements = []
+    makers = {
+        "spring": lambda t, w: JointSpring(
+            r.get(t, "joint", w, str, required=True),
+            r.get(t, "stiffness", w, "numbers", required=True),
+            r.get(t, "rest", w, "numbers"),
+        ),
+        "damper": lambda t, w: JointDamper(
+            r.get(t, "joint", w, str, required=True), r.get(t, "damping", w, "numbers", required=True)
+        ),
+        "follower": lambda t, w: FollowerWrench(
+            r.get(t, "frame", w, str, required=True),
+            r.get(t, "force", w, "numbers", np.zeros(3)),
+            r.get(t, "torque", w, "numbers", np.zeros(3)),
+        ),
+        "dead": lambda t, w: DeadWrench(
+            r.get(t, "frame", w, str, required=True),
+            r.get(t, "force", w, "numbers", np.zeros(3)),
+            r.get(t, "torque", w, "numbers", np.zeros(3)),
+        ),
+    }
+    for kind, make in makers.items():
+        tables = doc.get(kind, [])
+        if not isinstance(tables, list):
+            r.fail(kind, f"use [[{kind}]] (an array of tables), one per {kind}")
+        for i, table in enumerate(tables, start=1):
+            where = f"{kind}[{i}]"
+            r.check_keys(table, _KEYS[kind], where)
+            try:
+                element = make(table, where)
+                element.check(robot)
+            except SceneFileError:
+                raise
+            except PinlinError as exc:
+                r.fail(where, str(exc), exc)
+            elements.append(element)
+    if "rayleigh" in doc:
+        t = doc["rayleigh"]
+        r.check_keys(t, _KEYS["rayleigh"], "rayleigh")
+        try:
+            elements.append(
+                RayleighDamping(r.get(t, "alpha", "rayleigh", float, 0.0), r.get(t, "beta", "rayleigh", float, 0.0))
+            )
+        except SceneFileError:
+            raise
+        except PinlinError as exc:
+            r.fail("rayleigh", str(exc), exc)
+    return elements
+
+
+def _start(r: _Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, bool]:
+    r.check_keys(table, _KEYS["start"], "start")
+    robot = scene.robot
+    q = robot.neutral()
+    given = [k for k in ("q", "joints", "reference") if k in table]
+    if len(given) > 1:
+        r.fail("start", f"give at most one of q, joints, reference; got {given}")
+    if "q" in table:
+        q = r.get(table, "q", "start", "numbers")
+        if q.shape != (robot.nq,):
+            r.fail("start.q", f"expected {robot.nq} numbers (the full configuration, nq), got shape {q.shape}")
+    elif "joints" in table:
+        joints = table["joints"]
+        if not isinstance(joints, dict):
+            r.fail("start.joints", "expected a table joint = value")
+        for name in joints:
+            try:
+                j = robot.joint(name)
+            except PinlinError as exc:
+                r.fail(f"start.joints.{name}", str(exc), exc)
+            arr = np.atleast_1d(r.get(joints, name, "start.joints", "numbers"))
+            if j.nq == 2 and j.nv == 1 and arr.size == 1:
+                arr = np.array([np.cos(arr[0]), np.sin(arr[0])])
+            if arr.shape != (j.nq,):
+                r.fail(f"start.joints.{name}", f"joint {name!r} needs {j.nq} value(s), got {arr.size}")
+            q[j.q_slice] = arr
+    elif "reference" in table:
+        name = r.get(table, "reference", "start", str)
+        if name not in robot.reference_configurations:
+            r.fail(
+                "start.reference",
+                f"unknown reference configuration {name!r}; available: {sorted(robot.reference_configurations)}",
+            )
+        q = robot.reference_configurations[name].copy()
+    try:
+        q = scene.check_configuration(q, "start.q")
+    except PinlinError as exc:
+        r.fail("start", str(exc), exc)
+    equilibrium = r.get(table, "equilibrium", "start", bool, True)
+    balancing = r.get(table, "balancing", "start", bool, False)
+    if equilibrium and balancing:
+        r.fail("start", "equilibrium = true and balancing = true exclude each other")
+    return q, equilibrium, balancing
+
+
+def load_scene(path) -> SceneSpec:
+    """Read a scene file (format in :data:`SCENE_FORMAT`).
+
+    Raises
+    ------
+    SceneFileError
+        Missing or unreadable file, invalid TOML, unknown or wrongly typed key,
+        or anything the robot, elements or start refuse; the message names the key.
+    """
+    path = Path(path)
+    r = _Reader(str(path))
+    if not path.is_file():
+        r.fail(None, "scene file not found")
+    try:
+        doc = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as exc:
+        r.fail(None, f"cannot read: {exc}", exc)
+    except tomllib.TOMLDecodeError as exc:
+        r.fail(None, f"invalid TOML: {exc}", exc)
+    r.check_keys(doc, _TOP, None)
+    if "robot" not in doc:
+        r.fail("robot", "missing the [robot] table")
+    robot = _robot(r, doc["robot"], path.parent)
+    elements = _elements(r, doc, robot)
+    scene_table = doc.get("scene", {})
+    r.check_keys(scene_table, _KEYS["scene"], "scene")
+    gravity = r.get(scene_table, "gravity", "scene", "numbers", np.array([0.0, 0.0, -9.81]))
+    urdf_damping = r.get(scene_table, "urdf_damping", "scene", bool, False)
+    prescribed = doc.get("prescribed", {})
+    if not isinstance(prescribed, dict):
+        r.fail("prescribed", "expected a table joint = velocity")
+    for name in prescribed:
+        r.get(prescribed, name, "prescribed", float)
+    try:
+        scene = Scene(robot, elements, gravity=gravity, prescribed=prescribed, urdf_damping=urdf_damping)
+    except PinlinError as exc:
+        key = "prescribed" if prescribed and "prescribed" in str(exc) else "scene"
+        r.fail(key, str(exc), exc)
+    q0, equilibrium, balancing = _start(r, doc.get("start", {}), scene)
+    return SceneSpec(scene, q0, equilibrium, balancing, str(path))
