@@ -116,7 +116,7 @@ class Evaluation:
         self.calls: list[str] = []
         self._kinematics = False
         self._rotations: dict[int, np.ndarray] = {}
-        self._jacobians: dict[int, np.ndarray] = {}
+        self._jacobians: dict[tuple[int, pin.ReferenceFrame], np.ndarray] = {}
         self._mass: np.ndarray | None = None
         self._elastic: np.ndarray | None = None
 
@@ -136,6 +136,11 @@ class Evaluation:
         self._ensure_kinematics()
         return pin.SE3(self.data.oMf[frame_id])
 
+    def frame_position(self, frame_id: int) -> np.ndarray:
+        """World position of a frame's origin (3,), a copy."""
+        self._ensure_kinematics()
+        return self.data.oMf[frame_id].translation.copy()
+
     def frame_rotation(self, frame_id: int) -> np.ndarray:
         """World orientation R of a frame (3 x 3): world vector = R @ local vector."""
         if frame_id not in self._rotations:
@@ -143,14 +148,26 @@ class Evaluation:
             self._rotations[frame_id] = self.data.oMf[frame_id].rotation.copy()
         return self._rotations[frame_id]
 
-    def frame_jacobian(self, frame_id: int) -> np.ndarray:
-        """Frame Jacobian in the frame's own axes (6 x nv, linear rows first)."""
-        if frame_id not in self._jacobians:
-            self._ensure_kinematics()
-            self._jacobians[frame_id] = np.array(
-                pin.getFrameJacobian(self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL)
-            )
-        return self._jacobians[frame_id]
+    def frame_jacobian(self, frame_id: int, reference: pin.ReferenceFrame = pin.ReferenceFrame.LOCAL) -> np.ndarray:
+        """Frame Jacobian (6 x nv, linear rows first), in the frame's own axes by default.
+
+        ``reference=pin.LOCAL_WORLD_ALIGNED`` gives the velocity of the frame origin in
+        world axes (the form of constraints and elements between frames); computed from
+        the local Jacobian by rotating its rows, without another Pinocchio call.
+        """
+        key = (frame_id, reference)
+        if key not in self._jacobians:
+            local = self._jacobians.get((frame_id, pin.ReferenceFrame.LOCAL))
+            if local is None:
+                self._ensure_kinematics()
+                local = np.array(pin.getFrameJacobian(self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL))
+                self._jacobians[(frame_id, pin.ReferenceFrame.LOCAL)] = local
+            if reference == pin.ReferenceFrame.LOCAL_WORLD_ALIGNED:
+                R = self.frame_rotation(frame_id)
+                self._jacobians[key] = np.vstack([R @ local[:3], R @ local[3:]])
+            elif reference != pin.ReferenceFrame.LOCAL:
+                self._jacobians[key] = np.array(pin.getFrameJacobian(self.model, self.data, frame_id, reference))
+        return self._jacobians[key]
 
     def mass_matrix(self) -> np.ndarray:
         """The full mass matrix M(q) (nv x nv), exactly symmetric."""
