@@ -86,3 +86,43 @@ def test_stall_far_from_equilibrium_is_reported_with_advice():
     with pytest.raises(pinlin.ConvergenceError, match="stalled at a local minimum of ||r||") as info:
         pinlin.find_equilibrium(scene, np.full(n, 0.1), max_iterations=30)
     assert info.value.history[-1] > 1.0
+
+
+_TURN_AND_SWING = """<robot name="turn_and_swing">
+  <link name="base"/>
+  <link name="turret"><inertial><mass value="1"/><origin xyz="0 0 0"/>
+    <inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="bob"><inertial><mass value="2"/><origin xyz="0 0 -0.5"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="turn" type="continuous"><parent link="base"/><child link="turret"/><axis xyz="0 0 1"/></joint>
+  <joint name="swing" type="revolute"><parent link="turret"/><child link="bob"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+</robot>"""
+
+
+def test_singular_stiffness_steps_are_reported():
+    """A turret about the vertical has no stiffness at all (K singular at every iterate): Newton takes
+    minimum-norm least-squares steps, reaches the hanging pendulum, and says so in the result."""
+    robot = pinlin.load_urdf_string(_TURN_AND_SWING)
+    scene = pinlin.Scene(robot)
+    eq = pinlin.find_equilibrium(scene, np.array([1.0, 0.0, 0.4]))  # continuous joint: (cos, sin)
+    assert_allclose(eq.q[2], 0.0, atol=1e-10)
+    assert_allclose(eq.q[:2], [1.0, 0.0], atol=1e-12)  # the minimum-norm step never turns the turret
+    assert eq.method.startswith("newton (least-squares steps at iterations [0")
+    assert "minimum-norm" in eq.notes[0]
+
+
+def test_equilibrium_result_convention():
+    import json
+
+    eq = pinlin.find_equilibrium(double_pendulum(), (0.3, -0.2))
+    assert eq.method == "newton" and eq.notes == ()
+    assert eq.error == eq.relative_residual <= 1e-12
+    d = json.loads(json.dumps(eq.to_dict()))
+    assert d["type"] == "EquilibriumResult" and d["iterations"] == eq.iterations
+    assert_allclose(d["q"], eq.q)
+    sys = pinlin.linearize(double_pendulum(), eq.q)
+    d = json.loads(json.dumps(sys.to_dict()))
+    assert d["method"] == "analytic" and d["error"] == sys.residual
+    assert_allclose(d["S"], sys.S)
+    assert len(repr(sys).splitlines()) == 1

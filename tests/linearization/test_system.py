@@ -31,7 +31,7 @@ def test_frozen_and_read_only():
     with pytest.raises(AttributeError):
         sys.M = np.eye(2)
     assert sys.nonzero == ("M", "S")
-    assert repr(sys) == "LinearizedSystem(n=2, dofs=('x1', 'x2'), nonzero=M+S)"
+    assert repr(sys) == "LinearizedSystem(n=2, dofs=('x1', 'x2'), nonzero=M+S, method='matrices', error=0.0e+00)"
 
 
 def test_replace_validates_again():

@@ -182,3 +182,37 @@ def test_chain_per_link_properties():
     M_phi = np.array([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2], [m2 * l1 * l2 / 2, m2 * l2**2 / 3]])
     T = np.array([[1.0, 0.0], [1.0, 1.0]])
     assert_allclose(sys.M, T.T @ M_phi @ T, rtol=1e-12)
+
+
+def test_unreadable_srdf_is_reported_not_dropped(monkeypatch, tmp_path):
+    """A broken SRDF used to be swallowed (no reference configurations, no word): now a warning says so."""
+    from pinlin.model import loading
+
+    bad = tmp_path / "broken.srdf"
+    bad.write_text("<robot name='ur5'><group_state name='home' group='arm'><joint name='nope' value='1 2'/>")
+    original = loading._erd_file
+    monkeypatch.setattr(loading, "_erd_file", lambda rel: bad if rel.endswith(".srdf") else original(rel))
+    with pytest.warns(UserWarning, match="could not read the reference configurations"):
+        robot = pinlin.load_example("ur5")
+    assert robot.reference_configurations == {}
+
+
+def test_missing_srdf_is_reported(monkeypatch, tmp_path):
+    from pinlin.model import loading
+
+    original = loading._erd_file
+    monkeypatch.setattr(
+        loading, "_erd_file", lambda rel: tmp_path / "none.srdf" if rel.endswith(".srdf") else original(rel)
+    )
+    with pytest.warns(UserWarning, match="SRDF .* is missing"):
+        robot = pinlin.load_example("ur5")
+    assert robot.reference_configurations == {}
+
+
+def test_memory_guard_says_when_it_cannot_read_the_memory(monkeypatch):
+    from pinlin.model import memory
+
+    monkeypatch.setattr(memory, "available_memory", lambda: None)
+    with pytest.warns(ResourceWarning, match="cannot be read"):
+        pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(2))
+    pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(2), memory_limit=10**9)  # an explicit budget: no warning

@@ -13,12 +13,21 @@ import scipy.linalg
 from .assembly import assemble
 from ..errors import ConvergenceError, ParameterError
 from ..model.scene import Scene
+from ..results import Result
 
-__all__ = ["EquilibriumResult", "find_equilibrium", "equilibrium_residual"]
+__all__ = ["EquilibriumResult", "find_equilibrium", "equilibrium_residual", "ARMIJO", "STALL_RATIO"]
+
+#: Armijo's sufficient-decrease constant of the line search: a step is taken when
+#: ||r|| falls by at least ARMIJO * alpha of itself (the usual 1e-4 of Nocedal and
+#: Wright: almost any decrease, so full Newton steps are kept near the solution).
+ARMIJO = 1e-4
+#: The residual has stalled when three steps reduced it by less than 1 - STALL_RATIO
+#: (10 %): Newton converging would have cut it by orders of magnitude.
+STALL_RATIO = 0.9
 
 
-@dataclass(frozen=True)
-class EquilibriumResult:
+@dataclass(frozen=True, repr=False, eq=False)
+class EquilibriumResult(Result):
     """An equilibrium (or steady motion) found by :func:`find_equilibrium`.
 
     Attributes
@@ -35,6 +44,13 @@ class EquilibriumResult:
         ||r|| before each step and at the end.
     elapsed : float
         Seconds.
+    method : str
+        ``"newton"``, or ``"newton (least-squares steps at iterations [...])"`` when K
+        was singular at some iterate and the minimum-norm step was taken instead.
+    error : float
+        The headline error figure: ``relative_residual``.
+    notes : tuple of str
+        Anything the solver wants the user to know (least-squares steps).
     """
 
     q: np.ndarray
@@ -43,11 +59,19 @@ class EquilibriumResult:
     iterations: int
     history: tuple[float, ...]
     elapsed: float
+    method: str = "newton"
+    notes: tuple[str, ...] = ()
+
+    @property
+    def error(self) -> float:
+        """The relative residual ||r|| / (||tau|| + ||Q_e|| + ||K||)."""
+        return self.relative_residual
 
     def __repr__(self) -> str:
+        q = np.array2string(self.q, precision=6, threshold=12)
         return (
-            f"EquilibriumResult(q={np.array2string(self.q, precision=6)}, residual={self.residual:.2e}, "
-            f"iterations={self.iterations}, elapsed={self.elapsed * 1e3:.2f} ms)"
+            f"EquilibriumResult(q={q}, residual={self.residual:.2e}, error={self.error:.1e}, "
+            f"iterations={self.iterations}, method={self.method!r}, elapsed={self.elapsed * 1e3:.2f} ms)"
         )
 
 
@@ -56,23 +80,45 @@ def _relative(r: np.ndarray, scale: float) -> float:
     return norm / scale if scale > 0 else 0.0
 
 
+def _result(q, norm, rel, iteration, history, least_squares, t0) -> EquilibriumResult:
+    method, notes = "newton", ()
+    if least_squares:
+        method = f"newton (least-squares steps at iterations {least_squares})"
+        notes = (
+            f"the stiffness K was singular or nearly so at iterations {least_squares}: the minimum-norm "
+            f"least-squares step was taken there (the equilibrium may not be isolated)",
+        )
+    return EquilibriumResult(
+        q, norm, rel, iteration, tuple(history), time.perf_counter() - t0, method=method, notes=notes
+    )
+
+
 def equilibrium_residual(scene: Scene, q) -> np.ndarray:
-    """r(q) = tau(q, v0, 0, fext) - Q_e(q, v0) on the free coordinates (n,)."""
+    """r(q) = tau(q, v0, 0, fext) - Q_e(q, v0) on the free coordinates (n,).
+
+    Raises
+    ------
+    ConfigurationError
+        q has the wrong size or is not finite.
+    """
     q = scene.check_configuration(q)
     return assemble(scene, q, stiffness=False).residual[scene.free_dofs]
 
 
-def _newton_step(K: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """Solve K dx = -r; least squares (minimum norm) when K is singular or nearly so."""
+def _newton_step(K: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, bool]:
+    """Solve K dx = -r; least squares (minimum norm) when K is singular or nearly so.
+
+    Returns the step and whether least squares was used (the caller reports it).
+    """
     with warnings.catch_warnings():
         warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
         try:
             step = scipy.linalg.solve(K, -r, check_finite=False)
             if np.all(np.isfinite(step)):
-                return step
+                return step, False
         except (np.linalg.LinAlgError, scipy.linalg.LinAlgWarning):
             pass
-    return scipy.linalg.lstsq(K, -r, check_finite=False)[0]
+    return scipy.linalg.lstsq(K, -r, check_finite=False)[0], True
 
 
 def find_equilibrium(
@@ -107,6 +153,8 @@ def find_equilibrium(
 
     Raises
     ------
+    ParameterError
+        ``tol`` or ``max_iterations`` is not valid.
     ConfigurationError
         q0 has the wrong size or is not finite.
     ConvergenceError
@@ -121,6 +169,7 @@ def find_equilibrium(
     f = scene.free_dofs
     model = scene.model
     history: list[float] = []
+    least_squares: list[int] = []
     for iteration in range(max_iterations + 1):
         asm = assemble(scene, q, stiffness=True)
         r = asm.residual[f]
@@ -128,16 +177,18 @@ def find_equilibrium(
         history.append(norm)
         rel = _relative(r, asm.force_scale)
         if rel <= tol:
-            return EquilibriumResult(q, norm, rel, iteration, tuple(history), time.perf_counter() - t0)
+            return _result(q, norm, rel, iteration, history, least_squares, t0)
         if iteration == max_iterations:
             break
         dx = np.zeros(model.nv)
-        dx[f] = _newton_step(asm.K[np.ix_(f, f)], r)
+        dx[f], lstsq = _newton_step(asm.K[np.ix_(f, f)], r)
+        if lstsq:
+            least_squares.append(iteration)
         alpha = 1.0
         while True:
             trial = pin.integrate(model, q, alpha * dx)
             r_trial = assemble(scene, trial, stiffness=False).residual[f]
-            if np.all(np.isfinite(r_trial)) and np.linalg.norm(r_trial) <= (1 - 1e-4 * alpha) * norm:
+            if np.all(np.isfinite(r_trial)) and np.linalg.norm(r_trial) <= (1 - ARMIJO * alpha) * norm:
                 q = trial
                 break
             alpha /= 2
@@ -149,7 +200,7 @@ def find_equilibrium(
                     f"residual history: {[f'{h:.2e}' for h in history]}",
                     history,
                 )
-    stalled = len(history) > 4 and history[-1] > 0.9 * history[-4]
+    stalled = len(history) > 4 and history[-1] > STALL_RATIO * history[-4]
     raise ConvergenceError(
         f"find_equilibrium: no convergence in {max_iterations} iterations (relative residual "
         f"{rel:.2e} > tol {tol:g})"

@@ -19,18 +19,24 @@ from ..errors import (
     TimePeriodicError,
 )
 from ..model.scene import Scene
-from .system import LinearizedSystem
+from .system import LinearizedSystem, null_motion
 from .workspace import Evaluation
 
-__all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES"]
+__all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES", "STRUCTURE_EPS_FACTOR"]
 
 #: Offsets [rad or m] of a prescribed joint at which the equations are
 #: evaluated again to check that they do not depend on its position.
 PERIODIC_TEST_ANGLES = (1.0, 2.5)
 
 
+#: Default structure_tol is STRUCTURE_EPS_FACTOR n eps: Pinocchio's recursive algorithms
+#: accumulate a few rounding errors per joint, so an exactly (skew-)symmetric part that
+#: should vanish comes out at a small multiple of n eps of the computed part's norm.
+STRUCTURE_EPS_FACTOR = 100.0
+
+
 def _structure_tol(n: int) -> float:
-    return 100.0 * n * np.finfo(float).eps
+    return STRUCTURE_EPS_FACTOR * n * np.finfo(float).eps
 
 
 def _massless_joints(scene: Scene) -> list[str]:
@@ -58,9 +64,9 @@ def _check_mass(scene: Scene, M: np.ndarray) -> None:
         return
     joints = _massless_joints(scene)
     if not joints:
-        w, V = np.linalg.eigh(M)
-        joints = sorted({scene.dof_names[i].split("[")[0] for i in np.flatnonzero(np.abs(V[:, 0]) > 0.3)})
-        why = f"the mass matrix is singular or indefinite (smallest eigenvalue {w[0]:.3g}); its null motion moves"
+        smallest, coords = null_motion(M, scene.dof_names)
+        joints = sorted({name.split("[")[0] for name in coords})
+        why = f"the mass matrix is singular or indefinite (smallest eigenvalue {smallest:.3g}); its null motion moves"
     else:
         why = "the mass matrix is singular: no mass or inertia moves with"
     raise SingularMassError(
@@ -242,6 +248,7 @@ def linearize(
         calls=tuple(calls),
         dropped=dropped,
         notes=tuple(notes),
+        method="analytic",
     )
 
 
@@ -256,6 +263,15 @@ def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:
     -------
     (n,) ndarray
         Q = J^T w on the free coordinates [N or N m].
+
+    Raises
+    ------
+    ParameterError
+        ``wrench`` is not a FollowerWrench or DeadWrench.
+    FrameNotFoundError
+        Its frame is not in the robot.
+    ConfigurationError
+        q has the wrong size or is not finite.
     """
     if not isinstance(wrench, WrenchElement):
         raise ParameterError("wrench", f"expected a FollowerWrench or DeadWrench, got {wrench!r}")

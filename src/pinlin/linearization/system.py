@@ -12,14 +12,27 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ParameterError, SingularMassError
+from ..results import Result
 
-__all__ = ["LinearizedSystem", "MATRIX_NAMES"]
+__all__ = ["LinearizedSystem", "MATRIX_NAMES", "null_motion", "NULL_MOTION_SHARE"]
 
 #: The five matrices of the linearized equation, in the paper's order.
 MATRIX_NAMES = ("M", "D", "G", "S", "N")
 
 #: Default relative tolerance of the (skew-)symmetry checks of the constructor.
 SYMMETRY_TOL = 1e-10
+
+
+#: A coordinate takes part in the null motion of a singular mass matrix when its entry in
+#: the unit eigenvector of the smallest eigenvalue exceeds this share: 0.3 names the few
+#: coordinates that dominate the motion (an equal share over 11 coordinates is 0.30).
+NULL_MOTION_SHARE = 0.3
+
+
+def null_motion(M: np.ndarray, names) -> tuple[float, list[str]]:
+    """Smallest eigenvalue of a symmetric M and the coordinates its eigenvector moves."""
+    w, V = np.linalg.eigh(M)
+    return float(w[0]), [names[i] for i in np.flatnonzero(np.abs(V[:, 0]) > NULL_MOTION_SHARE)]
 
 
 def _readonly(a: np.ndarray | None) -> np.ndarray | None:
@@ -35,7 +48,7 @@ def _fro(a: np.ndarray) -> float:
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class LinearizedSystem:
+class LinearizedSystem(Result):
     """``M x'' + (D + G) x' + (S + N) x = f(t)`` around an operating point.
 
     Build one with :func:`pinlin.linearize` from a scene, or with
@@ -65,6 +78,13 @@ class LinearizedSystem:
         Constant generalized forces held by actuators (``balancing=True``).
     elapsed : float
         Seconds spent building the system.
+    method : str
+        How it was built: ``"analytic"`` (Pinocchio's analytic derivatives and the
+        elements' own, :func:`pinlin.linearize`) or ``"matrices"`` (given).
+    error : float
+        The headline error figure: the relative equilibrium residual at q (how far
+        q is from the operating point the matrices assume; 0 for given matrices).
+        The rounding left in the matrices is at the level of ``dropped``.
     calls : tuple of str
         Pinocchio algorithms run to build it, in order.
     dropped : mapping
@@ -95,6 +115,7 @@ class LinearizedSystem:
     calls: tuple[str, ...] = ()
     dropped: Mapping[str, float] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
+    method: str = "matrices"
     C: np.ndarray = field(init=False)
     K: np.ndarray = field(init=False)
 
@@ -134,10 +155,9 @@ class LinearizedSystem:
         try:
             np.linalg.cholesky(mats["M"])
         except np.linalg.LinAlgError:
-            w, V = np.linalg.eigh(mats["M"])
-            weak = [names[i] for i in np.flatnonzero(np.abs(V[:, 0]) > 0.3)]
+            smallest, weak = null_motion(mats["M"], names)
             raise SingularMassError(
-                f"the mass matrix is not positive definite (smallest eigenvalue {w[0]:.3g}); "
+                f"the mass matrix is not positive definite (smallest eigenvalue {smallest:.3g}); "
                 f"the coordinates {weak} carry no inertia",
                 weak,
             ) from None
@@ -168,6 +188,13 @@ class LinearizedSystem:
 
         C and K are split exactly into their symmetric and skew parts; omitted
         ones are zero.  M must be symmetric positive definite.
+
+        Raises
+        ------
+        ParameterError
+            Not real square matrices of one shape, non-finite entries, bad ``dof_names``.
+        SingularMassError
+            M is not positive definite.
         """
         try:
             M = np.array(M, dtype=float)
@@ -205,6 +232,7 @@ class LinearizedSystem:
         calls: tuple[str, ...] = (),
         dropped: Mapping[str, float] | None = None,
         notes: tuple[str, ...] = (),
+        method: str = "analytic",
     ) -> LinearizedSystem:
         """Wrap matrices that are valid by construction, without re-validating them.
 
@@ -224,7 +252,7 @@ class LinearizedSystem:
             ("M", M), ("D", D), ("G", G), ("S", S), ("N", N), ("C", C), ("K", K),
             ("dof_names", tuple(dof_names)), ("q", q), ("v", v), ("residual", residual),
             ("balancing", balancing), ("elapsed", elapsed), ("calls", tuple(calls)),
-            ("dropped", dict(dropped or {})), ("notes", tuple(notes)),
+            ("dropped", dict(dropped or {})), ("notes", tuple(notes)), ("method", method),
         ):  # fmt: skip
             set_(obj, name, value)
         return obj
@@ -236,6 +264,11 @@ class LinearizedSystem:
         return dataclasses.replace(self, **changes)
 
     # ------------------------------------------------------------------ structure
+
+    @property
+    def error(self) -> float:
+        """The relative equilibrium residual at q (0 for given matrices); see the class docstring."""
+        return float(self.residual)
 
     @property
     def n(self) -> int:
@@ -265,4 +298,7 @@ class LinearizedSystem:
 
     def __repr__(self) -> str:
         names = self.dof_names if self.n <= 6 else self.dof_names[:3] + ("...",) + self.dof_names[-2:]
-        return f"LinearizedSystem(n={self.n}, dofs={names}, nonzero={'+'.join(self.nonzero)})"
+        return (
+            f"LinearizedSystem(n={self.n}, dofs={names}, nonzero={'+'.join(self.nonzero)}, "
+            f"method={self.method!r}, error={self.error:.1e})"
+        )

@@ -13,6 +13,7 @@ import contextlib
 import importlib.metadata
 import os
 import tempfile
+import warnings
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
@@ -298,14 +299,35 @@ def load_example(
     if not path.is_file():
         raise UrdfError(f"example-robot-data file missing: {path}", source)
     model = _build(None, str(path), source, ff)
-    refs: dict[str, np.ndarray] = {}
-    if srdf_rel is not None:
-        srdf = _erd_file(srdf_rel)
-        if srdf.is_file():
-            with _captured_stderr():
-                try:
-                    pin.loadReferenceConfigurations(model, str(srdf), False)
-                    refs = {e.key(): np.array(e.data(), dtype=float) for e in model.referenceConfigurations}
-                except (ValueError, RuntimeError):
-                    refs = {}
+    refs = _reference_configurations(model, srdf_rel, source)
     return _finish(model, source, locked, memory_limit, refs)
+
+
+def _reference_configurations(model: pin.Model, srdf_rel: str | None, source: str) -> dict[str, np.ndarray]:
+    """The SRDF's named configurations; a missing or unreadable SRDF is said with a warning, never dropped."""
+    if srdf_rel is None:
+        return {}
+    srdf = _erd_file(srdf_rel)
+    if not srdf.is_file():
+        warnings.warn(
+            f"{source}: the SRDF {srdf} is missing; the robot has no named reference configurations",
+            UserWarning,
+            stacklevel=3,
+        )
+        return {}
+    with _captured_stderr() as messages:
+        try:
+            pin.loadReferenceConfigurations(model, str(srdf), False)
+            error = None
+        except (ValueError, RuntimeError) as exc:
+            error = exc
+    if error is not None:
+        detail = " ".join(m for m in messages if m) or str(error)
+        warnings.warn(
+            f"{source}: could not read the reference configurations of {srdf} ({detail}); "
+            f"the robot has none",
+            UserWarning,
+            stacklevel=3,
+        )
+        return {}
+    return {e.key(): np.array(e.data(), dtype=float) for e in model.referenceConfigurations}
