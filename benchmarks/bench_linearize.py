@@ -12,6 +12,9 @@ For each scene, in one process:
   analytic linearization must spend;
 - MuJoCo's ``mjd_inverseFD`` on the same URDF (meshes stripped, joints mapped
   by name), when the optional ``mujoco`` package is importable.
+- ``linearize`` before and after the per-thread Pinocchio workspaces of issue 10
+  (the baseline commit in a worker process beside the current code), and a
+  fresh ``Data`` per call against the reused workspace: :mod:`.bench_workspace`.
 
 References (never the method under test):
 
@@ -44,7 +47,9 @@ import pinocchio as pin
 import pinlin
 from pinlin.linearization.assembly import assemble
 from pinlin.linearization.workspace import workspace
+from pinlin.model.loading import example_urdf_path
 
+from .bench_workspace import workspace_section
 from .common import (
     Report,
     Table,
@@ -397,7 +402,7 @@ def _arm_case(name: str, q_ref, tool: str, k: float = 100.0) -> Case:
     elements.append(pinlin.FollowerWrench(tool, force=(0.0, 0.0, 5.0)))
     scene = pinlin.Scene(robot, elements)
     q = pinlin.find_equilibrium(scene, np.asarray(q_ref, dtype=float)).q
-    text = pinlin.robot.example_urdf_path(name).read_text(encoding="utf-8")
+    text = example_urdf_path(name).read_text(encoding="utf-8")
     return Case(f"{name}: springs, dampers, follower at {tool}", scene, q, urdf=text)
 
 
@@ -624,7 +629,7 @@ def run(quick: bool = False) -> Report:
          "mpmath kinematics against the closed form"],
         time_rows,
         note=(
-            "Times: medians of interleaved repeats in one process ('analytic core' = pinlin.assembly.assemble of "
+            "Times: medians of interleaved repeats in one process ('analytic core' = pinlin.linearization.assembly.assemble of "
             "M, C, K without the checks linearize makes: equilibrium, mass, time invariance). Differences use the "
             "same residual evaluation as pinlin (assemble without derivatives), 2n (forward) or 4n (central) "
             "evaluations plus crba. Errors: max relative Frobenius error of M, C, K against the reference. With a "
@@ -678,12 +683,18 @@ def run(quick: bool = False) -> Report:
         f"Richardson (floating base) {min((h[3] for h in headline if h[4] == 'Richardson'), default=float('nan')):.1e},"
         " a lower bound set by Richardson's own accuracy"
     )
+    ws_table, ws_summary = workspace_section(quick)
+    summary.update(ws_summary)
+    if ws_table is not None:
+        tables.append(ws_table)
     figures = _plot(plot_series, sweep_plot, sweep, quick)
     text = (
         "Analytic linearization (pinlin.linearize: Pinocchio's analytic derivatives plus the elements' own) against "
         "finite differences of the same residual, and MuJoCo's finite-difference inverse-dynamics derivatives as a "
         "peer when mujoco is importable. Small systems (n = 2) cost the difference quotients only 4n + 1 = 9 "
-        "residual evaluations, less than linearize's checks; from the 6-joint arm upward analytic wins on time too."
+        "residual evaluations, less than linearize's checks; from the 6-joint arm upward analytic wins on time too. "
+        "The last table (benchmarks/bench_workspace.py) times linearize before and after the per-thread Pinocchio "
+        "workspaces of issue 10, and a fresh Data per call against the reused one."
     )
     report = Report("linearize", tables, summary, figures, text=text)
     report.elapsed = time.perf_counter() - t_start

@@ -137,7 +137,7 @@ def worker(n: int) -> dict:
     tracemalloc.stop()
     out["maxrss"] = _vm_hwm()
     out["base_rss"] = base
-    out["estimate"] = pinlin.robot.pinocchio_data_bytes(n)
+    out["estimate"] = pinlin.model.memory.pinocchio_data_bytes(n)
     out["method"] = state["modes"].method.name
     out["max_eta"] = state["modes"].max_backward_error
     out["fr_error"] = state["fr"].error
@@ -174,7 +174,7 @@ def guard_demo() -> list[list]:
         except pinlin.ModelTooLargeError as exc:
             outcome = f"ModelTooLargeError: {exc}"
         rows.append([n, "default (80 % of available)" if limit is None else f"{limit / 2**30:.0f} GiB",
-                     pinlin.robot.pinocchio_data_bytes(n) / 2**30, (time.perf_counter() - t0) * 1e3,
+                     pinlin.model.memory.pinocchio_data_bytes(n) / 2**30, (time.perf_counter() - t0) * 1e3,
                      (_rss() - before) / 2**20, outcome])
     return rows
 
@@ -231,7 +231,7 @@ def run(quick: bool = False):
             "sees Python and numpy allocations only. VmHWM: the subprocess's true peak RSS, interpreter "
             "included. The sampling thread needs the GIL, so a transient inside one C++ call is seen only in "
             "VmHWM: Pinocchio's createData peaks at about twice its final size (64 n^3 bytes, e.g. 1.84 GiB "
-            "at n = 300); the memory guard budgets for that peak (pinlin.robot.pinocchio_data_bytes: 72 n^3)."
+            "at n = 300); the memory guard budgets for that peak (pinlin.model.memory.pinocchio_data_bytes: 72 n^3)."
         ),
     )
     guard = guard_demo()
@@ -239,7 +239,7 @@ def run(quick: bool = False):
         "Memory guard: refusing before allocating",
         ["n", "memory_limit", "estimate [GiB]", "time to refuse [ms]", "RSS growth [MiB]", "outcome"],
         guard,
-        note="The estimate is pinlin.robot.pinocchio_data_bytes(n) = 72 n^3 + 400 n^2 + 4e6 bytes: the peak of "
+        note="The estimate is pinlin.model.memory.pinocchio_data_bytes(n) = 72 n^3 + 400 n^2 + 4e6 bytes: the peak of "
         "createData (measured 2.1-2.25 times the 32 n^3 bytes it keeps).",
     )
     summary = {

@@ -35,7 +35,8 @@ OLD_PATHS = {
     "pinlin.response.simulate": "pinlin.nonlinear.simulate",
     "pinlin.response.harmonic": "pinlin.frf.harmonic",
     "pinlin.adjoint.response": "pinlin.frf.frequency",
-    "pinlin.adjoint.flexibility": "pinlin.frf.engine",
+    "pinlin.adjoint.flexibility": "pinlin.frf.flexibility",
+    "pinlin.response.expansion": "pinlin.frf.expansion",
     "pinlin.adjoint.residues": "pinlin.frf.residues",
 }
 # ``pinlin.linearize`` is not aliased: that name is the function, and an alias module

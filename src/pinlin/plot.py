@@ -2,8 +2,11 @@
 
 matplotlib is an optional extra (``pip install 'pinlin[plot]'``).  Every function
 takes an optional ``ax`` (or ``axes``) to draw into and returns it, so plots
-compose into the user's own figures.  Conventions: lambda [1/s] in the complex
-plane, frequencies omega [rad/s].
+compose into the user's own figures; without matplotlib each raises
+:class:`~pinlin.errors.MissingDependencyError`.  Conventions (docs/conventions.md): lambda
+[1/s] in the complex plane, frequencies omega [rad/s], phases in degrees.  No
+function here runs Pinocchio in a ``Data`` of its own making: kinematics go
+through the calling thread's workspace (:func:`pinlin.linearization.workspace.workspace`).
 """
 
 from __future__ import annotations
@@ -15,17 +18,11 @@ import pinocchio as pin
 
 from .errors import MissingDependencyError, ParameterError
 from .linearization.workspace import workspace
-from .studies.tracking import track_modes
+from .studies.tracking import one_per_conjugate_pair, track_modes
 
 __all__ = [
-    "eigenvalue_map",
-    "root_locus",
-    "campbell",
-    "stability_map",
-    "frequency_response",
-    "chain_mode_shape",
-    "work_precision",
-    "VERDICT_COLORS",
+    "eigenvalue_map", "root_locus", "campbell", "stability_map", "frequency_response", "chain_mode_shape",
+    "work_precision", "VERDICT_COLORS", "KIND_STYLE", "AXIS_MARGIN", "MIN_REAL_SPAN_FRACTION", "UNSTABLE_RTOL",
 ]
 
 #: Colours of the stability verdicts in maps and eigenvalue plots.
@@ -37,13 +34,30 @@ VERDICT_COLORS = {
     "undecided": "#adb5bd",
 }
 
-_KIND_STYLE = {
+#: Marker and colour of each mode kind (exactly :data:`pinlin.spectral.MODE_KINDS`) in eigenvalue maps.
+KIND_STYLE = {
     "underdamped": ("o", "#264653"),
     "overdamped": ("s", "#2a9d8f"),
-    "critically_damped": ("D", "#e9c46a"),
     "rigid_body": ("x", "#6c757d"),
     "unstable": ("^", "#e63946"),
 }
+#: Marker and colour of plain eigenvalues (no mode kinds given).
+_PLAIN_STYLE = ("o", "#264653")
+#: Colours of reference geometry (traces, the equilibrium of a mode shape), error bars, drawn shapes.
+_GREY, _MID_GREY, _DARK = "#adb5bd", "#6c757d", "#264653"
+#: Line widths: the imaginary axis (the stability boundary), the real axis, thin traces, curves.
+_AXIS_LW, _REAL_AXIS_LW, _TRACE_LW, _CURVE_LW = 0.8, 0.4, 1.0, 1.5
+#: Marker size of sampled points (root loci, unstable Campbell points).
+_POINT_SIZE = 12
+
+#: Axis limits reach this factor beyond the outermost eigenvalue, so markers are not cut at the frame.
+AXIS_MARGIN = 1.15
+#: The real axis of an eigenvalue map spans at least this fraction of the largest |lambda|, so the
+#: error bars of an undamped spectrum (~1e-14) do not set the scale.
+MIN_REAL_SPAN_FRACTION = 0.1
+#: Default of ``campbell(rtol=...)``: Re lambda below this fraction of the step's largest |lambda| is
+#: rounding of an undamped spectrum (~1e-16 |lambda|), not instability.
+UNSTABLE_RTOL = 1e-9
 
 
 def _pyplot():
@@ -60,15 +74,13 @@ def _ax(ax):
     return ax
 
 
-def _eigenvalues(modes) -> np.ndarray:
-    lam = np.asarray(getattr(modes, "eigenvalues", modes), dtype=complex).ravel()
-    if not np.all(np.isfinite(lam)):
-        raise ParameterError("eigenvalues", "has non-finite values")
-    return lam
+def _complex_plane_labels(ax) -> None:
+    ax.axvline(0.0, color="k", lw=_AXIS_LW)
+    ax.set(xlabel="Re $\\lambda$ [1/s]", ylabel="Im $\\lambda$ [rad/s]")
 
 
 def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = True):
-    """Eigenvalues in the complex plane, marked by mode kind, with their error bounds.
+    """Eigenvalues lambda [1/s] in the complex plane, marked by mode kind, with their error bounds.
 
     Parameters
     ----------
@@ -76,29 +88,33 @@ def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = Tru
         A :func:`pinlin.modal_analysis` result (uses ``kind``, ``error_bound``
         and ``stability`` when present) or plain eigenvalues.
     error_bars : bool
-        Draw each eigenvalue's error bound as a horizontal bar (its distance to
-        the imaginary axis is what a stability verdict must beat).
+        Draw each eigenvalue's error bound [1/s] as a horizontal bar (its distance
+        to the imaginary axis is what a stability verdict must beat).
+    title : bool
+        Title the axes with the stability verdict, when ``modes`` has one.
+
+    Raises
+    ------
+    ParameterError
+        Non-finite eigenvalues.
     """
+    lam = np.asarray(getattr(modes, "eigenvalues", modes), dtype=complex).ravel()
+    if not np.all(np.isfinite(lam)):
+        raise ParameterError("eigenvalues", "has non-finite values")
     ax = _ax(ax)
-    lam = _eigenvalues(modes)
     kinds = tuple(getattr(modes, "kind", ("eigenvalue",) * lam.size))
     for kind in dict.fromkeys(kinds):
         sel = np.array([k == kind for k in kinds])
-        marker, color = _KIND_STYLE.get(kind, ("o", "#264653"))
+        marker, color = KIND_STYLE.get(kind, _PLAIN_STYLE)
         ax.scatter(lam[sel].real, lam[sel].imag, marker=marker, color=color, label=kind.replace("_", " "), zorder=3)
     bound = getattr(modes, "error_bound", None)
     if error_bars and bound is not None:
-        ax.errorbar(lam.real, lam.imag, xerr=np.asarray(bound, float), fmt="none", ecolor="#6c757d", lw=1, zorder=2)
-    ax.axvline(0.0, color="k", lw=0.8)
-    ax.axhline(0.0, color="k", lw=0.4)
-    # the real axis spans at least a tenth of the spectrum's size, so error bars
-    # of 1e-14 on an undamped spectrum do not set the scale
-    span = max(1.15 * np.abs(lam.real).max(initial=0.0), 0.1 * np.abs(lam).max(initial=0.0), 1e-12)
-    left = min(-span, 1.15 * lam.real.min(initial=0.0))
-    right = max(span, 1.15 * lam.real.max(initial=0.0))
-    ax.set_xlim(left, right)
-    ax.set_xlabel("Re $\\lambda$ [1/s]")
-    ax.set_ylabel("Im $\\lambda$ [rad/s]")
+        ax.errorbar(lam.real, lam.imag, xerr=np.asarray(bound, float), fmt="none", ecolor=_MID_GREY, lw=_TRACE_LW, zorder=2)
+    ax.axhline(0.0, color="k", lw=_REAL_AXIS_LW)
+    span = max(AXIS_MARGIN * np.abs(lam.real).max(initial=0.0), MIN_REAL_SPAN_FRACTION * np.abs(lam).max(initial=0.0))
+    span = span or 1.0  # all eigenvalues at 0: any symmetric window shows them
+    ax.set_xlim(min(-span, AXIS_MARGIN * lam.real.min(initial=0.0)), max(span, AXIS_MARGIN * lam.real.max(initial=0.0)))
+    _complex_plane_labels(ax)
     stability = getattr(modes, "stability", None)
     if title and stability is not None:
         ax.set_title(str(stability.kind).replace("_", " "))
@@ -107,17 +123,25 @@ def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = Tru
 
 
 def root_locus(parameter, eigenvalues, ax=None, *, vectors=None, label: str = "parameter", cmap: str = "viridis"):
-    """Eigenvalues traced over a parameter, each mode followed by its shape.
+    """Eigenvalues lambda [1/s] traced over a parameter, each mode followed by its shape.
 
     Parameters
     ----------
     parameter : (steps,) array_like
     eigenvalues : (steps, m) array_like
     vectors : (steps, n, m) array_like, optional
-        Mode shapes for :func:`pinlin.tracking.track_modes`; without them modes
+        Mode shapes for :func:`pinlin.studies.track_modes`; without them modes
         are matched by eigenvalue distance.
     label : str
         Name of the parameter (colour bar).
+    cmap : str
+        matplotlib colour map of the parameter.
+
+    Raises
+    ------
+    ParameterError
+        Shapes that do not agree (``parameter`` and the steps, eigenvalues and
+        vectors), non-finite values.
     """
     plt = _pyplot()
     ax = _ax(ax)
@@ -127,80 +151,50 @@ def root_locus(parameter, eigenvalues, ax=None, *, vectors=None, label: str = "p
         raise ParameterError("parameter", f"expected {tracked.eigenvalues.shape[0]} values, got shape {p.shape}")
     lam = tracked.eigenvalues
     for j in range(lam.shape[1]):
-        ax.plot(lam[:, j].real, lam[:, j].imag, color="#adb5bd", lw=1, zorder=1)
-    points = ax.scatter(lam.real.ravel(), lam.imag.ravel(), c=np.repeat(p, lam.shape[1]), cmap=cmap, s=10, zorder=2)
+        ax.plot(lam[:, j].real, lam[:, j].imag, color=_GREY, lw=_TRACE_LW, zorder=1)
+    points = ax.scatter(lam.real.ravel(), lam.imag.ravel(), c=np.repeat(p, lam.shape[1]), cmap=cmap, s=_POINT_SIZE,
+                        zorder=2)
     plt.colorbar(points, ax=ax, label=label)
-    ax.axvline(0.0, color="k", lw=0.8)
-    ax.set_xlabel("Re $\\lambda$ [1/s]")
-    ax.set_ylabel("Im $\\lambda$ [rad/s]")
+    _complex_plane_labels(ax)
     return ax
 
 
-def _one_per_conjugate_pair(lam: np.ndarray, rtol: float = 1e-8) -> list[int]:
-    """Columns of tracked eigenvalues (steps, m) to draw: one of each conjugate pair.
+def campbell(speed, eigenvalues, ax=None, *, vectors=None, orders: Sequence[float] = (1.0,),
+             label: str = "spin speed [rad/s]", error_bounds=None, rtol: float = UNSTABLE_RTOL):
+    """Campbell diagram: damped frequencies |Im lambda| [rad/s] against spin speed.
 
-    Columns j and k are a pair when lam[:, k] = conj(lam[:, j]) at every step
-    (relative to the step's largest |lam|); of a pair the column with the larger
-    sum of Im lam is kept.  Unpaired columns are kept when Im lam >= 0 throughout.
-    """
-    scale = np.abs(lam).max(axis=1, keepdims=True) + np.finfo(float).tiny
-    m = lam.shape[1]
-    keep: list[int] = []
-    used: set[int] = set()
-    for j in range(m):
-        if j in used:
-            continue
-        dist = np.max(np.abs(lam - np.conj(lam[:, [j]])) / scale, axis=0)
-        dist[j] = np.inf
-        dist[list(used)] = np.inf
-        k = int(np.argmin(dist))
-        if dist[k] <= rtol:
-            used.update((j, k))
-            keep.append(j if lam[:, j].imag.sum() >= lam[:, k].imag.sum() else k)
-        elif np.all(lam[:, j].imag >= -1e-12 * (1 + np.abs(lam[:, j]))):
-            keep.append(j)
-    return sorted(keep)
-
-
-def campbell(
-    speed,
-    eigenvalues,
-    ax=None,
-    *,
-    vectors=None,
-    orders: Sequence[float] = (1.0,),
-    label: str = "spin speed [rad/s]",
-    error_bounds=None,
-    rtol: float = 1e-9,
-):
-    """Campbell diagram: damped frequencies |Im lambda| against spin speed.
-
-    Modes are followed by their shapes (:func:`pinlin.tracking.track_modes`),
+    Modes are followed by their shapes (:func:`pinlin.studies.track_modes`),
     so crossing frequencies cross instead of veering falsely; points whose
     Re lambda is positive beyond rounding (unstable) are marked in red.
     Straight lines show the excitation orders k * speed.
 
-    One member of each complex conjugate pair of tracked modes is drawn, so a
-    whirl branch whose frequency passes through zero (lambda = i (omega_0 -
-    speed) of a rotating ring) is drawn as a V instead of being dropped;
-    unpaired modes are drawn when Im lambda >= 0 at every speed.
+    One member of each complex conjugate pair of tracked modes is drawn
+    (:func:`pinlin.studies.tracking.one_per_conjugate_pair`), so a whirl branch
+    whose frequency passes through zero (lambda = i (omega_0 - speed) of a
+    rotating ring) is drawn as a V instead of being dropped.
 
     Parameters
     ----------
     speed : (steps,) array_like
+        Spin speed [rad/s].
     eigenvalues : (steps, m) array_like
     vectors : (steps, n, m) array_like, optional
         Mode shapes for the tracking; without them modes are matched by eigenvalue distance.
     orders : sequence of float
         Excitation orders drawn as lines k * speed.
     error_bounds : (steps, m) array_like, optional
-        Error bounds of the eigenvalues (``modes.error_bound`` of each step, in
-        the same order as ``eigenvalues``): a point is marked unstable only when
-        Re lambda exceeds its bound.
+        Error bounds [1/s] of the eigenvalues (``modes.error_bound`` of each
+        step, in the same order as ``eigenvalues``): a point is marked unstable
+        only when Re lambda exceeds its bound.
     rtol : float
         Re lambda must also exceed rtol times the step's largest |lambda| to be
-        marked, so that rounding on an undamped spectrum (Re lambda ~ 1e-16)
-        is not drawn as instability.
+        marked (see :data:`UNSTABLE_RTOL`).
+
+    Raises
+    ------
+    ParameterError
+        ``speed`` or ``error_bounds`` not matching the eigenvalues, a negative or
+        non-finite ``rtol``, non-finite eigenvalues or vectors.
     """
     ax = _ax(ax)
     w = np.asarray(speed, dtype=float)
@@ -216,19 +210,18 @@ def campbell(
         if bounds.shape != lam.shape:
             raise ParameterError("error_bounds", f"expected shape {lam.shape} (like eigenvalues), got {bounds.shape}")
         threshold = np.maximum(threshold, np.take_along_axis(bounds, tracked.order, axis=1))
-    keep = _one_per_conjugate_pair(lam)
-    keep = keep or list(range(lam.shape[1]))
+    keep = one_per_conjugate_pair(lam) or list(range(lam.shape[1]))
     for j in keep:
-        ax.plot(w, np.abs(lam[:, j].imag), lw=1.5)
+        ax.plot(w, np.abs(lam[:, j].imag), lw=_CURVE_LW)
     unstable = lam[:, keep].real > threshold[:, keep]
     if np.any(unstable):
         ws = np.broadcast_to(w[:, None], unstable.shape)
-        ax.scatter(ws[unstable], np.abs(lam[:, keep].imag)[unstable], color=VERDICT_COLORS["flutter"], s=12, zorder=3, label="Re $\\lambda$ > 0")
+        ax.scatter(ws[unstable], np.abs(lam[:, keep].imag)[unstable], color=VERDICT_COLORS["flutter"], s=_POINT_SIZE,
+                   zorder=3, label="Re $\\lambda$ > 0")
         ax.legend(loc="best", fontsize="small")
     for k in orders:
-        ax.plot(w, k * w, color="k", ls="--", lw=0.8)
-    ax.set_xlabel(label)
-    ax.set_ylabel("damped frequency |Im $\\lambda$| [rad/s]")
+        ax.plot(w, k * w, color="k", ls="--", lw=_AXIS_LW)
+    ax.set(xlabel=label, ylabel="damped frequency |Im $\\lambda$| [rad/s]")
     return ax
 
 
@@ -240,7 +233,12 @@ def stability_map(x, y, kinds, ax=None, *, xlabel: str = "x", ylabel: str = "y")
     x : (nx,) array_like
     y : (ny,) array_like
     kinds : (ny, nx) array_like of str
-        Verdict kinds (``modes.stability.kind``) at each grid point.
+        Verdict kinds (``modes.stability.kind``, one of :data:`VERDICT_COLORS`) at each grid point.
+
+    Raises
+    ------
+    ParameterError
+        ``kinds`` of the wrong shape or with an unknown verdict.
     """
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
@@ -248,29 +246,29 @@ def stability_map(x, y, kinds, ax=None, *, xlabel: str = "x", ylabel: str = "y")
     ax = _ax(ax)
     names = list(VERDICT_COLORS)
     k = np.asarray(kinds, dtype=object)
-    x = np.asarray(x, dtype=float)
-    y = np.asarray(y, dtype=float)
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     if k.shape != (y.size, x.size):
         raise ParameterError("kinds", f"expected shape {(y.size, x.size)} (len(y), len(x)), got {k.shape}")
     unknown = {str(v) for v in k.ravel()} - set(names)
     if unknown:
         raise ParameterError("kinds", f"unknown verdicts {sorted(unknown)}; expected {names}")
     codes = np.vectorize(names.index)(k.astype(str)).astype(float)
-    ax.pcolormesh(x, y, codes, cmap=ListedColormap(list(VERDICT_COLORS.values())), vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
-    present = [n for n in names if np.any(k == n)]
-    ax.legend(handles=[Patch(color=VERDICT_COLORS[n], label=n.replace("_", " ")) for n in present], loc="best", fontsize="small")
-    ax.set_xlabel(xlabel)
-    ax.set_ylabel(ylabel)
+    # one colour per verdict code: bins centred on the integers 0 .. len(names) - 1
+    cmap = ListedColormap(list(VERDICT_COLORS.values()))
+    ax.pcolormesh(x, y, codes, cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, shading="nearest")
+    patches = [Patch(color=VERDICT_COLORS[n], label=n.replace("_", " ")) for n in names if np.any(k == n)]
+    ax.legend(handles=patches, loc="best", fontsize="small")
+    ax.set(xlabel=xlabel, ylabel=ylabel)
     return ax
 
 
 def frequency_response(resp, axes=None, *, output: int = 0, input=0, label: str | None = None):
-    """Magnitude (log-log) and phase of one output of a frequency response, for one input or a load pattern.
+    """Magnitude (log-log) and phase [deg] of one output of a frequency response, for one input or a load pattern.
 
     Parameters
     ----------
-    resp : object with ``omega`` (f,), ``magnitude`` and ``phase`` (outputs, inputs, f)
-        A :func:`pinlin.frequency_response` result (python-control's shape convention).
+    resp : object with ``omega`` (f,) [rad/s], ``magnitude`` and ``phase`` [rad] (outputs, inputs, f)
+        A :func:`pinlin.frequency_response` result (python-control's axis order).
     axes : pair of Axes, optional
         Magnitude and phase axes; a new figure with two stacked axes by default.
     output : int
@@ -291,18 +289,13 @@ def frequency_response(resp, axes=None, *, output: int = 0, input=0, label: str 
     omega = np.asarray(resp.omega, dtype=float)
     weights = np.asarray(input)
     if weights.ndim == 0:
-        mag = np.asarray(resp.magnitude)[output, int(input)]
-        phase = np.asarray(resp.phase)[output, int(input)]
+        mag, phase = np.asarray(resp.magnitude)[output, int(input)], np.asarray(resp.phase)[output, int(input)]
     else:
         H = getattr(resp, "response", None)
-        if H is None:
-            H = np.asarray(resp.magnitude) * np.exp(1j * np.asarray(resp.phase))
-        H = np.asarray(H)[output]
-        if weights.shape != (H.shape[0],) or not np.all(np.isfinite(weights)):
-            raise ParameterError(
-                "input", f"expected an index or {H.shape[0]} finite weights (one per input), got {weights!r}"
-            )
-        h = weights @ H
+        H = np.asarray(resp.magnitude) * np.exp(1j * np.asarray(resp.phase)) if H is None else np.asarray(H)
+        if weights.shape != (H.shape[1],) or not np.all(np.isfinite(weights)):
+            raise ParameterError("input", f"expected an index or {H.shape[1]} finite weights (one per input), got {weights!r}")
+        h = weights @ H[output]
         mag, phase = np.abs(h), np.angle(h)
     if axes is None:
         _, axes = plt.subplots(2, 1, sharex=True)
@@ -318,7 +311,7 @@ def frequency_response(resp, axes=None, *, output: int = 0, input=0, label: str 
 
 
 def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str = "xz", frames: Sequence[str] | None = None):
-    """A planar chain at q and displaced along a mode shape.
+    """A planar chain at q and displaced along a mode shape; positions in [m].
 
     Parameters
     ----------
@@ -326,21 +319,32 @@ def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str 
     q : (nq,) array_like
         The operating point.
     mode : (n,) array_like
-        A mode shape on the free coordinates (complex allowed: its real part is
-        drawn, normalized to unit largest entry, times ``scale`` [rad or m]).
+        A mode shape on the free coordinates (complex allowed: its phase is
+        turned so that the largest entry is real, its real part drawn,
+        normalized to unit largest entry, times ``scale`` [rad or m]).
     plane : str
         The two world axes to draw, for example ``"xz"`` for chains swinging about y.
     frames : sequence of str, optional
         Frames joined by the drawn polyline; default: every joint frame in model
         order and ``tip`` when the model has it.
+
+    Raises
+    ------
+    ParameterError
+        A ``plane`` that is not two of x, y, z; a mode of the wrong size.
+    ConfigurationError
+        ``q`` of the wrong size or not finite.
+    FrameNotFoundError
+        An unknown frame name.
+    ModelTooLargeError
+        The calling thread's Pinocchio workspace for the scene would not fit in memory.
     """
     ax = _ax(ax)
-    axes = ["xyz".index(c) for c in plane]
-    if len(axes) != 2:
+    axes = ["xyz".index(c) for c in plane if c in "xyz"]
+    if len(axes) != 2 or len(plane) != 2:
         raise ParameterError("plane", f"expected two of x, y, z, got {plane!r}")
     model = scene.model
     q = scene.check_configuration(q)
-    data = workspace(scene).data  # behind the memory guard, owned by this thread
     x = np.asarray(mode)
     if x.shape != (scene.n,):
         raise ParameterError("mode", f"expected {scene.n} values (the free coordinates), got shape {x.shape}")
@@ -351,6 +355,7 @@ def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str 
         ["tip"] if model.existFrame("tip") else []
     )
     ids = [scene.robot.frame_id(name) for name in names]
+    data = workspace(scene).data  # behind the memory guard, owned by this thread
 
     def points(config):
         pin.framesForwardKinematics(model, data, config)
@@ -358,20 +363,25 @@ def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str 
 
     rest = points(q)
     moved = points(pin.integrate(model, q, dv))
-    ax.plot(rest[:, 0], rest[:, 1], "o--", color="#adb5bd", label="equilibrium")
-    ax.plot(moved[:, 0], moved[:, 1], "o-", color="#264653", label="mode")
+    ax.plot(rest[:, 0], rest[:, 1], "o--", color=_GREY, label="equilibrium")
+    ax.plot(moved[:, 0], moved[:, 1], "o-", color=_DARK, label="mode")
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel(f"{plane[0]} [m]")
-    ax.set_ylabel(f"{plane[1]} [m]")
+    ax.set(xlabel=f"{plane[0]} [m]", ylabel=f"{plane[1]} [m]")
     return ax
 
 
 def work_precision(results: Mapping[str, tuple[Sequence[float], Sequence[float]]], ax=None):
-    """Error against run time, log-log, one line per method.
+    """Error against run time [s], log-log, one line per method.
 
     Parameters
     ----------
     results : mapping of label to (times [s], errors)
+        Errors of zero are drawn at the smallest positive float (log axes).
+
+    Raises
+    ------
+    ParameterError
+        No results, or times and errors of different shapes.
     """
     ax = _ax(ax)
     if not results:
@@ -382,7 +392,6 @@ def work_precision(results: Mapping[str, tuple[Sequence[float], Sequence[float]]
         if t.shape != e.shape:
             raise ParameterError(f"results[{label!r}]", f"times {t.shape} and errors {e.shape} differ in shape")
         ax.loglog(t, np.maximum(e, np.finfo(float).tiny), "o-", label=label)
-    ax.set_xlabel("run time [s]")
-    ax.set_ylabel("error")
+    ax.set(xlabel="run time [s]", ylabel="error")
     ax.legend(loc="best", fontsize="small")
     return ax

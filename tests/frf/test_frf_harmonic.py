@@ -47,13 +47,20 @@ def test_modal_amplitude_matches_direct_solve(name):
     lam = pinlin.modal_analysis(sys).eigenvalues
     # a sweep, plus frequencies 1e-3 away from each resonance
     omega = np.concatenate([np.linspace(0.05, 1.5 * np.abs(lam.imag).max() + 1, 97), np.abs(lam.imag[lam.imag > 0]) + 1e-3])
-    X = pinlin.harmonic_response(sys, F, omega)
+    X = pinlin.harmonic_response(sys, F, omega, method="modal")
     ref = _direct(sys, F, omega)
     assert X.shape == (omega.size, sys.n) and X.dtype == complex
     err = np.linalg.norm(X - ref, axis=1) / np.linalg.norm(ref, axis=1)
     assert np.max(err) < 1e-10, np.max(err)
-    assert np.max(X.defect) < 1e-12
+    assert np.max(X.defects) < 1e-12 and X.error == np.max(X.defects)
+    assert X.method == ("modal" if pinlin.modal_analysis(sys).is_simple else "modal + Jordan chains")
     assert_allclose(X.distance, np.min(np.abs(1j * omega[:, None] - lam), axis=1), rtol=1e-14, atol=0)
+    # the default, direct, against the same reference
+    D = pinlin.harmonic_response(sys, F, omega)
+    assert D.method == "direct" and D.distance is None and D.projection_residual is None
+    # (two backward-stable solves differ by up to cond(L) eps: 1e-3 from an undamped resonance, ~1e-13)
+    assert np.max(np.linalg.norm(D - ref, axis=1) / np.linalg.norm(ref, axis=1)) < 1e-10
+    assert D.error < 1e-15
 
 
 def test_direct_method_and_scalar_frequency():
@@ -62,8 +69,9 @@ def test_direct_method_and_scalar_frequency():
     X = pinlin.harmonic_response(sys, F, 1.3, method="direct")
     assert X.shape == (2,) and isinstance(X.omega, float) and X.method == "direct"
     assert_allclose(X, _direct(sys, F, [1.3])[0], rtol=1e-13, atol=0)
-    modal = pinlin.harmonic_response(sys, F, 1.3)
+    modal = pinlin.harmonic_response(sys, F, 1.3, method="modal")
     assert_allclose(modal, X, rtol=1e-12, atol=0)
+    assert isinstance(modal.defects, float) and isinstance(modal.distance, float)
 
 
 def test_steady_state_solves_the_equation_in_time():
@@ -92,8 +100,10 @@ def test_resonance_grows_with_the_chain_length():
     c = np.array([1e-1, 1e-2, 1e-3])
     defective, semisimple, distance = [], [], []
     for ci in c:
-        d = pinlin.harmonic_response(pinlin.LinearizedSystem.from_matrices(np.eye(2), ci * np.eye(2), [[2.0, 1.0], [0.0, 2.0]]), F, np.sqrt(2))
-        s = pinlin.harmonic_response(pinlin.LinearizedSystem.from_matrices(np.eye(2), ci * np.eye(2), 2 * np.eye(2)), F, np.sqrt(2))
+        jordan = pinlin.LinearizedSystem.from_matrices(np.eye(2), ci * np.eye(2), [[2.0, 1.0], [0.0, 2.0]])
+        plain = pinlin.LinearizedSystem.from_matrices(np.eye(2), ci * np.eye(2), 2 * np.eye(2))
+        d = pinlin.harmonic_response(jordan, F, np.sqrt(2), method="modal")
+        s = pinlin.harmonic_response(plain, F, np.sqrt(2), method="modal")
         assert_allclose(d, np.linalg.solve(-2 * np.eye(2) + 1j * np.sqrt(2) * ci * np.eye(2) + [[2.0, 1.0], [0.0, 2.0]], F), rtol=1e-10, atol=0)
         defective.append(np.linalg.norm(d))
         semisimple.append(np.linalg.norm(s))
@@ -104,10 +114,31 @@ def test_resonance_grows_with_the_chain_length():
     assert_allclose(slope_s, -1.0, rtol=0, atol=0.02)
 
 
-def test_undamped_resonance_raises():
-    sys = pinlin.LinearizedSystem.from_matrices(np.eye(1), None, [[4.0]])
-    with pytest.raises(pinlin.ComputationError, match="undamped"):
-        pinlin.harmonic_response(sys, [1.0], [1.0, 2.0])
+@pytest.mark.parametrize("method", ["direct", "modal"])
+def test_undamped_resonance_raises_the_same_error_everywhere(method):
+    """At a pole every function of the engine raises the same ParameterError naming the point."""
+    sys = pinlin.LinearizedSystem.from_matrices(np.eye(1), None, [[4.0]])  # lam = +-2i
+    pattern = r"omega\[1\] = 2 is at an eigenvalue of the system, where H has a pole .*undamped resonance"
+    with pytest.raises(pinlin.ParameterError, match=pattern):
+        pinlin.harmonic_response(sys, [1.0], [1.0, 2.0], method=method)
+    with pytest.raises(pinlin.ParameterError, match=pattern):
+        pinlin.frequency_response(sys, [1.0, 2.0], method=method)
+    with pytest.raises(pinlin.ParameterError, match=r"s\[1\] = .*2j.* is at an eigenvalue"):
+        pinlin.flexibility(sys, [1.0j, 2.0j], method=method)
+
+
+def test_computed_natural_frequency_is_a_pole_for_both_methods():
+    """issue 13 item 3: at the computed natural frequency of the undamped double pendulum L(i omega) is
+    singular to working precision; the direct method used to return |H| ~ 1e15 silently."""
+    sys = pinlin.linearize(double_pendulum(P=4.0), np.zeros(2))
+    modes = pinlin.modal_analysis(sys)
+    w = float(modes.eigenvalues[0].imag)
+    for method in ("direct", "modal"):
+        with pytest.raises(pinlin.ParameterError, match="is at an eigenvalue"):
+            pinlin.harmonic_response(sys, [0.0, 1.0], w, method=method, modes=modes)
+    # a relative step of 1e-6 away it is a (large, accurate) response again
+    X = pinlin.harmonic_response(sys, [0.0, 1.0], w * (1 + 1e-6))
+    assert X.error < 1e-15 and np.linalg.norm(X) > 1e4
 
 
 @pytest.mark.parametrize(
@@ -134,4 +165,6 @@ def test_defect_above_tol_warns():
     sys = SYSTEMS["turntable (G)"]
     with pytest.warns(pinlin.AccuracyWarning, match="defect"):
         X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0], tol=1e-300)
-    assert np.all(X.defect > 1e-300)
+    assert np.max(X.defects) > 1e-300 and X.error == np.max(X.defects)
+    with pytest.warns(DeprecationWarning, match="defects"):
+        assert np.array_equal(X.defect, X.defects)  # the 0.1 name, for one release

@@ -11,8 +11,10 @@ import pytest
 from numpy.testing import assert_allclose
 
 import pinlin
-from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, REPORT_SCHEMA, main
-from pinlin.model.scenefile import load_scene
+from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, main
+from pinlin.model.scenefile import default_scene_path, load_scene
+from pinlin.numerics import definiteness
+from pinlin.report import REPORT_SCHEMA, REPORT_VERSION, analyze, matrix_structure
 
 
 def run(args, capsys):
@@ -35,9 +37,10 @@ def test_default_scene_reports_the_paper_matrices(capsys, tmp_path):
     report = json.loads((tmp_path / "r.json").read_text())
     jsonschema.validate(report, REPORT_SCHEMA)
     assert set(report) >= {"scene", "equilibrium", "linearization", "elapsed", "pinlin_version"}
+    assert report["report_version"] == REPORT_VERSION == 2
     lin = report["linearization"]
     assert lin["nonzero"] == ["M", "S", "N"]
-    assert_allclose(lin["matrices"]["N"], [[0, 1.4], [-1.4, 0]], rtol=1e-12)
+    assert_allclose(lin["N"], [[0, 1.4], [-1.4, 0]], rtol=1e-12)
     assert report["scene"]["dof_names"] == ["joint1", "joint2"]
     assert report["equilibrium"]["residual"] == 0.0
 
@@ -108,7 +111,7 @@ def test_example_robot(capsys, tmp_path):
     report = json.loads((tmp_path / "u.json").read_text())
     jsonschema.validate(report, REPORT_SCHEMA)
     assert report["scene"]["n"] == 6
-    S = np.array(report["linearization"]["matrices"]["S"])
+    S = np.array(report["linearization"]["S"])
     assert np.all(np.linalg.eigvalsh(S) > 900)  # 1000 N m/rad springs, softened a little by gravity
 
 
@@ -183,9 +186,9 @@ def test_report_modes_and_verdict(tmp_path, capsys):
     K = T.T @ np.array([[k1 + k2 + (m1 / 2 + m2) * g * l1 - P * l1, -k2 + P * l1], [-k2, k2 + m2 * g * l2 / 2]]) @ T
     mu = np.linalg.eigvals(-np.linalg.solve(M, K))  # real negative below the flutter load
     expected = np.sort(np.sqrt(-mu.real))
-    imag = np.array(report["modes"]["eigenvalues_imag"])
+    imag = np.array(report["modes"]["eigenvalues"]["im"])
     assert_allclose(np.sort(imag[imag > 0]), expected, rtol=1e-12)
-    assert_allclose(report["modes"]["eigenvalues_real"], 0.0, atol=1e-12)
+    assert_allclose(report["modes"]["eigenvalues"]["re"], 0.0, atol=1e-12)
     assert report["stability"]["kind"] == "marginally_stable"
     assert max(report["modes"]["backward_error"]) < 1e-14
     assert "Stability: MARGINALLY STABLE" in out and "eta" in out and "kappa" in out
@@ -216,3 +219,63 @@ def test_schema_rejects_a_broken_report(tmp_path, capsys):
     report["stability"]["kind"] = "stable-ish"
     with pytest.raises(jsonschema.ValidationError, match="stable-ish"):
         jsonschema.validate(report, REPORT_SCHEMA)
+
+
+def test_report_sections_are_the_results_to_dict(capsys):
+    """Version 2: each section is its result's to_dict() (docs/conventions.md), plus report-only keys."""
+    report, sys_, modes = analyze(load_scene(default_scene_path()))
+    assert json.loads(json.dumps(report, allow_nan=False)) == report
+    jsonschema.validate(report, REPORT_SCHEMA)
+    for section, result, extra in [
+        ("linearization", sys_, {"nonzero", "structure"}),
+        ("modes", modes, {"method_reason", "table"}),
+        ("stability", modes.stability, set()),
+    ]:
+        expected = result.to_dict()
+        assert set(report[section]) == set(expected) | extra
+        for key in ("type", "method", "error"):
+            assert report[section][key] == expected[key]
+    assert report["modes"]["error"] == float(np.max(modes.backward_error))  # Modes.error: the largest eta
+    assert report["modes"]["method_reason"] == modes.method.reason
+    assert report["equilibrium"]["type"] == "EquilibriumResult"
+    assert report["equilibrium"]["residual"] == 0.0
+
+
+@pytest.mark.parametrize("small", [1e-12, 1e-15, 1e-17, 0.0, -1e-17, -1e-15, -1e-12])
+def test_report_structure_agrees_with_the_verdicts_structure(small):
+    """One definiteness decision (pinlin.numerics.definiteness), the one modes.structure and the stability
+    theorems use: near the semidefinite boundary (S with eigenvalues 1 and ``small``) the report cannot
+    disagree with the verdict.  pinlin 0.1's report had its own test (n eps ||S|| instead of the verdict's
+    1e-10 ||S||) and called S with eigenvalues 1 and 1e-12 positive definite where modes.structure said
+    semidefinite."""
+    Q = np.array([[1.0, 1.0], [-1.0, 1.0]]) / np.sqrt(2)
+    S = Q @ np.diag([1.0, small]) @ Q.T
+    sys_ = pinlin.LinearizedSystem.from_matrices(np.diag([2.0, 1.0]), 0.1 * np.eye(2), S)
+    modes = pinlin.modal_analysis(sys_)
+    structure = matrix_structure(modes)
+    assert structure["S"]["kind"] == modes.structure.stiffness
+    assert structure["D"]["kind"] == modes.structure.damping == "positive_definite"
+    for name in ("M", "D", "S"):
+        assert structure[name] == definiteness(getattr(sys_, name), modes.structure.uncertainty).to_dict()
+    assert sum(structure["S"][k] for k in ("negative", "zero", "positive")) == 2
+    assert_allclose(structure["S"]["max_eigenvalue"], 1.0, rtol=1e-14)
+    assert_allclose(structure["M"]["min_eigenvalue"], 1.0, rtol=1e-14)
+    with pytest.raises(pinlin.ParameterError, match="modes: has no definiteness of M, D, S"):
+        matrix_structure(pinlin.modal_analysis((np.eye(2), 0.1 * np.eye(2), S)))
+
+
+def test_schema_version_is_checked(tmp_path, capsys):
+    run(["analyze", "--json", str(tmp_path / "r.json")], capsys)
+    report = json.loads((tmp_path / "r.json").read_text())
+    report["report_version"] = 1
+    with pytest.raises(jsonschema.ValidationError, match="2 was expected"):
+        jsonschema.validate(report, REPORT_SCHEMA)
+    del report["modes"]["error"]
+    report["report_version"] = 2
+    with pytest.raises(jsonschema.ValidationError, match="'error' is a required property"):
+        jsonschema.validate(report, REPORT_SCHEMA)
+
+
+def test_bad_precision(capsys):
+    code, _, err = run(["analyze", "--precision", "0"], capsys)
+    assert code == EXIT_INPUT and "--precision: must be at least 1" in err

@@ -1,4 +1,4 @@
-"""pinlin.plot (headless, Agg) and pinlin.tracking: the figures carry the expected artists."""
+"""pinlin.plot (headless, Agg): the figures carry the expected artists.  Tracking: tests/studies/test_tracking.py."""
 
 import matplotlib
 
@@ -12,46 +12,14 @@ from numpy.testing import assert_allclose  # noqa: E402
 
 import pinlin  # noqa: E402
 from pinlin import plot  # noqa: E402
-from pinlin.studies.tracking import mac, track_modes  # noqa: E402
+from pinlin.spectral import MODE_KINDS  # noqa: E402
+from studies.cases import crossing_sweep  # noqa: E402
 
 
 @pytest.fixture(autouse=True)
 def close_figures():
     yield
     plt.close("all")
-
-
-def crossing_sweep():
-    """Two uncoupled oscillators, frequencies p and 2 - p: they cross at p = 1.
-    Eigenvalues given sorted by frequency at each step (what a naive plot would use)."""
-    ps = np.linspace(0.5, 1.5, 11)
-    lams, vecs = [], []
-    for p in ps:
-        lam = np.array([1j * p, 1j * (2 - p)])
-        X = np.eye(2, dtype=complex)
-        order = np.argsort(lam.imag)
-        lams.append(lam[order])
-        vecs.append(X[:, order])
-    return ps, np.array(lams), np.array(vecs)
-
-
-def test_tracking_follows_shapes_through_a_crossing():
-    ps, lams, vecs = crossing_sweep()
-    tracked = track_modes(lams, vecs)
-    # column 0 starts as the mode with shape e1 (frequency p) and must stay it
-    assert_allclose(tracked.eigenvalues[:, 0].imag, ps, atol=1e-15)
-    assert_allclose(tracked.eigenvalues[:, 1].imag, 2 - ps, atol=1e-15)
-    assert_allclose(tracked.match, 1.0)
-    assert_allclose(mac(tracked.vectors[-1], tracked.vectors[0]), np.eye(2))
-
-
-def test_tracking_bad_input():
-    with pytest.raises(pinlin.ParameterError, match=r"expected shape \(steps, m\)"):
-        track_modes(np.ones(3))
-    with pytest.raises(pinlin.ParameterError, match="vectors: expected shape"):
-        track_modes(np.ones((3, 2)), np.ones((3, 2, 5)))
-    with pytest.raises(pinlin.ParameterError, match="non-finite"):
-        track_modes(np.array([[np.nan, 1.0]]))
 
 
 def test_eigenvalue_map_plain_array():
@@ -179,3 +147,50 @@ def test_campbell_does_not_mark_rounding_as_instability():
     assert red(plot.campbell(speeds, lams, rtol=0.0)) == 3
     with pytest.raises(pinlin.ParameterError, match="error_bounds: expected shape"):
         plot.campbell(speeds, lams, error_bounds=np.ones(3))
+
+
+def test_kind_styles_are_exactly_the_mode_kinds():
+    """Every kind modal_analysis produces has a style, and no style for a kind it never produces."""
+    assert set(plot.KIND_STYLE) == set(MODE_KINDS)
+    assert "critically_damped" not in plot.KIND_STYLE
+
+
+def test_eigenvalue_map_of_modes_marks_kinds_and_error_bars():
+    """A free coordinate (rigid body: lam = 0 twice), an oscillator, and a coordinate with negative stiffness."""
+    sys = pinlin.LinearizedSystem.from_matrices(np.eye(3), np.diag([0.0, 0.2, 0.0]), np.diag([0.0, 4.0, -1.0]))
+    modes = pinlin.modal_analysis(sys)
+    assert set(modes.kind) == {"rigid_body", "underdamped", "overdamped", "unstable"}
+    ax = plot.eigenvalue_map(modes)
+    labels = {t.get_text() for t in ax.get_legend().get_texts()}
+    assert labels == {"rigid body", "underdamped", "overdamped", "unstable"}
+    points = [c for c in ax.collections if isinstance(c, PathCollection)]
+    assert sum(len(c.get_offsets()) for c in points) == 6
+    assert ax.get_title() == modes.stability.kind.replace("_", " ")
+    left, right = ax.get_xlim()
+    assert left <= -plot.AXIS_MARGIN * 1.0 + 1e-12 and right >= plot.AXIS_MARGIN * 1.0 - 1e-12  # lam = -1, +1
+    with pytest.raises(pinlin.ParameterError, match="eigenvalues: has non-finite"):
+        plot.eigenvalue_map(np.array([np.nan, 1.0]))
+
+
+def test_chain_mode_shape_uses_the_threads_workspace(monkeypatch):
+    """plot never calls createData itself: the only Data comes through Robot.create_data (the memory
+    guard) when the calling thread's workspace for the scene is made, and is reused after."""
+    import inspect
+
+    from pinlin.model.robot import Robot
+
+    assert "createData" not in inspect.getsource(plot)
+    calls = []
+    original = Robot.create_data
+
+    def counting(self, *args, **kwargs):
+        calls.append(self.name)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(Robot, "create_data", counting)
+    scene = pinlin.Scene(pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(3)))
+    for _ in range(2):
+        plot.chain_mode_shape(scene, np.zeros(3), np.array([1.0, 0.0, 0.0]))
+    assert len(calls) == 1
+    with pytest.raises(pinlin.ParameterError, match="plane: expected two of x, y, z"):
+        plot.chain_mode_shape(scene, np.zeros(3), np.ones(3), plane="xq")

@@ -9,6 +9,8 @@ chain modelled with continuous (SO(2)) and with revolute joints.
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -17,7 +19,7 @@ from scipy.integrate import solve_ivp
 
 import pinlin
 from pinlin.model.elements import Element
-from response_cases import TURNTABLE, turntable
+from response_cases import TURNTABLE, expm_free_response, rotating_ring, turntable
 
 
 def test_single_pendulum_matches_hand_equation():
@@ -55,7 +57,7 @@ def test_single_pendulum_matches_hand_equation():
     assert sim.shape == (31, 1) and sim.v.shape == (31, 1)  # the result is the (len(t), nq) array
     assert type(sim.q) is np.ndarray and np.array_equal(sim.q, np.asarray(sim))
     assert sim.nfev > 0 and sim.elapsed > 0 and sim.charts == 1
-    assert repr(sim).startswith("Simulation(shape=(31, 1)")
+    assert repr(sim).startswith("Simulation(shape=(31, 1)") and "\n" not in repr(sim) and len(repr(sim)) < 200
 
 
 def test_turntable_conserves_jacobi_integral():
@@ -144,7 +146,7 @@ def test_implicit_method_agrees_with_explicit():
     t = np.linspace(0.0, 1.0, 11)
     explicit = pinlin.simulate(scene, q0, None, t)
     implicit = pinlin.simulate(scene, q0, None, t, method="Radau", rtol=1e-10, atol=1e-12)
-    assert implicit.method == "Radau" and implicit.njev > 0
+    assert implicit.integrator == "Radau" and "solve_ivp Radau" in implicit.method and implicit.njev > 0
     assert_allclose(implicit.q, explicit.q, rtol=0, atol=1e-8)
 
 
@@ -161,6 +163,45 @@ def test_linear_coordinates_are_tangent_differences():
     x2, none = pinlin.linear_coordinates(scene, q_eq, q_turned)
     assert none is None
     assert_allclose(x2, x, rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("method", ["DOP853", "RK45"])
+@pytest.mark.parametrize("rtol", [1e-5, 1e-8])
+def test_error_estimate_matches_the_true_error(method, rtol):
+    # The rotating ring (SPEC 7.3) has exactly linear equations of motion: expm of its
+    # linearization is the exact trajectory, against which the estimate is checked.
+    scene = rotating_ring()
+    q_eq = scene.neutral()
+    x0, v0 = np.array([0.3, -0.2]), np.array([0.5, 1.0])
+    t = np.linspace(0.0, 5.0, 51)
+    x_exact, v_exact = expm_free_response(pinlin.linearize(scene, q_eq), x0, v0, t)
+    step = np.zeros(scene.model.nv)
+    step[scene.free_dofs] = x0
+    sim = pinlin.simulate(scene, pin.integrate(scene.model, q_eq, step), v0, t, method=method, rtol=rtol, atol=1e-2 * rtol)
+    x, _ = sim.linear_coordinates(q_eq)
+    v = sim.v[:, scene.free_dofs]
+    true_q = np.max(np.linalg.norm(x - x_exact, axis=1)) / np.max(np.linalg.norm(x - x[0], axis=1))
+    true_v = np.max(np.linalg.norm(v - v_exact, axis=1)) / np.max(np.linalg.norm(v, axis=1))
+    # tolerance proportionality: within a factor 2 of the truth (measured: 0.9 to 1.05)
+    assert 0.5 < sim.error_q / true_q < 2.0
+    assert 0.5 < sim.error_v / true_v < 2.0
+    assert sim.error == max(sim.error_q, sim.error_v)
+    assert sim.error < 1e3 * rtol and sim.reference_nfev > sim.nfev
+
+
+def test_result_convention_and_skipped_estimate():
+    scene, q_eq = turntable()
+    t = np.linspace(0.0, 0.5, 6)
+    sim = pinlin.simulate(scene, q_eq, [0.1, 0.0], t, rtol=1e-9)
+    assert "solve_ivp DOP853" in sim.method and "rtol=1e-09" in sim.method and "/ 10" in sim.method
+    assert np.isfinite(sim.error) and sim.elapsed > 0
+    data = sim.to_dict()
+    assert list(data)[:4] == ["type", "method", "error", "elapsed"] and data["type"] == "Simulation"
+    assert "scene" not in data and np.array_equal(np.array(data["values"]), sim.q)
+    assert json.loads(json.dumps(data, allow_nan=False))["integrator"] == "DOP853"
+    fast = pinlin.simulate(scene, q_eq, [0.1, 0.0], t, rtol=1e-9, estimate_error=False)
+    assert np.isnan(fast.error) and fast.reference_nfev == 0 and "not estimated" in fast.method
+    assert np.array_equal(fast.q, sim.q) and np.array_equal(fast.v, sim.v)  # the returned run is the same
 
 
 def test_single_time_point_returns_initial_state():
@@ -201,6 +242,9 @@ def pendulum():
         ({"t": None}, pinlin.ParameterError, "required"),
         ({"method": "Euler"}, pinlin.ParameterError, "unknown method"),
         ({"rtol": -1.0}, pinlin.ParameterError, "rtol"),
+        ({"rtol": 1e-15}, pinlin.ParameterError, "cannot honour rtol"),
+        ({"rtol": 1e-13}, pinlin.ParameterError, "comparison run"),
+        ({"max_step": "long"}, pinlin.ParameterError, "max_step"),
         ({"atol": np.nan}, pinlin.ParameterError, "atol"),
         ({"chart_radius": 4.0}, pinlin.ParameterError, "chart_radius"),
         ({"max_step": 0.0}, pinlin.ParameterError, "max_step"),

@@ -133,7 +133,7 @@ def test_reusing_modes_and_array_behaviour():
     part = a[:, 0]
     assert type(part) is np.ndarray and part.shape == (11,)
     assert type(2 * a) is np.ndarray and isinstance(a.max(), float)
-    with pytest.raises(AttributeError, match="whole response"):
+    with pytest.raises(AttributeError, match="whole result"):
         _ = a.view(type(a)).reshape(22).defect
     with pytest.raises(ValueError, match="read-only"):
         a[0, 0] = 1.0

@@ -48,7 +48,10 @@ def test_bad_systems(source, error, match):
         ({"cluster_tol": 1.0}, "cluster_tol: expected a number below 1"),
         ({"rank_tol": "small"}, "rank_tol: expected a positive number"),
         ({"structure_tol": float("inf")}, "structure_tol: expected a finite positive number"),
-        ({"definiteness_tol": 0}, "definiteness_tol"),
+        ({"uncertainty": -1e-3}, r"uncertainty: expected a relative uncertainty in \[0, 1\), got -0.001"),
+        ({"uncertainty": 1.0}, r"uncertainty: expected a relative uncertainty in \[0, 1\), got 1.0"),
+        ({"uncertainty": float("nan")}, r"uncertainty: expected a relative uncertainty in \[0, 1\)"),
+        ({"uncertainty": "rounding"}, r"uncertainty: expected a relative uncertainty in \[0, 1\), got 'rounding'"),
         ({"eigh_tol": -1.0}, "eigh_tol"),
         ({"safety": 0.5}, "safety: expected a factor >= 1"),
         ({"safety": None}, "safety: expected a positive number"),
@@ -61,6 +64,17 @@ def test_bad_tolerances(kwargs, match):
         pinlin.modal_analysis(sys, **kwargs)
 
 
+def test_definiteness_tol_is_the_deprecated_name_of_uncertainty():
+    sys = LinearizedSystem.from_matrices(I2, Z2, np.diag([1.0, 1e-6]))
+    with pytest.warns(DeprecationWarning, match=r"definiteness_tol=\.\.\.\) is deprecated: pass uncertainty"):
+        old = pinlin.modal_analysis(sys, definiteness_tol=1e-5)
+    assert old.tolerances["uncertainty"] == 1e-5
+    assert old.structure.stiffness == pinlin.modal_analysis(sys, uncertainty=1e-5).structure.stiffness
+    assert old.structure.stiffness == "positive_semidefinite"  # 1e-6 < 1e-5 ||S||: undecided
+    with pytest.raises(ParameterError, match="uncertainty: expected a relative uncertainty"):
+        pinlin.spectral.stability_from_structure(sys, uncertainty=2.0)
+
+
 def test_mass_rcond_is_adjustable():
     from pinlin.spectral import as_problem
 
@@ -70,3 +84,26 @@ def test_mass_rcond_is_adjustable():
         as_problem((M, Z2, I2), mass_rcond=1e-8)
     with pytest.raises(ParameterError, match="mass_rcond: expected a finite positive number"):
         as_problem((M, Z2, I2), mass_rcond=0)
+
+
+def test_complex_input_is_refused_on_both_paths():
+    """Issue 13 item 5: numpy would drop the imaginary part with a ComplexWarning."""
+    with pytest.raises(ParameterError, match="K: expected a real matrix, got complex entries"):
+        LinearizedSystem.from_matrices(I2, Z2, I2 * (1 + 1e-3j))
+    with pytest.raises(ParameterError, match="C: expected a real matrix, got complex entries"):
+        LinearizedSystem.from_matrices(I2, [[0j, 0], [0, 0]], I2)
+    with pytest.raises(ParameterError, match="K: expected a real matrix, got complex entries"):
+        pinlin.modal_analysis((I2, Z2, I2 * 1j))
+
+
+def test_tuple_input_is_the_general_problem_and_says_so():
+    """A non-symmetric M: refused as a mechanical system, accepted as the general QEP of SPEC section 4."""
+    M = np.array([[1.0, 0.5], [0.0, 1.0]])
+    with pytest.raises(ParameterError, match="M: must be symmetric"):
+        LinearizedSystem.from_matrices(M, Z2, I2)
+    m = pinlin.modal_analysis((M, Z2, I2))
+    assert m.method == "general" and "no symmetry required or used" in m.method.reason
+    assert m.structure.damping is None and m.constants is None  # no mechanical split
+    assert m.stability.theorem is None  # no theorem of SPEC section 5 for general coefficients
+    # eigenvalues of the general problem: det(lam^2 M + I) = (lam^2 + 1)^2 (M is unit upper triangular)
+    assert np.allclose(np.sort_complex(m.eigenvalues), [-1j, -1j, 1j, 1j], atol=1e-7)

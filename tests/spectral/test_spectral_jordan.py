@@ -14,7 +14,7 @@ from numpy.testing import assert_allclose
 
 import pinlin
 from pinlin import LinearizedSystem
-from pinlin.errors import ParameterError
+from pinlin.errors import NotAnEigenvalueError, ParameterError
 from spectral_cases import chain
 
 
@@ -135,10 +135,17 @@ def test_block_toeplitz_kernel_dimensions():
     assert chains.kernel_dims == (2, 4, 4)
 
 
-def test_jordan_chains_at_a_regular_point_is_empty():
-    sys = LinearizedSystem.from_matrices([[1.0]], [[0.0]], [[4.0]])
-    chains = pinlin.jordan_chains(sys, 1.0)
-    assert len(chains) == 0 and chains.partial == ()
+def test_jordan_chains_at_a_regular_point_are_refused_with_the_distance():
+    """Issue 13 item 4: not an eigenvalue is an error (as for residues), naming the nearest eigenvalue."""
+    sys = LinearizedSystem.from_matrices([[1.0]], [[0.0]], [[4.0]])  # lam = +-2i; gamma = 2
+    with pytest.raises(NotAnEigenvalueError, match=r"lam0 = 1\+0j is not an eigenvalue: .* nearest eigenvalue is "
+                       r"0\+2j, at distance 2\.236e\+00") as info:
+        pinlin.jordan_chains(sys, 1.0)
+    assert info.value.lam == 1.0 and info.value.distance == pytest.approx(np.sqrt(5) / 2, rel=1e-14)
+    assert isinstance(info.value, pinlin.PinlinError) and isinstance(info.value, ValueError)
+    # close, but off by more than rounding: still refused, with the small distance
+    with pytest.raises(NotAnEigenvalueError, match=r"at distance 1\.000e-06"):
+        pinlin.jordan_chains((np.eye(1), np.zeros((1, 1)), 4 * np.eye(1)), 2j + 1e-6)
 
 
 @pytest.mark.parametrize(

@@ -161,3 +161,26 @@ def test_theorems_decide_without_the_spectrum():
     # circulatory: no theorem decides; gyroscopic stabilization (S < 0, D = 0): none either
     assert stability_from_structure(double_pendulum(P=4.0)) is None
     assert stability_from_structure(ring(k=4.0, c=0.0, Omega=3.0)) is None
+
+
+def test_mass_matrix_positive_definite_only_within_rounding_is_said_in_figures_and_verdict():
+    """Issue 13 item 2: M = [[1, 1], [1, 1 + 4 eps]] is positive definite as stored, but a perturbation
+    of its rounding size makes it singular: one eigenvalue is about -1.9e14, with a bound beyond it."""
+    eps = np.finfo(float).eps
+    M = np.array([[1.0, 1.0], [1.0, 1.0 + 4 * eps]])
+    sys = LinearizedSystem.from_matrices(M, 0.1 * np.eye(2), np.diag([1.0, 2.0]))
+    m = pinlin.modal_analysis(sys)
+    assert m.structure.mass == "positive_semidefinite" and not m.structure.definiteness_M.decided
+    v = m.stability
+    assert v.kind == "undecided" and v.bounded is None and v.margin == 0.0 and v.error == 1.0
+    assert "M is positive definite only within rounding" in v.reason
+    big = int(np.argmax(np.abs(m.eigenvalues)))
+    assert abs(m.eigenvalues[big]) > 1e13 and m.error_bound[big] >= abs(m.eigenvalues[big])  # meaningless, said
+    assert v.eigenvalue == m.eigenvalues[big]
+    assert any("M is positive definite only within rounding" in note and "1 of the 4 eigenvalues" in note
+               for note in m.notes)
+    # the structure alone says the same, without the spectrum
+    assert pinlin.spectral.stability_from_structure(sys).kind == "undecided"
+    # a mass matrix of a near-massless link is positive definite beyond doubt relative to its diagonal
+    tiny = LinearizedSystem.from_matrices(np.diag([1.0, 1e-17]), 0.1 * np.eye(2), np.diag([1.0, 2.0]))
+    assert pinlin.modal_analysis(tiny).stability.kind == "asymptotically_stable"

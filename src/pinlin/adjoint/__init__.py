@@ -2,12 +2,17 @@
 
 Paper Sec. 6-10 and 12, in the order of the data flow:
 
+- :mod:`._circle`: polynomial coefficients from samples on circles (FFT), each
+  from the circle where its error bound is smallest (used by the next three).
 - :mod:`.polynomial`: ``p(lam) = det L(lam)`` with coefficient error bounds.
-- :mod:`.adjugate`: ``adj L(lam)`` (SVD form, stable at eigenvalues), as a
-  matrix polynomial of degree 2n - 2 and its derivatives at a point.
+- :mod:`.svd`: the SVD form of the adjugate in logarithms (stable at eigenvalues).
+- :mod:`.adjugate`: ``adj L(lam)`` at a point, with its residual.
+- :mod:`.adjugate_series`: ``adj L`` as a matrix polynomial of degree 2n - 2 and
+  its Taylor coefficients at a point.
 - :mod:`.eigenvectors`: eigenvectors, ``p'(lam_k)`` and Jordan chains read
   off the adjugate (Sec. 8, 9).
 - :mod:`.cde`: the characteristic differential equation ``p(d/dt) x_i = 0`` (Sec. 7).
+- :mod:`._util`: old private names, aliases of :mod:`pinlin.numerics` (to be removed).
 
 The dynamic flexibility ``H(s) = adj L(s) / p(s)``, its residues and the frequency
 responses built on it live in :mod:`pinlin.frf`.

@@ -23,10 +23,49 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._util import EPS, checked_exp
+from ..errors import ComputationError
+from ..numerics.checks import check_integer, check_radii
+from ..numerics.floating import EPS, checked_exp
+from ..numerics.scaling import eigenvalue_bounds
+from ..numerics.stacks import CHUNK_BYTES, chunks
 
-#: Bytes of complex (n, n) stacks evaluated at once.
-CHUNK_BYTES = 32 * 2**20
+__all__ = [
+    "CircleFit",
+    "fit_on_circles",
+    "ladder",
+    "eigenvalue_radii",
+    "default_points",
+    "check_points",
+    "chunks",
+    "CHUNK_BYTES",
+    "RADIUS_RATIO",
+    "RADIUS_MARGIN",
+    "SINGULAR_SPAN",
+    "MIN_POINTS",
+    "POINTS_PER_COEFFICIENT",
+    "NOISE_SAFETY",
+    "MAX_RADII",
+]
+
+#: Default ratio between successive radii of the sampling circles: each
+#: coefficient's error bound eps_r / r^k varies by 4^k between neighbours, so
+#: the best circle for every coefficient is within a factor 4^k of optimal.
+RADIUS_RATIO = 4.0
+#: The circles reach this factor beyond the bounds on the eigenvalue moduli
+#: (out to 2 hi, in to lo / 2): no eigenvalue lies close to the extreme circles.
+RADIUS_MARGIN = 2.0
+#: Without a positive lower bound on |lam| (K singular: zero roots) the smallest
+#: circle is this fraction of the largest: about sqrt(eps), where the low-order
+#: coefficients are resolved without the rounding of the large circles.
+SINGULAR_SPAN = 1e-8
+#: Fewest samples per circle (the FFT needs some tail to measure the noise).
+MIN_POINTS = 8
+#: Default samples per coefficient: half of them measure the rounding noise.
+POINTS_PER_COEFFICIENT = 2
+#: Factor on the largest tail coefficient for the unobserved noise of the kept ones.
+NOISE_SAFETY = 3.0
+#: Most circles of a ladder (4^40 ~ 1e24 of span is more than double precision resolves).
+MAX_RADII = 40
 
 
 @dataclass(frozen=True)
@@ -82,11 +121,42 @@ class CircleFit:
         return values, self.error_mantissa * half * half
 
 
-def chunks(N: int, n: int):
-    """Slices of range(N) holding about CHUNK_BYTES of (n, n) complex matrices each."""
-    size = max(1, CHUNK_BYTES // max(16 * n * n, 1))
-    for start in range(0, N, size):
-        yield slice(start, min(N, start + size))
+def default_points(degree: int) -> int:
+    """Samples per circle for a polynomial of this degree: max(MIN_POINTS, 2 (degree + 1))."""
+    return max(MIN_POINTS, POINTS_PER_COEFFICIENT * (degree + 1))
+
+
+def check_points(n_points, degree: int) -> int:
+    """``n_points`` (default :func:`default_points`) checked to exceed degree + 1.
+
+    Raises
+    ------
+    ParameterError
+        Not an integer > degree + 1.
+    """
+    if n_points is None:
+        return default_points(degree)
+    return check_integer(n_points, "n_points", low=degree + 2)
+
+
+def eigenvalue_radii(sys, radii=None, ratio: float = RADIUS_RATIO) -> np.ndarray:
+    """Circle radii [1/s]: the given ones checked, or a ladder spanning the eigenvalue moduli.
+
+    The automatic ladder runs from RADIUS_MARGIN hi down to lo / RADIUS_MARGIN
+    (:func:`pinlin.numerics.eigenvalue_bounds`), or down to SINGULAR_SPAN times
+    the largest radius when there is no positive lower bound.
+
+    Raises
+    ------
+    ParameterError
+        Given radii that are not finite positive numbers.
+    """
+    if radii is not None:
+        return check_radii(radii)
+    lo, hi = eigenvalue_bounds(sys)
+    r_hi = RADIUS_MARGIN * hi if hi > 0 else 1.0
+    r_lo = lo / RADIUS_MARGIN if lo > 0 else r_hi * SINGULAR_SPAN
+    return ladder(r_lo, r_hi, ratio)
 
 
 def fit_on_circles(
@@ -109,13 +179,18 @@ def fit_on_circles(
     radii : sequence of float
         Positive radii.
     n_points : int, optional
-        Samples per circle; default ``max(8, 2 (d + 1))`` so that ``N - d - 1``
+        Samples per circle; default :func:`default_points` so that ``N - d - 1``
         tail coefficients estimate the rounding noise.
+
+    Raises
+    ------
+    ParameterError
+        Fewer than degree + 2 points per circle.
+    ComputationError
+        Every sample on every circle was zero.
     """
     d = int(degree)
-    N = int(n_points) if n_points is not None else max(8, 2 * (d + 1))
-    if N < d + 2:
-        raise ValueError(f"need more than degree + 1 = {d + 1} points per circle, got {N}")
+    N = check_points(n_points, d)
     radii = np.asarray(sorted(float(r) for r in radii), dtype=float)
     roots_of_unity = np.exp(2j * np.pi * np.arange(N) / N)
     best_mant = best_log = best_err = best_r = None
@@ -139,9 +214,9 @@ def fit_on_circles(
         v = values * factor
         a = np.fft.fft(v, axis=0) / N
         tail = np.linalg.norm(a[d + 1 :].reshape(N - d - 1, -1), axis=1)
-        # the largest of the tail's noise samples, with a safety factor 3 for the kept
+        # the largest of the tail's noise samples, with a safety factor for the kept
         # coefficients' own (unobserved) noise, plus the FFT's rounding
-        noise = 3.0 * float(tail.max()) + EPS * np.log2(N) * float(np.max(np.linalg.norm(v.reshape(N, -1), axis=1)))
+        noise = NOISE_SAFETY * float(tail.max()) + EPS * np.log2(N) * float(np.max(np.linalg.norm(v.reshape(N, -1), axis=1)))
         log_r = np.log(r)
         log_scale = F - k * log_r
         # error bound of c_k from this circle, in logs: log(noise) + F - k log r
@@ -158,7 +233,7 @@ def fit_on_circles(
         best_r = np.where(better, r, best_r)
         best_noise = np.where(better, noise, best_noise)
     if best_mant is None:
-        raise FloatingPointError("every sample on every circle was zero")
+        raise ComputationError("every sample on every circle was zero: nothing to interpolate")
     return CircleFit(
         mantissa=best_mant,
         log_scale=best_log,
@@ -169,7 +244,7 @@ def fit_on_circles(
     )
 
 
-def ladder(lo: float, hi: float, ratio: float = 4.0, max_radii: int = 40) -> np.ndarray:
+def ladder(lo: float, hi: float, ratio: float = RADIUS_RATIO, max_radii: int = MAX_RADII) -> np.ndarray:
     """Radii ``hi, hi/ratio, ...`` down to ``lo`` (at most ``max_radii``; at least one)."""
     hi = float(hi)
     out = [hi]

@@ -24,7 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
-from ._util import check_system, positive
+from ..numerics.checks import check_system, check_tolerance
+from ..numerics.clustering import find_clusters
+from ..results import Result
 from .polynomial import CharacteristicPolynomial, characteristic_polynomial
 
 __all__ = [
@@ -35,23 +37,45 @@ __all__ = [
     "expol_basis",
 ]
 
-#: Default: a sampled component satisfies the equation when its relative defect is below this.
+#: Default: a sampled component satisfies the equation when its relative defect is below
+#: this: a least-squares fit of exact samples leaves rounding of about kappa(basis) eps,
+#: which stays far below 1e-8 for well-separated roots over a few periods.
 CDE_TOL = 1e-8
-#: Default: roots closer than this (relative to max(|lam|, scale)) are one multiple root.
+#: Default: roots closer than this (relative to max(|lam_i|, |lam_j|)) are one multiple
+#: root; the roots of p split a double root by about sqrt(eps) ~ 1e-8 times its
+#: condition, and 1e-6 regroups them without merging distinct roots of a few digits.
 ROOT_CLUSTER_TOL = 1e-6
 
 
 @dataclass(frozen=True, repr=False)
-class CharacteristicDifferentialEquation:
+class CharacteristicDifferentialEquation(Result):
     """The scalar operator ``p(d/dt) = sum_k c_k d^k/dt^k`` of order 2n.
 
     Attributes
     ----------
     polynomial : CharacteristicPolynomial
         ``p``, with its coefficient errors.
+    error : float
+        The normwise relative error of the coefficients (``polynomial.error``).
+    method : str
+        How the coefficients were computed (``polynomial.method``).
+    elapsed : float
+        Seconds to compute them [s] (``polynomial.elapsed``).
     """
 
     polynomial: CharacteristicPolynomial
+
+    @property
+    def error(self) -> float:
+        return self.polynomial.error
+
+    @property
+    def method(self) -> str:
+        return f"coefficients of p(lam) = det L(lam): {self.polynomial.method}"
+
+    @property
+    def elapsed(self) -> float:
+        return self.polynomial.elapsed
 
     @property
     def order(self) -> int:
@@ -77,12 +101,24 @@ class CharacteristicDifferentialEquation:
         return d
 
     def apply(self, derivatives) -> np.ndarray:
-        """``p(d/dt) x = sum_k c_k x^(k)`` from ``derivatives[k] = d^k x / dt^k`` (any trailing shape)."""
+        """``p(d/dt) x = sum_k c_k x^(k)`` from ``derivatives[k] = d^k x / dt^k`` (any trailing shape).
+
+        Raises
+        ------
+        ParameterError
+            ``derivatives`` not finite numbers of shape (2n + 1, ...).
+        """
         d = self._check(derivatives)
         return np.tensordot(self.polynomial.coef, d, axes=(0, 0))
 
     def defect(self, derivatives) -> np.ndarray:
-        """Relative defect ``|sum_k c_k x^(k)| / sum_k |c_k| |x^(k)|`` elementwise (0 where x is 0)."""
+        """Relative defect ``|sum_k c_k x^(k)| / sum_k |c_k| |x^(k)|`` elementwise (0 where x is 0).
+
+        Raises
+        ------
+        ParameterError
+            ``derivatives`` not finite numbers of shape (2n + 1, ...).
+        """
         d = self._check(derivatives)
         num = np.abs(np.tensordot(self.polynomial.coef, d, axes=(0, 0)))
         den = np.tensordot(np.abs(self.polynomial.coef), np.abs(d), axes=(0, 0))
@@ -101,23 +137,18 @@ def characteristic_differential_equation(sys, **kwargs) -> CharacteristicDiffere
     sys : LinearizedSystem
     **kwargs
         Passed to :func:`characteristic_polynomial`.
+
+    Raises
+    ------
+    ParameterError, ComputationError
+        As :func:`characteristic_polynomial`.
     """
     return CharacteristicDifferentialEquation(characteristic_polynomial(check_system(sys), **kwargs))
 
 
 def _group_roots(roots: np.ndarray, tol: float) -> list[tuple[complex, int]]:
-    """Roots within ``tol * max(|lam_i|, |lam_j|)`` of each other merged into (mean, multiplicity)."""
-    left = list(range(roots.size))
-    groups = []
-    while left:
-        i = left.pop(0)
-        members = [i]
-        for j in list(left):
-            if abs(roots[j] - roots[i]) <= tol * max(abs(roots[i]), abs(roots[j])):
-                members.append(j)
-                left.remove(j)
-        groups.append((complex(np.mean(roots[members])), len(members)))
-    return groups
+    """Roots that rounding cannot tell apart (:func:`pinlin.numerics.find_clusters`) as (mean, multiplicity)."""
+    return [(complex(np.mean(roots[list(g)])), len(g)) for g in find_clusters(roots, tol, singletons=True)]
 
 
 def expol_basis(t: np.ndarray, roots, *, cluster_tol: float = ROOT_CLUSTER_TOL) -> np.ndarray:
@@ -139,7 +170,7 @@ def expol_basis(t: np.ndarray, roots, *, cluster_tol: float = ROOT_CLUSTER_TOL) 
 
 
 @dataclass(frozen=True, repr=False)
-class CDECheck:
+class CDECheck(Result):
     """How well a sampled trajectory satisfies ``p(d/dt) x_i = 0``.
 
     Attributes
@@ -158,6 +189,11 @@ class CDECheck:
     multiplicities : tuple of int
         Multiplicity of each distinct root used.
     elapsed : float
+        Seconds [s].
+    error : float
+        The largest relative defect (``max_defect``).
+    method : str
+        The projection and where the roots came from.
     """
 
     defect: np.ndarray
@@ -168,6 +204,14 @@ class CDECheck:
     roots_source: str
     multiplicities: tuple[int, ...]
     elapsed: float
+
+    @property
+    def error(self) -> float:
+        return self.max_defect
+
+    @property
+    def method(self) -> str:
+        return f"least-squares distance to the exponential polynomials of the roots ({self.roots_source})"
 
     def __repr__(self) -> str:
         return f"CDECheck(passed={self.passed}, max_defect={self.max_defect:.2e}, tol={self.tol:g})"
@@ -221,8 +265,8 @@ def check_free_response(
     """
     t0 = time.perf_counter()
     sys = check_system(sys)
-    positive(tol, "tol")
-    positive(cluster_tol, "cluster_tol")
+    check_tolerance(tol, "tol")
+    check_tolerance(cluster_tol, "cluster_tol")
     n = sys.n
     try:
         tt = np.asarray(t, dtype=float)

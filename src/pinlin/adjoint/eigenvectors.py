@@ -26,9 +26,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import NotAnEigenvalueError, NotSimpleError, ParameterError
-from ._util import check_system, complex_scalar, positive
-from .adjugate import _residual_scaled, _svd_adjugate, adjugate_taylor
+from ..errors import NotAnEigenvalueError, NotSimpleError
+from ..numerics import accuracy
+from ..numerics.checks import check_integer, check_system, check_tolerance, complex_scalar
+from ..numerics.rank import ADJUGATE_RANK_TOL
+from ..results import Result
+from .adjugate_series import adjugate_taylor
+from .svd import det_over_scale, residual_scaled, svd_adjugate
 
 __all__ = [
     "AdjugateEigenvectors",
@@ -39,16 +43,23 @@ __all__ = [
     "chain_residual",
 ]
 
-#: Default: lam is accepted as an eigenvalue when s_n(L) <= EIGENVALUE_TOL * s_1(L).
+#: Default: lam is accepted as an eigenvalue when s_n(L) <= EIGENVALUE_TOL * s_1(L): an
+#: eigenvalue computed to about eta leaves s_n at eta s_1 (1e-8 for a root split by
+#: rounding into a double one), while a point that is no eigenvalue leaves it at O(s_1).
 EIGENVALUE_TOL = 1e-8
-#: Default: the adjugate has rank one when s_{n-1}(L) > RANK_TOL * s_1(L).  Small, because
-#: L(lam) of a badly scaled system (mass ratios of 1e8 in a 50-link chain) has s_{n-1} down to
-#: 1e-9 s_1 at simple eigenvalues, while a computed multiple eigenvalue of geometric
-#: multiplicity 2 leaves s_{n-1} at rounding level (about kappa eps s_1).
-RANK_TOL = 1e-12
 #: Default: the root is simple when its condition number kappa (SPEC section 4) is below
 #: 1 / SIMPLE_TOL.  A computed double root has kappa of about 1/sqrt(eps) ~ 1e8.
 SIMPLE_TOL = 1e-6
+#: Default for :func:`adjugate_chain`: a Taylor coefficient T_j counts as zero when its
+#: term on its circle is below this fraction of the largest term; the terms of a
+#: vanishing coefficient are rounding of about eps times the largest, those of a
+#: genuine one comparable to it, and 1e-8 (about sqrt(eps)) separates both.
+ZERO_TOL = 1e-8
+#: T_j also counts as zero when its norm is within this factor of its own error bound.
+ZERO_ERROR_FACTOR = 2.0
+#: Largest |log10 p'(lam)| returned as a number (beyond, ``derivative`` is None and
+#: only ``log10_abs_derivative`` is given): 300 leaves a margin to the double range 1e308.
+DERIVATIVE_LOG10_RANGE = 300.0
 
 
 def backward_error(sys, lam: complex, x: np.ndarray, *, left: bool = False) -> float:
@@ -57,20 +68,14 @@ def backward_error(sys, lam: complex, x: np.ndarray, *, left: bool = False) -> f
     .. math::  \\eta(x, \\lambda) = \\frac{\\|L(\\lambda) x\\|}
                {(|\\lambda|^2\\|M\\| + |\\lambda|\\|C\\| + \\|K\\|)\\,\\|x\\|}
 
-    with ``x^T L(lam)`` in the numerator for a left eigenvector (``left=True``).
+    with ``x^T L(lam)`` in the numerator for a left eigenvector (``left=True``);
+    :func:`pinlin.numerics.backward_error` on the system's matrices.
     """
-    L = sys.dynamic_stiffness(lam)
-    r = (x @ L) if left else (L @ x)
-    a = abs(lam)
-    scale = a * a * np.linalg.norm(sys.M) + a * np.linalg.norm(sys.C) + np.linalg.norm(sys.K)
-    nx = np.linalg.norm(x)
-    if scale == 0 or nx == 0:
-        return float("inf")
-    return float(np.linalg.norm(r) / (scale * nx))
+    return accuracy.backward_error(sys.M, sys.C, sys.K, lam, x, left=left)
 
 
 @dataclass(frozen=True, repr=False)
-class AdjugateEigenvectors:
+class AdjugateEigenvectors(Result):
     """Eigenvectors at a root read off ``adj L(lam)`` (paper Sec. 8).
 
     Attributes
@@ -107,7 +112,11 @@ class AdjugateEigenvectors:
     adjugate_residual : float
         Residual of ``L adj L = p I`` (SPEC section 8).
     elapsed : float
-        Seconds.
+        Seconds [s].
+    method : str
+    error : float
+        The larger backward error of the two eigenpairs,
+        ``max(backward_error_right, backward_error_left)`` (relative, SPEC section 4).
     """
 
     eigenvalue: complex
@@ -123,6 +132,11 @@ class AdjugateEigenvectors:
     backward_error_left: float
     adjugate_residual: float
     elapsed: float
+    method: str = "largest column and row of the rank-one adjugate adj L(lam) (SVD form)"
+
+    @property
+    def error(self) -> float:
+        return max(self.backward_error_right, self.backward_error_left)
 
     def __repr__(self) -> str:
         return (
@@ -137,7 +151,7 @@ def adjugate_eigenvectors(
     lam,
     *,
     eigenvalue_tol: float = EIGENVALUE_TOL,
-    rank_tol: float = RANK_TOL,
+    rank_tol: float = ADJUGATE_RANK_TOL,
     simple_tol: float = SIMPLE_TOL,
 ) -> AdjugateEigenvectors:
     """Right and left eigenvectors and ``p'(lam)`` from the adjugate at a root lam (paper Sec. 8).
@@ -156,7 +170,8 @@ def adjugate_eigenvectors(
     eigenvalue_tol : float
         lam is accepted as a root when ``s_n(L(lam)) <= eigenvalue_tol * s_1``.
     rank_tol : float
-        The adjugate has rank one when ``s_{n-1}(L(lam)) > rank_tol * s_1``.
+        The adjugate has rank one when ``s_{n-1}(L(lam)) > rank_tol * s_1``
+        (default :data:`pinlin.numerics.ADJUGATE_RANK_TOL`).
     simple_tol : float
         The root is simple when ``1 / kappa > simple_tol`` (see ``simplicity``).
 
@@ -178,9 +193,9 @@ def adjugate_eigenvectors(
     sys = check_system(sys)
     lam = complex_scalar(lam, "lam")
     for name, v in (("eigenvalue_tol", eigenvalue_tol), ("rank_tol", rank_tol), ("simple_tol", simple_tol)):
-        positive(v, name)
+        check_tolerance(v, name)
     L = sys.dynamic_stiffness(lam).astype(complex)
-    f = _svd_adjugate(L[None])
+    f = svd_adjugate(L[None])
     n = sys.n
     sv = f.singular_values[0]
     s = sv / sv[0] if sv[0] > 0 else np.zeros(n)
@@ -205,12 +220,7 @@ def adjugate_eigenvectors(
     # far beyond the overflow threshold although its direction (the eigenvectors) is not
     Aplain = f.scaled[0]
     log_scale = float(f.log_scale[0])
-    if n > 1:
-        with np.errstate(invalid="ignore"):
-            p_scaled = f.phase[0] * np.exp(f.log_det[0] - log_scale) if np.isfinite(f.log_det[0]) else 0.0
-        residual = _residual_scaled(L, Aplain, complex(p_scaled))
-    else:
-        residual = 0.0
+    residual = residual_scaled(L, Aplain, det_over_scale(f)) if n > 1 else 0.0
     col = int(np.argmax(np.linalg.norm(Aplain, axis=0)))
     row = int(np.argmax(np.linalg.norm(Aplain, axis=1)))
     x = Aplain[:, col].copy()
@@ -222,9 +232,9 @@ def adjugate_eigenvectors(
     dL = 2 * lam * sys.M + sys.C
     trace = complex(np.trace(Aplain @ dL))
     log10_deriv = (np.log(abs(trace)) + log_scale) / np.log(10) if trace != 0 else -np.inf
-    deriv = trace * np.exp(log_scale) if abs(log10_deriv) < 300 or trace == 0 else None
+    deriv = trace * np.exp(log_scale) if abs(log10_deriv) < DERIVATIVE_LOG10_RANGE or trace == 0 else None
     yLx = complex(y @ dL @ x)
-    simplicity = 1.0 / _condition(sys, lam, x, y)
+    simplicity = 1.0 / accuracy.condition_number(sys.M, sys.C, sys.K, lam, x, y)
     simple = bool(simplicity > simple_tol)
     if simple:
         y = y / yLx
@@ -245,48 +255,29 @@ def adjugate_eigenvectors(
     )
 
 
-def _condition(sys, lam: complex, x: np.ndarray, y: np.ndarray) -> float:
-    """Homogeneous condition number kappa of SPEC section 4 (unit x, y; y plain-transposed left)."""
-    h = np.hypot(1.0, abs(lam))
-    a, b = lam / h, 1.0 / h
-    num = np.sqrt(
-        abs(a) ** 4 * np.linalg.norm(sys.M) ** 2
-        + abs(a) ** 2 * abs(b) ** 2 * np.linalg.norm(sys.C) ** 2
-        + abs(b) ** 4 * np.linalg.norm(sys.K) ** 2
-    )
-    op = 2 * a * np.conj(b) * sys.M + (abs(b) ** 2 - abs(a) ** 2) * sys.C - 2 * np.conj(a) * b * sys.K
-    den = abs(y @ op @ x) / (np.linalg.norm(x) * np.linalg.norm(y))
-    return float(num / den) if den > 0 else float("inf")
-
-
 def chain_residual(sys, lam0, vectors) -> float:
-    """Relative residual of the Jordan chain equations (SPEC section 4).
+    """Relative residual of the Jordan chain equations (SPEC section 4): the largest over the equations.
 
     .. math::
         \\max_i \\frac{\\|\\sum_{j=0}^{i} L^{(j)}(\\lambda_0)/j!\\; x_{i-j}\\|}
-        {\\sum_{j=0}^{i} \\|L^{(j)}(\\lambda_0)/j!\\|\\,\\|x_{i-j}\\|}
+        {\\sum_{j=0}^{i} w_j\\,\\|x_{i-j}\\|}
 
-    with ``L^(0) = L``, ``L' = 2 lam0 M + C``, ``L''/2 = M`` (Frobenius norms).
+    with ``L^(0) = L``, ``L' = 2 lam0 M + C``, ``L''/2 = M`` and the weights
+    ``w_j`` of :func:`pinlin.numerics.chain_residuals` (Frobenius-norm bounds of
+    those blocks, as in eta).
+
+    Raises
+    ------
+    ParameterError
+        ``sys`` is not a LinearizedSystem or ``lam0`` not a finite scalar.
     """
     sys = check_system(sys)
     lam0 = complex_scalar(lam0, "lam0")
-    coeffs = [sys.dynamic_stiffness(lam0), 2 * lam0 * sys.M + sys.C, np.asarray(sys.M, dtype=complex)]
-    norms = [np.linalg.norm(c) for c in coeffs]
-    worst = 0.0
-    for i in range(len(vectors)):
-        r = np.zeros(sys.n, dtype=complex)
-        den = 0.0
-        for j in range(min(i, 2) + 1):
-            v = np.asarray(vectors[i - j])
-            r += coeffs[j] @ v
-            den += norms[j] * np.linalg.norm(v)
-        if den > 0:
-            worst = max(worst, float(np.linalg.norm(r) / den))
-    return worst
+    return max(accuracy.chain_residuals(sys.M, sys.C, sys.K, lam0, vectors), default=0.0)
 
 
 @dataclass(frozen=True, repr=False)
-class AdjugateChain:
+class AdjugateChain(Result):
     """A Jordan chain ``x_0, ..., x_{r-1}`` at lam0 from the adjugate's Taylor coefficients (Sec. 9).
 
     Attributes
@@ -303,6 +294,10 @@ class AdjugateChain:
     taylor_error : (len(vectors),) ndarray
         Relative a-posteriori error of the Taylor coefficients used.
     elapsed : float
+        Seconds [s].
+    method : str
+    error : float
+        The chain residual (``residual``, relative).
     """
 
     lam0: complex
@@ -311,6 +306,11 @@ class AdjugateChain:
     residual: float
     taylor_error: np.ndarray
     elapsed: float
+    method: str = "columns of the Taylor coefficients of the adjugate at lam0 (paper Prop. 9.1)"
+
+    @property
+    def error(self) -> float:
+        return self.residual
 
     def __repr__(self) -> str:
         return (
@@ -319,7 +319,7 @@ class AdjugateChain:
         )
 
 
-def adjugate_chain(sys, lam0, multiplicity: int, *, zero_tol: float = 1e-8) -> AdjugateChain:
+def adjugate_chain(sys, lam0, multiplicity: int, *, zero_tol: float = ZERO_TOL) -> AdjugateChain:
     """A Jordan chain at a root of multiplicity m from the adjugate's derivatives (paper Sec. 9).
 
     From ``sum_{j<=i} L^{(j)}/j! T_{i-j} = p^{(i)}(lam0)/i! I = 0`` for i < m
@@ -338,7 +338,8 @@ def adjugate_chain(sys, lam0, multiplicity: int, *, zero_tol: float = 1e-8) -> A
     zero_tol : float
         ``T_j`` counts as zero when ``||T_j|| r_j^j <= zero_tol * max_i ||T_i|| r_i^i``
         (each term on the circle of radius ``r_j`` it was computed on, against the
-        largest such term) or when ``||T_j||`` is within twice its error bound.
+        largest such term) or when ``||T_j||`` is within :data:`ZERO_ERROR_FACTOR`
+        times its error bound.
 
     Raises
     ------
@@ -350,10 +351,8 @@ def adjugate_chain(sys, lam0, multiplicity: int, *, zero_tol: float = 1e-8) -> A
     t0 = time.perf_counter()
     sys = check_system(sys)
     lam0 = complex_scalar(lam0, "lam0")
-    if not isinstance(multiplicity, (int, np.integer)) or not 1 <= multiplicity <= 2 * sys.n:
-        raise ParameterError("multiplicity", f"expected an integer in [1, {2 * sys.n}], got {multiplicity!r}")
-    positive(zero_tol, "zero_tol")
-    m = int(multiplicity)
+    m = check_integer(multiplicity, "multiplicity", low=1, high=2 * sys.n)
+    check_tolerance(zero_tol, "zero_tol")
     tay = adjugate_taylor(sys, lam0, m - 1)
     norms = np.linalg.norm(tay.coef.reshape(m, -1), axis=1)
     # compare each T_j on the scale of the radius it came from: T_j r^j vs the largest such term
@@ -361,7 +360,7 @@ def adjugate_chain(sys, lam0, multiplicity: int, *, zero_tol: float = 1e-8) -> A
     terms = norms * r ** np.arange(m)
     scale = terms.max() if terms.size else 0.0
     g = 0
-    while g < m and (terms[g] <= zero_tol * scale or norms[g] <= 2 * tay.coef_error[g]):
+    while g < m and (terms[g] <= zero_tol * scale or norms[g] <= ZERO_ERROR_FACTOR * tay.coef_error[g]):
         g += 1
     if g == m:
         raise NotSimpleError(

@@ -21,31 +21,36 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from ..errors import ComputationError, ParameterError
-from ._circle import chunks, fit_on_circles, ladder
-from ._util import EPS, check_radii, check_system, complex_points, eigenvalue_bounds, positive
+from ..numerics.checks import check_system, check_tolerance, complex_points
+from ..numerics.floating import EPS
+from ..results import Result
+from ._circle import RADIUS_RATIO, check_points, chunks, eigenvalue_radii, fit_on_circles
 
-__all__ = ["CharacteristicPolynomial", "characteristic_polynomial", "det_samples"]
+__all__ = ["CharacteristicPolynomial", "characteristic_polynomial", "det_samples", "HORNER_ROUNDING"]
 
-#: Ratio between successive radii of the sampling circles.
-RADIUS_RATIO = 4.0
-#: When K is singular (zero roots) the smallest circle is this fraction of the largest.
-SINGULAR_K_SPAN = 1e-8
+#: Rounding of Horner's rule for p(lam): each of the k steps of coefficient k
+#: costs at most a multiplication and an addition of a complex number, bounded
+#: by this many unit roundoffs (eps) per step.
+HORNER_ROUNDING = 4
+#: Rounding of the conversion mantissa * exp(log_scale) and to real, in eps per coefficient.
+CONVERSION_ROUNDING = 4
 
 
-class CharacteristicPolynomial(Polynomial):
+class CharacteristicPolynomial(Polynomial, Result):
     """``p(lam) = det L(lam)`` as a :class:`numpy.polynomial.Polynomial`, with its error figures.
 
     It is a Polynomial in every respect (call it, ``.coef``, ``.roots()``,
     ``.deriv()``, arithmetic); the extra attributes below are set only on the
     object :func:`characteristic_polynomial` returns (derived polynomials carry
-    ``None``).
+    ``None``).  ``to_dict()`` gives the coefficients and the figures; the repr
+    is one line (``str(p)`` prints the polynomial).
 
     Attributes
     ----------
     coef_error : (2n + 1,) ndarray
         A-posteriori absolute error bound of each coefficient (same units as it).
     error : float
-        Normwise relative error ``||coef_error|| / ||coef||``.
+        Normwise relative error of the coefficients, ``||coef_error|| / ||coef||``.
     radius : (2n + 1,) ndarray
         Radius [1/s] of the circle each coefficient was taken from.
     evaluations : int
@@ -57,15 +62,30 @@ class CharacteristicPolynomial(Polynomial):
     """
 
     _meta = ("coef_error", "error", "radius", "evaluations", "method", "elapsed")
+    _dict_fields = ("coef", "coef_error", "radius", "evaluations")
 
     def __init__(self, coef, domain=None, window=None, symbol="x"):
         super().__init__(coef, domain, window, symbol)
         for key in self._meta:
             setattr(self, key, None)
 
+    def __repr__(self) -> str:
+        if self.error is None:
+            return f"CharacteristicPolynomial(degree={self.degree()}, derived: no error figures)"
+        return (
+            f"CharacteristicPolynomial(degree={self.degree()}, error={self.error:.2e}, "
+            f"evaluations={self.evaluations}, elapsed={self.elapsed * 1e3:.3g} ms)"
+        )
+
     @property
     def relative_coef_error(self) -> np.ndarray:
-        """``coef_error / |coef|`` per coefficient (``inf`` where a coefficient is zero)."""
+        """``coef_error / |coef|`` per coefficient (``inf`` where a coefficient is zero).
+
+        Raises
+        ------
+        AttributeError
+            This polynomial was derived from a computed one and has no error figures.
+        """
         if self.coef_error is None:
             raise AttributeError("this polynomial was derived from a computed one and carries no error figures")
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -77,13 +97,20 @@ class CharacteristicPolynomial(Polynomial):
         .. math::  \\sum_k (\\epsilon_k + 4 k\\,u\\,|c_k|)\\,|\\lambda|^k
 
         with the coefficient errors ``epsilon_k`` and the rounding of Horner's
-        rule (``u`` the unit roundoff).
+        rule (``u`` the unit roundoff; the 4 is :data:`HORNER_ROUNDING`).
+
+        Raises
+        ------
+        AttributeError
+            This polynomial was derived from a computed one and has no error figures.
+        ParameterError
+            ``lam`` is not finite complex points.
         """
         if self.coef_error is None:
             raise AttributeError("this polynomial was derived from a computed one and carries no error figures")
         z, scalar = complex_points(lam, "lam")
         k = np.arange(len(self.coef))
-        weights = self.coef_error + 4 * k * EPS * np.abs(self.coef)
+        weights = self.coef_error + HORNER_ROUNDING * k * EPS * np.abs(self.coef)
         out = np.abs(z)[:, None] ** k @ weights
         return float(out[0]) if scalar else out
 
@@ -129,7 +156,7 @@ def characteristic_polynomial(
     n_points : int, optional
         Points per circle; default ``2 (2n + 1)``.
     radius_ratio : float
-        Ratio of successive radii of the automatic ladder (default 4).
+        Ratio (> 1) of successive radii of the automatic ladder (default 4).
 
     Returns
     -------
@@ -148,17 +175,17 @@ def characteristic_polynomial(
     t0 = time.perf_counter()
     sys = check_system(sys)
     n = sys.n
-    ratio = positive(radius_ratio, "radius_ratio")
+    ratio = check_tolerance(radius_ratio, "radius_ratio")
     if ratio <= 1:
         raise ParameterError("radius_ratio", f"must be > 1, got {radius_ratio}")
-    radii = _radii(sys, radii, ratio)
-    N = _points(n_points, 2 * n)
+    radii = eigenvalue_radii(sys, radii, ratio)
+    N = check_points(n_points, 2 * n)
     fit = fit_on_circles(det_samples(sys), 2 * n, 0.0, radii, N)
     coef_c, err = fit.values("the characteristic polynomial")
     # p has real coefficients: an imaginary part is rounding noise of the same size as err
     err = np.maximum(err, np.abs(coef_c.imag))
     coef = coef_c.real
-    err = err + 4 * EPS * np.abs(coef)  # the conversions mantissa * exp(log) and to real
+    err = err + CONVERSION_ROUNDING * EPS * np.abs(coef)  # the conversions mantissa * exp(log) and to real
     p = CharacteristicPolynomial(coef)
     p.coef_error = err
     p.error = float(np.linalg.norm(err) / np.linalg.norm(coef)) if np.any(coef) else float("inf")
@@ -172,20 +199,3 @@ def characteristic_polynomial(
     if not np.all(np.isfinite(coef)):
         raise ComputationError("the characteristic polynomial has non-finite coefficients")
     return p
-
-
-def _radii(sys, radii, ratio):
-    if radii is not None:
-        return check_radii(radii)
-    lo, hi = eigenvalue_bounds(sys)
-    r_hi = 2.0 * hi if hi > 0 else 1.0
-    r_lo = 0.5 * lo if lo > 0 else r_hi * SINGULAR_K_SPAN
-    return ladder(r_lo, r_hi, ratio)
-
-
-def _points(n_points, degree):
-    if n_points is None:
-        return max(8, 2 * (degree + 1))
-    if not isinstance(n_points, (int, np.integer)) or n_points < degree + 2:
-        raise ParameterError("n_points", f"expected an integer > degree + 1 = {degree + 1}, got {n_points!r}")
-    return int(n_points)

@@ -1,21 +1,39 @@
-"""Frequency response functions: the dynamic flexibility H(s) = L(s)^-1 = adj L(s) / p(s) and the responses built on it (SPEC section 4, 6).
+"""Frequency response functions: H(s) = L(s)^-1 = adj L(s) / p(s) and the responses built on it (SPEC 4, 6).
 
 One concept per module:
 
-- :mod:`.engine` -- H(s) direct (LU of L(s)) and modal (eigenpairs and Jordan
-  blocks), with the residual of L(s) H(s) = I;
-- :mod:`.frequency` -- :func:`frequency_response`: H(i omega) over a frequency grid;
+- :mod:`.engine` -- the one engine for X(s) = H(s) B: "direct" (LU of L(s) per
+  point, the default) or "modal" (eigenpairs and Jordan blocks), the relative
+  defect per point, one behaviour at a pole;
+- :mod:`.expansion` -- the modal expansion (eigenvectors and Jordan chains in
+  first-order form) that the modal method and the free response evaluate;
+- :mod:`.flexibility` -- :func:`flexibility`: H(s) on any points; the spectral
+  form of the adjugate;
+- :mod:`.frequency` -- :func:`frequency_response`: H(i omega) between chosen
+  inputs and outputs, python-control's axis order;
 - :mod:`.harmonic` -- :func:`harmonic_response`: the steady amplitude H(i omega) F;
 - :mod:`.residues` -- principal parts of H at a root of any multiplicity, by contour
-  integrals (paper Sec. 10, Theorem 10.2).
+  integrals of H from the engine (paper Sec. 10, Theorem 10.2); :mod:`.contour` finds
+  and samples the contour (argument-principle counts);
+- :mod:`._inputs` -- checks of angular frequencies and force amplitudes.
+
+Axis orders: stacks put the points first (``flexibility``: (len(s), n, n);
+``harmonic_response``: (len(omega), n), like a time response (len(t), n));
+``FrequencyResponse.response`` follows python-control, (outputs, inputs,
+frequencies).  Per-point figures (``defects``, ``distance``) are 1-D over the
+points (scalars for a scalar point).
 """
 
-from .engine import FlexibilityArray, flexibility, modal_adjugate
+from .engine import DEFAULT_METHOD, METHODS
+from .expansion import JordanBlock, ModalExpansion, modal_expansion
+from .flexibility import FlexibilityArray, flexibility, modal_adjugate
 from .frequency import FrequencyResponse, frequency_response
 from .harmonic import HARMONIC_METHODS, HarmonicResponse, harmonic_response
 from .residues import Residues, principal_part_residual, residues
 
 __all__ = [
+    "METHODS",
+    "DEFAULT_METHOD",
     "FlexibilityArray",
     "flexibility",
     "modal_adjugate",
@@ -27,4 +45,7 @@ __all__ = [
     "Residues",
     "residues",
     "principal_part_residual",
+    "ModalExpansion",
+    "JordanBlock",
+    "modal_expansion",
 ]

@@ -9,20 +9,22 @@ python-control's convention: ``response[output, input, frequency]``.
 from __future__ import annotations
 
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..adjoint._util import check_system, dof_indices
-from .engine import METHODS, check_modes, flexibility_columns
+from ..numerics import check_system, check_tolerance, dof_indices
+from ..results import Result
+from ._inputs import real_frequencies
+from .engine import DEFAULT_METHOD, DEFAULT_TOL, solve, warn_inaccurate
 
 __all__ = ["FrequencyResponse", "frequency_response"]
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class FrequencyResponse:
-    """``H(i omega)`` for chosen outputs and inputs, python-control's shape convention.
+class FrequencyResponse(Result):
+    """``H(i omega)`` for chosen outputs and inputs, in python-control's axis order.
 
     ``mag, phase, omega = resp`` unpacks like python-control's
     ``frequency_response``.
@@ -30,23 +32,31 @@ class FrequencyResponse:
     Attributes
     ----------
     response : (n_outputs, n_inputs, n_frequencies) complex ndarray
-        ``H(i omega)[output, input]`` [m/N, rad/(N m), ...].
+        ``H(i omega)[output, input]`` [m/N, rad/(N m), ...]; the frequency is
+        the last axis (python-control), unlike the point-first stacks of
+        :func:`pinlin.flexibility` and :func:`pinlin.harmonic_response`.
     omega : (n_frequencies,) ndarray
         Angular frequencies [rad/s].
     outputs, inputs : (k,) int ndarray
         Coordinate indices.
     output_names, input_names : tuple of str
     method : str
-        "direct" or "modal".
-    residual : (n_frequencies,) ndarray or None
-        Per frequency, ``||L(i w) H_c - I_c|| / (||L(i w)|| ||H_c||)`` over the input
-        columns c (all n rows): the defect of the equation (SPEC section 8).
+        ``"direct"``, ``"modal"`` or ``"modal + Jordan chains"``.
+    defects : (n_frequencies,) ndarray or None
+        Per frequency, the relative defect ``||L(i w) H_c - I_c|| / (||L(i w)||
+        ||H_c|| + ||I_c||)`` over the input columns c (all n rows): the
+        normwise backward error (SPEC section 8, :mod:`pinlin.frf.engine`).
         None when the check was skipped.
+    distance : (n_frequencies,) ndarray or None
+        Distance [1/s] of i omega to the nearest computed eigenvalue; None
+        without a modal analysis.
     error : float or None
-        ``max(residual)``.
+        ``max(defects)``; None when the check was skipped (``check=False``).
     elapsed : float
         Seconds.
     notes : tuple of str
+    residual
+        Deprecated alias of ``defects`` (pinlin 0.1).
     """
 
     response: np.ndarray
@@ -56,10 +66,16 @@ class FrequencyResponse:
     output_names: tuple[str, ...]
     input_names: tuple[str, ...]
     method: str
-    residual: np.ndarray | None
+    defects: np.ndarray | None
+    distance: np.ndarray | None
     error: float | None
     elapsed: float
     notes: tuple[str, ...] = field(default=())
+
+    @property
+    def residual(self) -> np.ndarray | None:
+        warnings.warn("FrequencyResponse.residual is now .defects", DeprecationWarning, stacklevel=2)
+        return self.defects
 
     @property
     def magnitude(self) -> np.ndarray:
@@ -76,11 +92,25 @@ class FrequencyResponse:
         """``omega / (2 pi)`` [Hz]."""
         return self.omega / (2 * np.pi)
 
+    def to_control(self, name: str | None = None):
+        """This response as a python-control ``FrequencyResponseData`` (inputs ``"force:<dof>"``, outputs the dof names).
+
+        Raises
+        ------
+        ParameterError
+            Negative or non-increasing ``omega``.
+        MissingDependencyError
+            python-control is not installed (``pip install 'pinlin[control]'``).
+        """
+        from ..interop.python_control import frequency_response_data
+
+        return frequency_response_data(self, name)
+
     def __iter__(self):
         return iter((self.magnitude, self.phase, self.omega))
 
     def __repr__(self) -> str:
-        err = "unchecked" if self.error is None else f"{self.error:.1e}"
+        err = "unchecked" if self.defects is None else f"{self.error:.1e}"
         return (
             f"FrequencyResponse(outputs={len(self.outputs)}, inputs={len(self.inputs)}, "
             f"frequencies={len(self.omega)}, method={self.method!r}, error={err}, elapsed={self.elapsed:.3g} s)"
@@ -93,15 +123,16 @@ def frequency_response(
     inputs=None,
     outputs=None,
     *,
-    method: str = "direct",
+    method: str = DEFAULT_METHOD,
     modes=None,
     check: bool = True,
+    tol: float = DEFAULT_TOL,
 ) -> FrequencyResponse:
-    """Frequency response ``H(i omega) = L(i omega)^-1`` from ``inputs`` to ``outputs``.
+    """Frequency response ``H(i omega) = L(i omega)^-1`` from ``inputs`` to ``outputs`` (SPEC section 6).
 
     .. math::
         H(i\\omega) = (-\\omega^2 M + i\\omega C + K)^{-1}
-        = \\sum_k \\frac{x_k y_k^T}{i\\omega - \\lambda_k}
+        = \\sum_k \\frac{x_k y_k^T}{i\\omega - \\lambda_k} + \\text{(Jordan-block terms)}
 
     Parameters
     ----------
@@ -113,15 +144,18 @@ def frequency_response(
         Coordinates (indices or ``dof_names``) where the generalized force acts
         and which displacements are returned; default all.
     method : {"direct", "modal"}
-        "direct": one LU factorization of ``L(i omega)`` per frequency, O(n^3)
-        each.  "modal": the spectral sum over the 2n Lancaster-normalized modes
-        of :func:`pinlin.modal_analysis`, O(n) per input-output pair and
-        frequency after the eigensolution; needs a simple dynamic stiffness.
+        "direct" (default): one LU factorization of ``L(i omega)`` per
+        frequency, O(n^3) each, backward stable.  "modal": the modal expansion
+        of :func:`pinlin.modal_analysis` (Jordan chains included), O(n) per
+        input-output pair and frequency after the eigensolution (see
+        :mod:`pinlin.frf.engine`).
     modes : Modes, optional
-        A precomputed modal analysis for ``method="modal"``.
+        A precomputed modal analysis (for ``method="modal"``, or for ``distance``).
     check : bool
-        Compute the residual of the equation per frequency (costs O(n^2) per
-        input and frequency; on by default).
+        Compute the relative defect per frequency (costs O(n^2) per input and
+        frequency; on by default).
+    tol : float
+        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it.
 
     Returns
     -------
@@ -130,46 +164,36 @@ def frequency_response(
     Raises
     ------
     ParameterError
-        ``omega`` not a finite real 1-D array, unknown inputs or outputs, bad
-        method, a frequency at an eigenvalue on the imaginary axis.
-    NotSimpleError
-        ``method="modal"`` and the dynamic stiffness is not simple.
+        ``omega`` not a finite real scalar or 1-D array, unknown inputs or
+        outputs, bad method, modes or tol, a frequency at an eigenvalue on the
+        imaginary axis (an undamped resonance: a pole of H).
+    ComputationError
+        L(i omega) overflows; the modal expansion does not apply to these modes.
     """
     t0 = time.perf_counter()
     sys = check_system(sys)
-    try:
-        w = np.asarray(omega)
-    except (TypeError, ValueError):
-        raise ParameterError("omega", "expected real angular frequencies [rad/s]") from None
-    if w.dtype == object or not np.issubdtype(w.dtype, np.number) or np.iscomplexobj(w) or w.dtype == bool:
-        raise ParameterError("omega", f"expected real angular frequencies [rad/s], got dtype {w.dtype}")
-    if w.ndim > 1:
-        raise ParameterError("omega", f"expected a scalar or a 1-D array, got shape {w.shape}")
-    w = np.atleast_1d(w).astype(float)
-    if w.size == 0:
-        raise ParameterError("omega", "expected at least one frequency")
-    if not np.all(np.isfinite(w)):
-        raise ParameterError("omega", f"must be finite; entry {int(np.flatnonzero(~np.isfinite(w))[0])} is not")
+    w, _ = real_frequencies(omega)
     ins = dof_indices(sys, inputs, "inputs")
     outs = dof_indices(sys, outputs, "outputs")
-    if method not in METHODS:
-        raise ParameterError("method", f"expected one of {METHODS}, got {method!r}")
+    tol = check_tolerance(tol, "tol")
+    out = solve(sys, 1j * w, np.eye(sys.n)[:, ins], method=method, modes=modes, rows=outs, check=check,
+                label="omega", values=w)
+    name = method if out.expansion is None else out.expansion.method
+    warn_inaccurate("frequency_response", name, out.defects, tol, "omega", w)
     notes = []
-    if method == "modal":
-        modes = check_modes(sys, modes)
-        notes.append(f"modes from {getattr(modes, 'method', 'modal_analysis')!s}")
-    H, residual = flexibility_columns(sys, 1j * w, rows=outs, cols=ins, method=method, modes=modes, check=check)
-    response = np.moveaxis(H, 0, -1)
+    if out.expansion is not None:
+        notes.append(f"modes from {getattr(out.expansion.modes, 'method', 'modal_analysis')!s}")
     return FrequencyResponse(
-        response=response,
+        response=np.moveaxis(out.X, 0, -1),
         omega=w,
         outputs=outs,
         inputs=ins,
         output_names=tuple(sys.dof_names[i] for i in outs),
         input_names=tuple(sys.dof_names[i] for i in ins),
-        method=method,
-        residual=residual,
-        error=None if residual is None else float(np.max(residual)),
+        method=name,
+        defects=out.defects,
+        distance=out.distance,
+        error=out.error,
         elapsed=time.perf_counter() - t0,
         notes=tuple(notes),
     )

@@ -5,9 +5,9 @@ A :class:`~pinlin.Scene` is an immutable description shared freely, Pinocchio's
 write into, so it must belong to one caller at a time (Pinocchio's Model/Data split).
 :func:`workspace` gives each thread its own :class:`Workspace` per scene, created
 on that thread's first use (behind the memory guard) and reused afterwards:
-``createData`` costs about 20 us on a 9-joint arm and 17 ms on a 100-link chain,
-far more than a linearization, so a fresh one per call would be the slower choice
-(benchmarks/bench_linearize.py measures both).  Within one thread computations
+``createData`` costs about 35-40 us on a 9-joint arm and 40-48 ms on a 100-link
+chain, 4x and 60-80x a whole linearization, so a fresh one per call would be the
+slower choice (benchmarks/bench_workspace.py measures both).  Within one thread computations
 run one after another, and each copies what it reads out of ``Data`` before the
 next algorithm runs, so nested calls (a linearization inside a simulation's
 callback) are safe too.
@@ -119,6 +119,8 @@ class Evaluation:
         self._jacobians: dict[tuple[int, pin.ReferenceFrame], np.ndarray] = {}
         self._mass: np.ndarray | None = None
         self._elastic: np.ndarray | None = None
+        self._world_jacobian: np.ndarray | None = None
+        self._positions: dict[tuple[int, ...], np.ndarray] = {}
 
     def call(self, name: str, algorithm, *args):
         """Run a Pinocchio algorithm and log its name."""
@@ -148,6 +150,38 @@ class Evaluation:
             self._rotations[frame_id] = self.data.oMf[frame_id].rotation.copy()
         return self._rotations[frame_id]
 
+    def frame_positions(self, frame_ids: tuple[int, ...]) -> np.ndarray:
+        """World positions of several frames' origins (len(frame_ids) x 3), read-only.
+
+        Computed once per evaluation for a given tuple of ids: an element group
+        reading many frames in its force, stiffness and damping pays for one pass.
+        """
+        out = self._positions.get(frame_ids)
+        if out is None:
+            self._ensure_kinematics()
+            oMf = self.data.oMf
+            out = np.array([oMf[i].translation for i in frame_ids], dtype=float).reshape(-1, 3)
+            out.flags.writeable = False
+            self._positions[frame_ids] = out
+        return out
+
+    def world_jacobian(self) -> np.ndarray:
+        """The Jacobian of the whole tree in world axes (6 x nv, linear rows first), read-only.
+
+        Column k is the twist xi_k = (v_k, omega_k) of degree of freedom k: the
+        angular velocity, and the linear velocity of the body point at the world
+        origin (Pinocchio's ``data.J`` after ``computeJointJacobians``).  A body's
+        Jacobian is these columns on its supporting joints, and a point p of it
+        moves with v_k + omega_k x p: elements between many frames read this once
+        instead of one frame Jacobian each (no extra Pinocchio call).
+        """
+        if self._world_jacobian is None:
+            self._ensure_kinematics()
+            J = np.array(self.data.J)
+            J.flags.writeable = False
+            self._world_jacobian = J
+        return self._world_jacobian
+
     def frame_jacobian(self, frame_id: int, reference: pin.ReferenceFrame = pin.ReferenceFrame.LOCAL) -> np.ndarray:
         """Frame Jacobian (6 x nv, linear rows first), in the frame's own axes by default.
 
@@ -168,6 +202,22 @@ class Evaluation:
             elif reference != pin.ReferenceFrame.LOCAL:
                 self._jacobians[key] = np.array(pin.getFrameJacobian(self.model, self.data, frame_id, reference))
         return self._jacobians[key]
+
+    def world_aligned_jacobian(self, frame_id: int) -> np.ndarray:
+        """Frame Jacobian in LOCAL_WORLD_ALIGNED axes (6 x nv): origin velocity and angular velocity, world axes.
+
+        The same matrix as ``frame_jacobian(frame_id, pin.LOCAL_WORLD_ALIGNED)`` (and
+        the same cache entry), read in one Pinocchio call: cheaper when the local
+        Jacobian is not needed too (constraints, SPEC section 10).
+        """
+        key = (frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        J = self._jacobians.get(key)
+        if J is None:
+            self._ensure_kinematics()
+            J = self._jacobians[key] = pin.getFrameJacobian(
+                self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+            )
+        return J
 
     def mass_matrix(self) -> np.ndarray:
         """The full mass matrix M(q) (nv x nv), exactly symmetric."""

@@ -5,15 +5,18 @@ One concept per module:
 - :mod:`.free` -- free vibration from the modal solution (Jordan chains for defective roots);
 - :mod:`.forced` -- any sampled or callable force, by exact discretization;
 - :mod:`.energy` -- the linearized power theorem along a trajectory;
-- :mod:`.expansion`, :mod:`.state`, :mod:`.signal` -- the modal expansion, the
-  first-order form and the piecewise-polynomial reading of sampled forces they share.
+- :mod:`.state`, :mod:`.signal` -- the first-order form and the piecewise-polynomial
+  reading of sampled (or callable) forces they share; :mod:`._inputs` -- checks of
+  time grids, vectors and samples.
 
-Steady harmonic responses are in :mod:`pinlin.frf` (one engine for H(s)),
-the nonlinear reference simulation in :mod:`pinlin.nonlinear`.
+Arrays are (len(t), n): time first, coordinates last.  The modal expansion the
+free response evaluates is :mod:`pinlin.frf.expansion` (also the modal method of
+the H(s) engine); steady harmonic responses are in :mod:`pinlin.frf`, the
+nonlinear reference simulation in :mod:`pinlin.nonlinear`.
 """
 
+from ..frf.expansion import JordanBlock, ModalExpansion, modal_expansion
 from .energy import EnergyBudget, energy_budget
-from .expansion import JordanBlock, ModalExpansion, modal_expansion
 from .forced import ForcedResponse, forced_response
 from .free import FreeResponse, free_response
 from .signal import INTERPOLATIONS, SampledForce

@@ -1,7 +1,10 @@
-"""Validation of the inputs shared by the response analyses (time grids, vectors, samples).
+"""Validation of the inputs of the time responses: time grids, vectors, samples (SPEC section 9).
 
 Every check raises a :class:`~pinlin.ParameterError` naming the parameter and
-giving the expected and the found shape or value (SPEC section 9).
+giving the expected and the found shape or value.  The checks shared with the
+other analyses (the system, tolerances) live in :mod:`pinlin.numerics.checks`,
+the check of a vector of coordinates in :mod:`pinlin.frf._inputs` (the harmonic
+force amplitude uses it too); they are re-exported here.
 """
 
 from __future__ import annotations
@@ -9,17 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
-from ..linearization.system import LinearizedSystem
+from ..frf._inputs import check_vector
+from ..numerics import check_system, check_tolerance
 
 __all__ = ["check_system", "check_times", "check_vector", "check_samples", "check_tolerance"]
-
-
-def check_system(sys) -> LinearizedSystem:
-    if not isinstance(sys, LinearizedSystem):
-        raise ParameterError(
-            "sys", f"expected a pinlin.LinearizedSystem (from linearize or from_matrices), got {type(sys).__name__}"
-        )
-    return sys
 
 
 def _real_array(value, label: str) -> np.ndarray:
@@ -33,7 +29,13 @@ def _real_array(value, label: str) -> np.ndarray:
 
 
 def check_times(t, label: str = "t", *, min_points: int = 1) -> np.ndarray:
-    """A 1-D, finite, strictly increasing time grid [s] with at least ``min_points`` points."""
+    """A 1-D, finite, strictly increasing time grid [s] with at least ``min_points`` points.
+
+    Raises
+    ------
+    ParameterError
+        Not real numbers, not 1-D, too few points, non-finite, or not strictly increasing.
+    """
     arr = _real_array(t, label)
     if arr.ndim == 0:
         arr = arr.reshape(1)
@@ -51,26 +53,14 @@ def check_times(t, label: str = "t", *, min_points: int = 1) -> np.ndarray:
     return arr
 
 
-def check_vector(value, n: int, label: str, *, allow_none: bool = True, complex_ok: bool = False) -> np.ndarray:
-    """A finite vector of size n; None gives zeros when allowed."""
-    if value is None and allow_none:
-        return np.zeros(n, dtype=complex if complex_ok else float)
-    if callable(value):
-        raise ParameterError(label, "expected an array of numbers, got a callable")
-    try:
-        arr = np.array(value, dtype=complex if complex_ok else float)
-    except (TypeError, ValueError):
-        kind = "complex" if complex_ok else "real"
-        raise ParameterError(label, f"expected {n} {kind} numbers, got {value!r:.80}") from None
-    if arr.shape != (n,):
-        raise ParameterError(label, f"expected shape ({n},) (one value per coordinate), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ParameterError(label, f"must be finite, got {arr}")
-    return arr
-
-
 def check_samples(value, rows: int, n: int, label: str) -> np.ndarray:
-    """A finite (rows, n) array of samples, one row per time point."""
+    """A finite (rows, n) array of samples, one row per time point.
+
+    Raises
+    ------
+    ParameterError
+        Not real numbers, another shape, or a non-finite row.
+    """
     arr = _real_array(value, label)
     if arr.shape != (rows, n):
         raise ParameterError(label, f"expected shape ({rows}, {n}) (one row of {n} values per time point), got {arr.shape}")
@@ -78,13 +68,3 @@ def check_samples(value, rows: int, n: int, label: str) -> np.ndarray:
         k = int(np.flatnonzero(~np.all(np.isfinite(arr), axis=1))[0])
         raise ParameterError(label, f"must be finite; row {k} is {arr[k]}")
     return arr
-
-
-def check_tolerance(value, label: str) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(label, f"expected a positive number, got {value!r}") from None
-    if not (np.isfinite(value) and value > 0):
-        raise ParameterError(label, f"must be a positive finite number, got {value!r}")
-    return value

@@ -19,14 +19,20 @@ import numpy as np
 import scipy.linalg
 
 from ..linearization.system import LinearizedSystem
-from ._inputs import check_samples, check_system, check_times
-from .signal import SampledForce
+from ..numerics import check_system
+from ..results import Result
+from ._inputs import check_samples, check_times
+from .signal import SampledForce, check_interpolation, sample_callable
 
-__all__ = ["EnergyBudget", "energy_budget"]
+__all__ = ["EnergyBudget", "energy_budget", "METHOD"]
+
+
+#: What :func:`energy_budget` computes and how (``EnergyBudget.method``).
+METHOD = "linearized power theorem; work by the two-point Hermite rule of order 6 (derivatives from the equation)"
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class EnergyBudget:
+class EnergyBudget(Result):
     """Energy, powers and work along a trajectory (SPEC section 6).
 
     Attributes
@@ -56,6 +62,10 @@ class EnergyBudget:
         for the residual to mean anything.
     elapsed : float
         Seconds.
+    method : str
+        How the work was integrated.
+    error : float
+        The headline figure: ``balance_residual`` (relative to ``scale``).
     """
 
     t: np.ndarray
@@ -75,6 +85,11 @@ class EnergyBudget:
     balance_residual: float
     quadrature_error: float
     elapsed: float
+    method: str = METHOD
+
+    @property
+    def error(self) -> float:
+        return self.balance_residual
 
     def __repr__(self) -> str:
         return (
@@ -155,20 +170,19 @@ def energy_budget(
     Raises
     ------
     ParameterError
-        Wrong shapes, non-finite values, a bad time grid.
+        Wrong shapes, non-finite values, a bad time grid, an unknown interpolation.
     """
     t0 = time.perf_counter()
     check_system(sys)
     n = sys.n
     times = check_times(t)
+    check_interpolation(interpolation)
     k = len(times)
     X = check_samples(x, k, n, "x")
     V = check_samples(xdot, k, n, "xdot")
     if f is None:
         F = np.zeros((k, n))
     elif callable(f):
-        from .forced import sample_callable
-
         F = sample_callable(f, times, n)
     else:
         F = check_samples(f, k, n, "f")

@@ -18,17 +18,24 @@ import scipy.linalg
 
 from ..errors import AccuracyWarning, ParameterError
 from ..linearization.system import LinearizedSystem
-from ._inputs import check_samples, check_system, check_times, check_tolerance, check_vector
+from ..numerics import check_integer, check_system, check_tolerance
+from ..results import Result
+from ._inputs import check_samples, check_times, check_vector
 from .energy import EnergyBudget, energy_budget
-from .signal import INTERPOLATIONS, SampledForce
+from .signal import INTERPOLATIONS, SampledForce, check_interpolation, sample_callable
 from .state import first_order
 
-__all__ = ["ForcedResponse", "forced_response", "sample_callable", "hold_matrices"]
+__all__ = ["ForcedResponse", "forced_response", "sample_callable", "hold_matrices", "DEFAULT_INPUT_TOL"]
+
+#: Default threshold of the AccuracyWarning on the interpolation error of a callable force:
+#: a hold that misses the force by 1e-4 (relative) at the interval midpoints is a deliberate
+#: choice of a coarse grid, not an accident.
+DEFAULT_INPUT_TOL = 1e-4
 
 
 @dataclass(frozen=True, repr=False, eq=False)
-class ForcedResponse:
-    """The response of M x'' + C x' + K x = f(t) at the output times.
+class ForcedResponse(Result):
+    """The response of M x'' + C x' + K x = f(t) at the output times (times first: (K, n) arrays).
 
     Attributes
     ----------
@@ -57,6 +64,15 @@ class ForcedResponse:
     elapsed : float
         Seconds.
     method : str
+        The discretization: exact for the piecewise-polynomial force.
+    error : float
+        The headline figure: ``max(exponential_defect, input_error)`` (the
+        latter counted only for a callable force), relative: the two
+        approximations of the method, the matrix exponentials and the reading
+        of the force between samples.
+
+    ``to_dict()`` leaves out ``system`` and the ``*_internal`` arrays (equal to
+    the outputs unless ``substeps > 1``).
     """
 
     system: LinearizedSystem
@@ -76,6 +92,12 @@ class ForcedResponse:
     elapsed: float
     method: str
 
+    _dict_exclude = ("system", "t_internal", "x_internal", "xdot_internal", "f_internal")
+
+    @property
+    def error(self) -> float:
+        return max(float(self.exponential_defect), 0.0 if self.input_error is None else float(self.input_error))
+
     def energy(self) -> EnergyBudget:
         """The energy budget of this response (on the internal grid), see :func:`energy_budget`."""
         return energy_budget(
@@ -89,22 +111,6 @@ class ForcedResponse:
             f"ForcedResponse(n={self.x.shape[1]}, points={len(self.t)}, interpolation={self.interpolation!r}, "
             f"exponential_defect={self.exponential_defect:.1e}{inp}, elapsed={self.elapsed * 1e3:.2f} ms)"
         )
-
-
-def sample_callable(f, times: np.ndarray, n: int, label: str = "f") -> np.ndarray:
-    """Evaluate ``f(t) -> (n,)`` at each time; check shape and finiteness."""
-    out = np.empty((len(times), n))
-    for i, ti in enumerate(times):
-        try:
-            val = np.asarray(f(float(ti)), dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ParameterError(label, f"calling f({ti!r}) did not give real numbers: {exc}") from None
-        if val.shape != (n,):
-            raise ParameterError(label, f"f(t) must return shape ({n},), got {val.shape} at t = {ti!r}")
-        if not np.all(np.isfinite(val)):
-            raise ParameterError(label, f"f(t) is not finite at t = {ti!r}: {val}")
-        out[i] = val
-    return out
 
 
 def hold_matrices(A: np.ndarray, B: np.ndarray, h: float, degree: int) -> tuple[np.ndarray, list[np.ndarray]]:
@@ -142,7 +148,7 @@ def forced_response(
     *,
     interpolation: str = "linear",
     substeps: int = 1,
-    input_tol: float = 1e-4,
+    input_tol: float = DEFAULT_INPUT_TOL,
 ) -> ForcedResponse:
     """Response of M x'' + (D + G) x' + (S + N) x = f(t), exact for piecewise-polynomial f.
 
@@ -192,70 +198,27 @@ def forced_response(
     check_system(sys)
     n = sys.n
     times = check_times(t)
-    if interpolation not in INTERPOLATIONS:
-        raise ParameterError("interpolation", f"expected one of {sorted(INTERPOLATIONS)}, got {interpolation!r}")
-    if isinstance(substeps, bool) or not isinstance(substeps, (int, np.integer)) or substeps < 1:
-        raise ParameterError("substeps", f"must be an integer >= 1, got {substeps!r}")
+    degree = check_interpolation(interpolation)
+    substeps = check_integer(substeps, "substeps", low=1)
     input_tol = check_tolerance(input_tol, "input_tol")
     x0 = check_vector(x0, n, "x0")
     v0 = check_vector(v0, n, "v0")
-    degree = INTERPOLATIONS[interpolation]
-
-    if callable(f):
-        s = np.linspace(0.0, 1.0, substeps + 1)[:-1]
-        tau = np.concatenate([(times[:-1, None] + np.diff(times)[:, None] * s).ravel(), times[-1:]])
-        F = sample_callable(f, tau, n)
-    else:
-        if substeps != 1:
-            raise ParameterError("substeps", "applies to a callable force only; sampled force is used as given")
-        tau = times
-        F = np.zeros((len(times), n)) if f is None else check_samples(f, len(times), n, "f")
+    tau, F = _force_samples(f, times, substeps, n)
     if degree == 3 and len(tau) < 4:
         raise ParameterError("interpolation", f"'cubic' needs at least 4 force samples, got {len(tau)}")
-
-    A, B = first_order(sys)
-    Z = np.empty((len(tau), 2 * n))
-    Z[0] = np.concatenate([x0, v0])
-    defect = 0.0
-    distinct = 0
+    forcing = f is not None and bool(np.any(F))
+    Z, distinct, defect = _propagate(sys, np.concatenate([x0, v0]), tau, F, interpolation, forcing)
     input_error = None
-    if len(tau) > 1:
-        h = np.diff(tau)
-        steps, which = np.unique(h, return_inverse=True)
-        distinct = len(steps)
-        forcing = f is not None and np.any(F)
-        taylor = SampledForce(tau, F, interpolation).taylor() if forcing else None
-        Phis = []
-        G = np.zeros((len(h), 2 * n))
-        for j, hs in enumerate(steps):
-            if forcing:
-                Phi, Psi = hold_matrices(A, B, hs, degree)
-                idx = np.flatnonzero(which == j)
-                for p, Psi_p in enumerate(Psi):
-                    G[idx] += (hs**p * taylor[idx, p]) @ Psi_p.T
-            else:
-                Phi = scipy.linalg.expm(A * hs)
-            Phis.append(Phi)
-        for k in range(len(h)):
-            Z[k + 1] = Phis[which[k]] @ Z[k] + G[k]
-        longest = int(np.argmax(steps))
-        half = scipy.linalg.expm(A * (steps[longest] / 2))
-        ref = Phis[longest]
-        defect = float(np.linalg.norm(half @ half - ref) / max(np.linalg.norm(ref), np.finfo(float).tiny))
-        if callable(f):
-            mid = (tau[:-1] + tau[1:]) / 2
-            f_mid = sample_callable(f, mid, n)
-            interp = SampledForce(tau, F, interpolation)(mid)
-            size = max(float(np.max(np.abs(F))), float(np.max(np.abs(f_mid))))
-            input_error = float(np.max(np.abs(f_mid - interp)) / size) if size > 0 else 0.0
-            if input_error > input_tol:
-                warnings.warn(
-                    f"forced_response: the {interpolation} interpolation of the callable force is off by "
-                    f"{input_error:.1e} (relative, at interval midpoints) > input_tol {input_tol:g}; "
-                    f"increase substeps (now {substeps}) or use interpolation='cubic'",
-                    AccuracyWarning,
-                    stacklevel=2,
-                )
+    if callable(f) and len(tau) > 1:
+        input_error = _input_error(f, tau, F, interpolation, n)
+        if input_error > input_tol:
+            warnings.warn(
+                f"forced_response: the {interpolation} interpolation of the callable force is off by "
+                f"{input_error:.1e} (relative, at interval midpoints) > input_tol {input_tol:g}; "
+                f"increase substeps (now {substeps}) or use interpolation='cubic'",
+                AccuracyWarning,
+                stacklevel=2,
+            )
     out = np.arange(0, len(tau), substeps)
     return ForcedResponse(
         system=sys,
@@ -264,7 +227,7 @@ def forced_response(
         xdot=Z[out, n:].copy(),
         f=F[out].copy(),
         interpolation=interpolation,
-        substeps=int(substeps),
+        substeps=substeps,
         t_internal=tau,
         x_internal=Z[:, :n],
         xdot_internal=Z[:, n:],
@@ -275,3 +238,55 @@ def forced_response(
         elapsed=time.perf_counter() - t_start,
         method=f"exact discretization, {interpolation} hold, Van Loan block exponential",
     )
+
+
+def _force_samples(f, times: np.ndarray, substeps: int, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The internal time grid and the force samples on it (a callable is sampled ``substeps`` per interval)."""
+    if callable(f):
+        s = np.linspace(0.0, 1.0, substeps + 1)[:-1]
+        tau = np.concatenate([(times[:-1, None] + np.diff(times)[:, None] * s).ravel(), times[-1:]])
+        return tau, sample_callable(f, tau, n)
+    if substeps != 1:
+        raise ParameterError("substeps", "applies to a callable force only; sampled force is used as given")
+    return times, (np.zeros((len(times), n)) if f is None else check_samples(f, len(times), n, "f"))
+
+
+def _propagate(sys, z0: np.ndarray, tau: np.ndarray, F: np.ndarray, interpolation: str, forcing: bool):
+    """States Z (len(tau), 2n) by the exact step maps, the number of distinct steps and the exponential check."""
+    A, B = first_order(sys)
+    Z = np.empty((len(tau), z0.size))
+    Z[0] = z0
+    if len(tau) < 2:
+        return Z, 0, 0.0
+    degree = INTERPOLATIONS[interpolation]
+    h = np.diff(tau)
+    steps, which = np.unique(h, return_inverse=True)
+    taylor = SampledForce(tau, F, interpolation).taylor() if forcing else None
+    Phis = []
+    G = np.zeros((len(h), z0.size))
+    for j, hs in enumerate(steps):
+        if forcing:
+            Phi, Psi = hold_matrices(A, B, hs, degree)
+            idx = np.flatnonzero(which == j)
+            for p, Psi_p in enumerate(Psi):
+                G[idx] += (hs**p * taylor[idx, p]) @ Psi_p.T
+        else:
+            Phi = scipy.linalg.expm(A * hs)
+        Phis.append(Phi)
+    for k in range(len(h)):
+        Z[k + 1] = Phis[which[k]] @ Z[k] + G[k]
+    # exp(A h/2)^2 against exp(A h) for the longest step: rounding level when the exponentials are accurate
+    longest = int(np.argmax(steps))
+    half = scipy.linalg.expm(A * (steps[longest] / 2))
+    ref = Phis[longest]
+    defect = float(np.linalg.norm(half @ half - ref) / max(np.linalg.norm(ref), np.finfo(float).tiny))
+    return Z, len(steps), defect
+
+
+def _input_error(f, tau: np.ndarray, F: np.ndarray, interpolation: str, n: int) -> float:
+    """max |f(t_mid) - interpolant(t_mid)| / max |f| over the interval midpoints."""
+    mid = (tau[:-1] + tau[1:]) / 2
+    f_mid = sample_callable(f, mid, n)
+    interp = SampledForce(tau, F, interpolation)(mid)
+    size = max(float(np.max(np.abs(F))), float(np.max(np.abs(f_mid))))
+    return float(np.max(np.abs(f_mid - interp)) / size) if size > 0 else 0.0

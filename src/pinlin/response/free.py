@@ -9,19 +9,24 @@ from math import factorial
 import numpy as np
 
 from ..errors import AccuracyWarning, ParameterError
+from ..frf.engine import DEFAULT_TOL
+from ..frf.expansion import CHUNK_ROWS, ModalExpansion, complex_matmul, modal_expansion
 from ..linearization.system import LinearizedSystem
-from ._array import ResponseArray
-from ._inputs import check_system, check_times, check_tolerance, check_vector
-from .expansion import CHUNK_ROWS, ModalExpansion, complex_matmul, modal_expansion
+from ..numerics import check_system, check_tolerance
+from ..results import ResultArray
+from ._inputs import check_times, check_vector
 
-__all__ = ["FreeResponse", "free_response", "modal_free_motion", "TIME_CHUNK"]
+__all__ = ["FreeResponse", "free_response", "modal_free_motion", "TIME_CHUNK", "DEFAULT_TOL"]
 
 #: Time points evaluated together (bounds the memory of long responses).
 TIME_CHUNK = 4096
 
 
-class FreeResponse(ResponseArray):
-    """x(t): a (len(t), n) real array, with the figures of the modal solution as attributes.
+class FreeResponse(ResultArray):
+    """x(t): a (len(t), n) real array (times first), with the figures of the modal solution as attributes.
+
+    A read-only ndarray; the figures live on the returned array only (slices
+    and arithmetic results are plain arrays).
 
     Attributes
     ----------
@@ -50,8 +55,12 @@ class FreeResponse(ResponseArray):
         Largest relative residual of the Jordan chain equations used (0 if none).
     method : str
         ``"modal"`` (simple dynamic stiffness) or ``"modal + Jordan chains"``.
+    error : float
+        The headline figure: ``max(defect, initial_defect, symmetry_defect)``,
+        the largest relative departure of the returned motion from the
+        equation, the initial conditions and a real solution.
     modes : Modes
-        The modal analysis used (reuse it through ``modes=``).
+        The modal analysis used (reuse it through ``modes=``; not in ``to_dict()``).
     elapsed : float
         Seconds, modal analysis included unless ``modes`` was given.
     """
@@ -65,12 +74,11 @@ class FreeResponse(ResponseArray):
         "projection_residual",
         "chain_residual",
         "method",
+        "error",
         "modes",
         "elapsed",
     )
-
-    def _summary(self) -> list[str]:
-        return [f"method={self.method!r}", f"defect={self.defect:.1e}", f"elapsed={self.elapsed * 1e3:.2f} ms"]
+    _dict_exclude = ("modes",)
 
 
 def _real_part_matmul(A: np.ndarray, B: np.ndarray) -> np.ndarray:
@@ -195,7 +203,7 @@ def free_response(
     *,
     t0: float = 0.0,
     modes=None,
-    tol: float = 1e-8,
+    tol: float = DEFAULT_TOL,
 ) -> FreeResponse:
     """Free vibration x(t) of M x'' + (D + G) x' + (S + N) x = 0 by the modal solution (SPEC section 6).
 
@@ -213,7 +221,7 @@ def free_response(
     chains (:func:`pinlin.jordan_chains`, SPEC section 4),
     exp(lam0 t) sum_{j<=i} t^j/j! x_{i-j}, with coefficients fitted to the
     part of the initial state the other modes leave (see
-    :mod:`pinlin.response.expansion`).  The coefficients from the left vectors
+    :mod:`pinlin.frf.expansion`).  The coefficients from the left vectors
     are then refined (iterative refinement on the initial state) so that the
     expansion reproduces (x0, v0) to rounding even for non-normal systems whose
     left vectors are less accurate than their right ones.  Either way the
@@ -257,7 +265,10 @@ def free_response(
     if t is None:
         raise ParameterError("t", "the output times are required")
     times = check_times(t)
-    t0 = float(t0)
+    try:
+        t0 = float(t0)
+    except (TypeError, ValueError):
+        raise ParameterError("t0", f"expected a time [s], got {t0!r:.80}") from None
     if not np.isfinite(t0):
         raise ParameterError("t0", f"must be finite, got {t0!r}")
     tol = check_tolerance(tol, "tol")
@@ -275,7 +286,7 @@ def free_response(
     initial = 0.0
     if rx > 0:
         initial = float(max(np.linalg.norm(xs[0] - x0) / rx, np.linalg.norm(xds[0] - v0) / rv))
-    method = "modal" if expansion.is_simple else "modal + Jordan chains"
+    method = expansion.method
     worst = max(defect, initial, symmetry)
     if worst > tol:
         warnings.warn(
@@ -296,6 +307,7 @@ def free_response(
         projection_residual=projection,
         chain_residual=expansion.chain_residual,
         method=method,
+        error=float(worst),
         modes=expansion.modes,
         elapsed=time.perf_counter() - t_start,
     )

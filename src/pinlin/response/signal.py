@@ -11,16 +11,30 @@ approximation.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from math import factorial
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
 from ..errors import ParameterError
 
-__all__ = ["SampledForce", "INTERPOLATIONS"]
+__all__ = ["SampledForce", "INTERPOLATIONS", "check_interpolation", "sample_callable"]
 
 #: Supported readings of a sampled force, with their polynomial degree.
 INTERPOLATIONS = {"linear": 1, "cubic": 3}
+
+
+def check_interpolation(value) -> int:
+    """The polynomial degree of a supported reading of a sampled force.
+
+    Raises
+    ------
+    ParameterError
+        ``value`` is not one of :data:`INTERPOLATIONS`.
+    """
+    if not isinstance(value, str) or value not in INTERPOLATIONS:
+        raise ParameterError("interpolation", f"expected one of {sorted(INTERPOLATIONS)}, got {value!r}")
+    return INTERPOLATIONS[value]
 
 
 @dataclass(frozen=True)
@@ -41,10 +55,8 @@ class SampledForce:
     interpolation: str = "linear"
 
     def __post_init__(self):
-        if self.interpolation not in INTERPOLATIONS:
-            raise ParameterError(
-                "interpolation", f"expected one of {sorted(INTERPOLATIONS)}, got {self.interpolation!r}"
-            )
+        """Raises ParameterError for an unknown interpolation, or 'cubic' with fewer than 4 samples."""
+        check_interpolation(self.interpolation)
         if self.interpolation == "cubic" and len(self.t) < 4:
             raise ParameterError("interpolation", f"'cubic' needs at least 4 samples, got {len(self.t)}")
 
@@ -76,7 +88,7 @@ class SampledForce:
         left[:, : min(3, d.shape[1])] = d[:, :3]
         for j in range(3):  # Taylor expansion of the j-th derivative to the right end
             for p in range(j, d.shape[1]):
-                right[:, j] += d[:, p] * h ** (p - j) / _factorial(p - j)
+                right[:, j] += d[:, p] * h ** (p - j) / factorial(p - j)
         return left, right
 
     def __call__(self, tt) -> np.ndarray:
@@ -89,5 +101,23 @@ class SampledForce:
         return (1 - w) * self.values[k] + w * self.values[k + 1]
 
 
-def _factorial(p: int) -> float:
-    return float(np.prod(np.arange(1, p + 1))) if p > 1 else 1.0
+def sample_callable(f, times: np.ndarray, n: int, label: str = "f") -> np.ndarray:
+    """``f(t) -> (n,)`` evaluated at each time: (len(times), n).
+
+    Raises
+    ------
+    ParameterError
+        A call that does not give n finite real numbers (the time is named).
+    """
+    out = np.empty((len(times), n))
+    for i, ti in enumerate(times):
+        try:
+            val = np.asarray(f(float(ti)), dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise ParameterError(label, f"calling f({ti!r}) did not give real numbers: {exc}") from None
+        if val.shape != (n,):
+            raise ParameterError(label, f"f(t) must return shape ({n},), got {val.shape} at t = {ti!r}")
+        if not np.all(np.isfinite(val)):
+            raise ParameterError(label, f"f(t) is not finite at t = {ti!r}: {val}")
+        out[i] = val
+    return out

@@ -16,9 +16,9 @@ import numpy as np
 import scipy.linalg
 
 from ..linearization.system import LinearizedSystem
-from ._inputs import check_system
+from ..numerics import check_system
 
-__all__ = ["first_order", "second_derivatives"]
+__all__ = ["first_order"]
 
 
 def first_order(sys: LinearizedSystem) -> tuple[np.ndarray, np.ndarray]:
@@ -42,11 +42,3 @@ def first_order(sys: LinearizedSystem) -> tuple[np.ndarray, np.ndarray]:
     B = np.zeros((2 * n, n))
     B[n:] = Minv
     return A, B
-
-
-def second_derivatives(sys: LinearizedSystem, x: np.ndarray, xdot: np.ndarray, f: np.ndarray | None = None):
-    """x'' = M^{-1} (f - C x' - K x) for rows of samples (k, n)."""
-    rhs = -(xdot @ sys.C.T) - x @ sys.K.T
-    if f is not None:
-        rhs = rhs + f
-    return scipy.linalg.cho_solve(scipy.linalg.cho_factor(sys.M), rhs.T).T

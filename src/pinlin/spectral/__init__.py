@@ -1,24 +1,33 @@
 """Spectral analysis of L(lam) = lam^2 M + lam C + K (SPEC sections 4, 5 and 9).
 
-One concept per module:
+One concept per module, in the order of :func:`modal_analysis`:
 
-- :mod:`.problem` -- the coefficients, their norms, Fan-Lin-Van Dooren scaling;
+- :mod:`.problem` -- the coefficients and their norms (Fan-Lin-Van Dooren
+  scaling from :mod:`pinlin.numerics.scaling`);
+- :mod:`.paths` -- which solver path applies, and why (:func:`choose_path`);
 - :mod:`.qep` -- the general solver (scaled companion form, QZ, vector recovery);
 - :mod:`.structured` -- cheaper exact paths for structured mechanical systems;
-- :mod:`.accuracy` -- backward error eta, condition number kappa, error bounds;
-- :mod:`.jordan` -- clusters, partial multiplicities, Jordan chains;
+- :mod:`.accuracy` -- eta, kappa, sensitivities and the error model (bounds as
+  functions of the data uncertainty) of the computed pairs (formulas in
+  :mod:`pinlin.numerics.accuracy`);
+- :mod:`.multiplicity` -- clusters of computed eigenvalues and their partial
+  multiplicities (block Toeplitz ranks);
+- :mod:`.jordan` -- Jordan chains at an eigenvalue (:func:`jordan_chains`);
 - :mod:`.qualitative` -- modal constants m, d, g, k, n and structural facts;
-- :mod:`.stability` -- the honest stability verdict;
-- :mod:`.modes` -- the result object;
+- :mod:`.verdict` -- the :class:`Stability` verdict and the theorems on structure alone;
+- :mod:`.stability_rules` -- the rules of the verdict, tried in order;
+- :mod:`.stability` -- :func:`decide_stability`, :func:`stability_from_structure`;
+- :mod:`.modes` -- the result object :class:`Modes`;
 - :mod:`.analysis` -- :func:`modal_analysis`, which ties them together.
 """
 
 from .analysis import EIGH_TOL, STRUCTURE_TOL, modal_analysis
-from .jordan import CLUSTER_TOL, RANK_TOL, Cluster, JordanChains, jordan_chains
+from .jordan import CLUSTER_TOL, RANK_TOL, JordanChains, jordan_chains
 from .modes import MODE_KINDS, Method, Modes
+from .multiplicity import Cluster
 from .problem import QuadraticProblem, Scaling, as_problem, fan_lin_van_dooren
-from .qualitative import DEFINITENESS_TOL, ModeConstants, StructuralFacts
-from .stability import KINDS, STABILITY_SAFETY, Stability, stability_from_structure
+from .qualitative import DEFAULT_UNCERTAINTY, DEFINITENESS_TOL, ModeConstants, StructuralFacts
+from .stability import KINDS, MARGIN_CAP, STABILITY_SAFETY, Stability, stability_from_structure
 
 __all__ = [
     "modal_analysis",
@@ -42,5 +51,7 @@ __all__ = [
     "STRUCTURE_TOL",
     "EIGH_TOL",
     "DEFINITENESS_TOL",
+    "DEFAULT_UNCERTAINTY",
     "STABILITY_SAFETY",
+    "MARGIN_CAP",
 ]

@@ -23,9 +23,8 @@ relative condition number times eta |lam|:
 
 (the SPEC section 5 "kappa eta |lambda|"), which stays finite at lam = 0.  It
 is a first-order estimate, infinite for a defective eigenvalue.  In the bound
-eta is taken at least :data:`ETA_FLOOR` (the unit roundoff eps): a residual
-that happens to round to less does not make the eigenvalue more accurate than
-the floating-point data it came from.
+eta is taken at least :data:`~pinlin.numerics.ETA_FLOOR` (machine epsilon).
+eta and kappa themselves are computed by :mod:`pinlin.numerics.accuracy`.
 """
 
 from __future__ import annotations
@@ -34,26 +33,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..numerics.accuracy import ETA_FLOOR, backward_errors, column_norms, condition_numbers, homogeneous
 from .problem import QuadraticProblem
 
-__all__ = ["PairFigures", "pair_figures", "homogeneous", "ETA_FLOOR"]
-
-#: Smallest backward error used in error bounds (machine epsilon).
-ETA_FLOOR = float(np.finfo(float).eps)
-
-
-def homogeneous(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(a, b) with lam = a / b and |a|^2 + |b|^2 = 1, b real >= 0, without overflow."""
-    lam = np.asarray(lam, dtype=complex)
-    r = np.abs(lam)
-    small = r <= 1
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = np.where(small, 1.0, 1.0 / np.where(r == 0, 1.0, r))
-        b_small = 1.0 / np.sqrt(1.0 + r * r * small)
-        b_big = inv / np.sqrt(1.0 + inv * inv)
-    b = np.where(small, b_small, b_big)
-    a = lam * b
-    return a, b
+__all__ = [
+    "PairFigures",
+    "pair_figures",
+    "ErrorModel",
+    "DefectiveBound",
+    "defective_scale",
+    "homogeneous",
+    "backward_errors",
+    "ETA_FLOOR",
+]
 
 
 @dataclass(frozen=True)
@@ -71,6 +63,10 @@ class PairFigures:
     derivative : (k,) complex
         y^T L'(lam) x for the unit-norm x and y (0 for a defective eigenvalue).
     backward_error, condition, error_bound : (k,) float
+    sensitivity : (k,) float
+        w(lam) ||x|| ||y|| / |y^T L'(lam) x| [rad/s]: the first-order change of lam per
+        unit relative (normwise) perturbation of the coefficients; inf when
+        y^T L' x = 0.  ``error_bound = max(eta, ETA_FLOOR) * sensitivity``.
     left_unit : (n, k) complex
         The left vectors with unit 2-norm.
     products : tuple of three (n, k) complex
@@ -84,25 +80,9 @@ class PairFigures:
     backward_error: np.ndarray
     condition: np.ndarray
     error_bound: np.ndarray
+    sensitivity: np.ndarray
     left_unit: np.ndarray
     products: tuple[np.ndarray, np.ndarray, np.ndarray]
-
-
-def _colnorm(A: np.ndarray) -> np.ndarray:
-    return np.sqrt(np.einsum("ij,ij->j", A.real, A.real) + np.einsum("ij,ij->j", A.imag, A.imag))
-
-
-def backward_errors(problem: QuadraticProblem, lam, X, MX, CX, KX) -> np.ndarray:
-    """eta for each column of X (any scaling), given the products M X, C X, K X.
-
-    A zero column gives inf; an exactly zero residual gives 0.
-    """
-    R = MX * (lam * lam) + CX * lam + KX
-    num = _colnorm(R)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        eta = num / (problem.weight(lam) * _colnorm(X))
-    # an exact residual 0 is eta = 0 even where the weight vanishes (lam = 0, K = 0)
-    return np.where(num == 0, 0.0, np.where(np.isfinite(eta), eta, np.inf))
 
 
 def pair_figures(problem: QuadraticProblem, lam, X, Y, MX, CX, KX) -> PairFigures:
@@ -119,25 +99,96 @@ def pair_figures(problem: QuadraticProblem, lam, X, Y, MX, CX, KX) -> PairFigure
         often can do it cheaper than here).
     """
     lam = np.asarray(lam, dtype=complex)
-    nx = _colnorm(X)
-    ny = _colnorm(Y)
+    nx = column_norms(X)
     X, MX, CX, KX = X / nx, MX / nx, CX / nx, KX / nx
-    Y = Y / ny
-    eta = backward_errors(problem, lam, X, MX, CX, KX)
-    yMx = np.einsum("ij,ij->j", Y, MX)
-    yCx = np.einsum("ij,ij->j", Y, CX)
-    yKx = np.einsum("ij,ij->j", Y, KX)
+    Y = Y / column_norms(Y)
+    eta = backward_errors(lam, X, MX, CX, KX, problem.norms)
+    yMx, yCx, yKx = (np.einsum("ij,ij->j", Y, P) for P in (MX, CX, KX))
     deriv = 2 * lam * yMx + yCx
-    a, b = homogeneous(lam)
-    aa, bb = np.abs(a) ** 2, np.abs(b) ** 2
-    num = np.sqrt(aa * aa * problem.norm_M**2 + aa * bb * problem.norm_C**2 + bb * bb * problem.norm_K**2)
-    den = np.abs(2 * a * np.conj(b) * yMx + (bb - aa) * yCx - 2 * np.conj(a) * b * yKx)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        kappa = np.where(den > 0, num / np.where(den > 0, den, 1.0), np.inf)
-        eta_floor = np.maximum(eta, ETA_FLOOR)
-        bound = np.where(
-            np.abs(deriv) > 0, eta_floor * problem.weight(lam) / np.where(deriv != 0, np.abs(deriv), 1.0), np.inf
-        )
+    kappa = condition_numbers(lam, yMx, yCx, yKx, problem.norms)
     ok = np.abs(deriv) > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sens = np.where(ok, problem.weight(lam) / np.where(ok, np.abs(deriv), 1.0), np.inf)
+    bound = np.maximum(eta, ETA_FLOOR) * sens
     left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
-    return PairFigures(X, left, ok, deriv, eta, kappa, bound, Y, (MX, CX, KX))
+    return PairFigures(X, left, ok, deriv, eta, kappa, bound, sens, Y, (MX, CX, KX))
+
+
+@dataclass(frozen=True)
+class DefectiveBound:
+    """The error bound of the members of a defective cluster (chains of length p > 1).
+
+    .. math::  r(\\delta) = \\text{spread} + \\text{scale}\\,(\\eta + \\delta)^{1/p}
+
+    Attributes
+    ----------
+    indices : tuple of int
+    spread : float
+        Largest distance of a member from the cluster mean [rad/s].
+    scale : float
+        [rad/s], see :func:`defective_scale`.
+    eta : float
+        Largest backward error of the members (at least ETA_FLOOR).
+    index : int
+        p, the longest chain.
+    """
+
+    indices: tuple[int, ...]
+    spread: float
+    scale: float
+    eta: float
+    index: int
+
+
+def defective_scale(problem: QuadraticProblem, center: complex, p: int) -> float:
+    """The scale c of the error c eta^(1/p) of an eigenvalue with Jordan chains of length p [rad/s].
+
+    .. math::
+        c = s \\left(\\frac{w(s)}{s^2 \\|M\\|}\\right)^{1/p},\\qquad s = \\max(|\\lambda_c|, \\gamma),
+        \\quad w(s) = s^2\\|M\\| + s\\|C\\| + \\|K\\|
+
+    Near a defective eigenvalue L(lam) behaves like (lam - lam_c)^p times a
+    coefficient of size ||M|| s^(2-p), while a relative perturbation eta of the
+    coefficients changes L by about eta w(s): (lam - lam_c)^p ~ eta w(s) s^(p-2) / ||M||.
+    For the critically damped oscillator lam^2 + 2 omega lam + omega^2 this is
+    exactly the worst-case split 2 omega sqrt(eta).
+    """
+    s = max(abs(complex(center)), problem.scaling.gamma)
+    w = float(problem.weight(s))
+    return float(s * (w / (s * s * problem.norm_M)) ** (1.0 / p))
+
+
+@dataclass(frozen=True, eq=False)
+class ErrorModel:
+    """First-order error bounds of computed eigenvalues as functions of a relative data perturbation delta.
+
+    .. math::
+        r_k(\\delta) = (\\max(\\eta_k, \\epsilon) + \\delta)\\,s_k
+
+    with s_k the :attr:`PairFigures.sensitivity` (for a semisimple cluster
+    w(lam) ||y_k|| with the biorthogonalized left vectors); members of a
+    defective cluster follow :class:`DefectiveBound`.  ``bound(0)`` is the
+    error bound of the computation (``Modes.error_bound``); ``bound(u)`` also
+    covers every system within a relative perturbation u of the data (the
+    verdict's ``uncertainty``).
+
+    Attributes
+    ----------
+    eta : (2n,) float
+        Backward errors, at least ETA_FLOOR.
+    sensitivity : (2n,) float
+        [rad/s] per unit relative perturbation; inf for defective members.
+    defective : tuple of DefectiveBound
+    """
+
+    eta: np.ndarray
+    sensitivity: np.ndarray
+    defective: tuple[DefectiveBound, ...] = ()
+
+    def bound(self, delta: float = 0.0) -> np.ndarray:
+        """r(delta) for every eigenvalue [rad/s]."""
+        with np.errstate(invalid="ignore"):
+            r = (self.eta + delta) * self.sensitivity
+        for d in self.defective:
+            r[list(d.indices)] = d.spread + d.scale * (d.eta + delta) ** (1.0 / d.index)
+        return r

@@ -1,88 +1,39 @@
 """``modal_analysis``: choose a solver path, solve, and attach every error figure.
 
-See SPEC sections 4, 5 and 9 and :mod:`pinlin.spectral.structured` for the
-paths.
+See SPEC sections 4, 5 and 9, :mod:`pinlin.spectral.paths` for the choice of
+path and :mod:`pinlin.spectral.structured` for the paths themselves.
 """
 
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 
 from ..errors import ParameterError
-from .accuracy import ETA_FLOOR, pair_figures
-from .jordan import CLUSTER_TOL, RANK_TOL, Cluster, analyse_cluster, find_clusters
+from ..numerics.accuracy import ETA_FLOOR
+from ..numerics.checks import check_tolerance, check_uncertainty
+from ..numerics.clustering import CLUSTER_TOL, find_clusters
+from ..numerics.definiteness import DEFAULT_UNCERTAINTY
+from ..numerics.floating import EPS
+from ..numerics.rank import JORDAN_RANK_TOL
+from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
 from .modes import Method, Modes
-from .problem import QuadraticProblem, Scaling, as_problem, check_tolerance
-from .qep import RawSpectrum, solve_general
-from .qualitative import DEFINITENESS_TOL, mode_constants, structural_facts
+from .multiplicity import Cluster, analyse_cluster
+from .problem import QuadraticProblem, as_problem
+from .qep import RawSpectrum
+from .qualitative import mode_constants, structural_facts
 from .stability import STABILITY_SAFETY, decide_stability
-from .structured import PATHS, proportionality_defect, solve_proportional, solve_squared, solve_symmetric
+from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
+from .structured import PATHS
 
-__all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL"]
+__all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL", "BIORTHOGONAL_RCOND"]
 
-#: Default relative defect below which damping counts as proportional
-#: (commutator D M^-1 S - S M^-1 D, and the off-diagonal part left by the modes).
-STRUCTURE_TOL = 1e-10
-
-#: Default largest backward error accepted from the symmetric path's eigh.
-EIGH_TOL = 1e-14
-
-
-def _choose(problem: QuadraticProblem, method: str, structure_tol: float, eigh_tol: float):
-    """(path name, reason, raw spectrum or None) for the requested method."""
-    sys = problem.system
-    if sys is None:
-        if method not in ("auto", "general"):
-            raise ParameterError(
-                "method", f"the structured path {method!r} needs a LinearizedSystem; a tuple (M, C, K) is general"
-            )
-        return "general", "tuple input: general real coefficients, scaled companion QZ (size 2n)", None
-    zD, zG, zN = sys.is_zero("D"), sys.is_zero("G"), sys.is_zero("N")
-    if method == "general":
-        return "general", "requested: scaled companion QZ (size 2n)", None
-    if method == "symmetric" or (method == "auto" and zD and zG and zN):
-        if not (zD and zG and zN):
-            raise ParameterError("method", f"'symmetric' needs D = G = N = 0; nonzero: {sys.nonzero}")
-        return "symmetric", "D = G = N = 0: lam = +-sqrt(-mu) with (S - mu M) phi = 0 (eigh, size n)", None
-    if method == "squared" or (method == "auto" and zD and zG):
-        if not (zD and zG):
-            raise ParameterError("method", f"'squared' needs D = G = 0; nonzero: {sys.nonzero}")
-        return (
-            "squared",
-            "D = G = 0, N != 0: L depends on lam^2 only; QZ of (-K, M) for mu = lam^2 (size n), lam = +-sqrt(mu)",
-            None,
-        )
-    if method == "proportional" or (method == "auto" and zG and zN):
-        if not (zG and zN):
-            raise ParameterError("method", f"'proportional' needs G = N = 0; nonzero: {sys.nonzero}")
-        comm = proportionality_defect(problem)
-        raw = None
-        defect = np.inf
-        how = ""
-        if comm <= structure_tol:
-            raw, defect, how = solve_proportional(problem, structure_tol=structure_tol, eigh_tol=eigh_tol)
-        if raw is not None:
-            return (
-                "proportional",
-                f"G = N = 0, D M^-1 S = S M^-1 D (relative commutator {comm:.1e} <= structure_tol "
-                f"{structure_tol:g}): modal decoupling by one {how} of size n"
-                + (" (eigh lost accuracy: M ill-conditioned)" if how == "QZ" else "")
-                + ", lam^2 + d_j lam + k_j = 0 per mode",
-                raw,
-            )
-        why = f"relative commutator {comm:.1e}"
-        if np.isfinite(defect) and comm <= structure_tol:
-            why += f", modal residual {defect:.1e}"
-        elif how == "QZ":
-            why += ", QZ modes complex"
-        if method == "proportional":
-            raise ParameterError("method", f"'proportional' needs D M^-1 S = S M^-1 D; {why} > {structure_tol:g}")
-        return "general", f"G = N = 0 but damping not proportional ({why} > structure_tol): scaled companion QZ", None
-    if method != "auto":
-        raise ParameterError("method", f"expected 'auto' or one of {PATHS}, got {method!r}")
-    return "general", f"nonzero {'+'.join(sys.nonzero)}: no cheaper exact path; scaled companion QZ (size 2n)", None
+#: The left vectors of a semisimple cluster are biorthogonalized (Y^T L' X = I)
+#: only when sigma_min / sigma_max of Y^T L' X exceeds this: a thousand times the
+#: rounding level of that SVD, so that the inverse keeps three digits or more.
+BIORTHOGONAL_RCOND = 1e3 * EPS
 
 
 def _order(raw: RawSpectrum) -> RawSpectrum:
@@ -121,11 +72,12 @@ def modal_analysis(
     method: str = "auto",
     scaling: bool = True,
     cluster_tol: float = CLUSTER_TOL,
-    rank_tol: float = RANK_TOL,
+    rank_tol: float = JORDAN_RANK_TOL,
     structure_tol: float = STRUCTURE_TOL,
-    definiteness_tol: float = DEFINITENESS_TOL,
+    uncertainty: float = DEFAULT_UNCERTAINTY,
     safety: float = STABILITY_SAFETY,
     eigh_tol: float = EIGH_TOL,
+    definiteness_tol: float | None = None,
 ) -> Modes:
     """Eigenvalues, eigenvectors, error figures and a stability verdict (SPEC sections 4, 5, 9).
 
@@ -139,8 +91,12 @@ def modal_analysis(
     Parameters
     ----------
     sys : LinearizedSystem or tuple (M, C, K)
-        A tuple holds general real square matrices (M nonsingular, not
-        necessarily symmetric) and always takes the general path.
+        A LinearizedSystem is mechanical: M symmetric positive definite, D, S
+        symmetric, G, N skew (checked by its constructor and
+        :meth:`~pinlin.LinearizedSystem.from_matrices`).  A tuple is a *general*
+        quadratic eigenproblem (SPEC section 4): real square matrices of one
+        size, M nonsingular and not necessarily symmetric; it always takes the
+        general path and no theorem of SPEC section 5 is applied to it.
     method : {"auto", "symmetric", "squared", "proportional", "general"}
         "auto" picks the cheapest applicable path; naming one forces it
         (ParameterError if it does not apply).
@@ -151,13 +107,18 @@ def modal_analysis(
         (for comparison).
     cluster_tol : float
         Relative distance under which computed eigenvalues are grouped as one
-        multiple eigenvalue (see :data:`~pinlin.spectral.jordan.CLUSTER_TOL`).
+        multiple eigenvalue (see :data:`~pinlin.numerics.CLUSTER_TOL`).
     rank_tol : float
         Relative singular value threshold of the Jordan rank decisions.
     structure_tol : float
         Relative defect under which damping counts as proportional.
-    definiteness_tol : float
-        Relative eigenvalue threshold of the definiteness tests of D and S.
+    uncertainty : float
+        Relative uncertainty of the data in [0, 1) (default 0: the matrices as
+        stored, only their rounding).  The definiteness decisions hold for every
+        matrix within it (:func:`pinlin.numerics.definiteness`) and the
+        eigenvalue bounds of the verdict cover it: ``(eta + uncertainty) *
+        sensitivity``.  The verdict then holds for every system within that
+        uncertainty; ``stability.margin`` says how large a perturbation it survives.
     safety : float
         Factor (>= 1) on the first-order error bounds in the stability verdict
         and the per-mode kinds.
@@ -165,6 +126,9 @@ def modal_analysis(
         Largest backward error accepted from the Cholesky-based ``eigh`` of the
         symmetric path (its error grows like eps cond(M)); above it the same
         n-size problem is solved by QZ, which is backward stable.
+    definiteness_tol : float, optional
+        The name of pinlin 0.2 for ``uncertainty`` (deprecated; a relative
+        eigenvalue threshold then, the same role now).
 
     Returns
     -------
@@ -178,100 +142,180 @@ def modal_analysis(
     SingularMassError
         M of a tuple is singular.
     ComputationError
-        QZ failed.
+        QZ failed, or the problem's eigenvalue scale is outside double range.
     """
     t0 = time.perf_counter()
     problem = as_problem(sys)
-    cluster_tol = check_tolerance("cluster_tol", cluster_tol)
-    rank_tol = check_tolerance("rank_tol", rank_tol)
-    structure_tol = check_tolerance("structure_tol", structure_tol)
-    definiteness_tol = check_tolerance("definiteness_tol", definiteness_tol)
-    eigh_tol = check_tolerance("eigh_tol", eigh_tol)
-    safety = check_tolerance("safety", safety, upper=None)
-    if safety < 1:
-        raise ParameterError("safety", f"expected a factor >= 1, got {safety:g}")
+    if definiteness_tol is not None:
+        warnings.warn(
+            "modal_analysis(definiteness_tol=...) is deprecated: pass uncertainty=... (the relative data "
+            "uncertainty the definiteness decisions hold against)", DeprecationWarning, stacklevel=2,
+        )
+        uncertainty = definiteness_tol
+    tolerances = _check_options(
+        method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
+        uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
+    )
+    name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
+    raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
+    raw = _order(raw)
+    lam = raw.lam
+    fig = pair_figures(problem, lam, raw.X, raw.Y, raw.MX, raw.CX, raw.KX)
+    clusters, notes = _clusters(problem, lam, fig, tolerances)
+    left, left_ok, condition, model, more = _cluster_figures(problem, lam, fig, clusters)
+    notes += more
+    multiplicity = np.ones(lam.shape[0], dtype=int)
+    for c in clusters:
+        multiplicity[list(c.indices)] = c.algebraic
+    freq = np.abs(lam)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zeta = np.where(freq > 0, -lam.real / np.where(freq > 0, freq, 1.0), np.nan)
+    facts = structural_facts(problem, tolerances["uncertainty"])
+    bound = model.bound(0.0)
+    notes += _mass_notes(facts, lam, bound)
+    # a coordinate on which neither K nor C acts drifts exactly: x(t) = t e_j
+    drift = bool(np.any(~np.any(problem.K, axis=0) & ~np.any(problem.C, axis=0)))
+    stability = decide_stability(
+        facts, lam, model, clusters, K_is_zero=not np.any(problem.K), exact_drift=drift,
+        safety=tolerances["safety"], uncertainty=tolerances["uncertainty"],
+    )
+    return Modes(
+        eigenvalues=lam,
+        right=fig.right,
+        left=left,
+        left_normalized=left_ok,
+        backward_error=fig.backward_error,
+        condition=condition,
+        error_bound=bound,
+        natural_frequency=freq,
+        damping_ratio=zeta,
+        kind=_mode_kinds(lam, tolerances["safety"] * model.bound(tolerances["uncertainty"]), clusters),
+        multiplicity=multiplicity,
+        clusters=tuple(clusters),
+        is_simple=all(c.semisimple for c in clusters),
+        constants=mode_constants(lam, fig.right, *fig.products) if problem.mechanical else None,
+        structure=facts,
+        stability=stability,
+        method=Method(name, reason),
+        scaling=used_scaling,
+        block=raw.block,
+        tolerances=tolerances,
+        system=problem.system,
+        matrices=(problem.M, problem.C, problem.K),
+        elapsed=time.perf_counter() - t0,
+        notes=tuple(notes),
+    )
+
+
+def _mass_notes(facts, lam, bound) -> list[str]:
+    """Issue 13: an M positive definite only within rounding is said, with the eigenvalues it spoils."""
+    on_M = facts.definiteness_M
+    if on_M is None or on_M.kind == "positive_definite":
+        return []
+    lost = int(np.sum(bound >= np.abs(lam)))
+    return [
+        f"M is positive definite only within rounding: its smallest eigenvalue {on_M.min_eigenvalue:.3g} is "
+        f"within {on_M.threshold:.2g} (c n eps ||M|| + uncertainty ||M||) of zero, so a perturbation of M at that "
+        f"level makes it singular; {lost} of the {lam.shape[0]} eigenvalues have an error bound at least their "
+        f"modulus (they lose their meaning)"
+    ]
+
+
+def _check_options(method, scaling, **tolerances) -> dict[str, float]:
+    """The validated tolerances of :func:`modal_analysis` (method and scaling checked too).
+
+    Raises
+    ------
+    ParameterError
+        A tolerance not in (0, 1), an uncertainty not in [0, 1), a safety factor below 1, an
+        unknown method, a non-bool scaling.
+    """
+    out = {
+        name: check_tolerance(tolerances[name], name, upper=1.0)
+        for name in ("cluster_tol", "rank_tol", "structure_tol")
+    }
+    out["uncertainty"] = check_uncertainty(tolerances["uncertainty"])
+    out["safety"] = check_tolerance(tolerances["safety"], "safety")
+    if out["safety"] < 1:
+        raise ParameterError("safety", f"expected a factor >= 1, got {out['safety']:g}")
+    out["eigh_tol"] = check_tolerance(tolerances["eigh_tol"], "eigh_tol", upper=1.0)
     if not isinstance(method, str):
         raise ParameterError("method", f"expected a string, got {method!r}")
     if not isinstance(scaling, (bool, np.bool_)):
         raise ParameterError("scaling", f"expected True or False, got {scaling!r}")
     if method not in ("auto",) + PATHS:
         raise ParameterError("method", f"expected 'auto' or one of {PATHS}, got {method!r}")
+    return out
 
-    name, reason, raw = _choose(problem, method, structure_tol, eigh_tol)
-    used_scaling: Scaling | None = None
-    if name == "general":
-        used_scaling = problem.scaling if scaling else Scaling(1.0, 1.0)
-        raw = solve_general(problem, scaling=None if scaling else used_scaling)
-        if not scaling:
-            reason += " (unscaled, as requested)"
-        if raw.note:
-            reason += f"; {raw.note}"
-    elif name == "symmetric":
-        raw, worst = solve_symmetric(problem)
-        if worst > eigh_tol:
-            raw = solve_squared(problem)
-            reason += (
-                f"; eigh's Cholesky lost accuracy (max eta {worst:.1e} > eigh_tol {eigh_tol:g}, M ill-conditioned), "
-                f"so (S - mu M) was solved by QZ (size n) instead"
-            )
-    elif name == "squared":
-        raw = solve_squared(problem)
-    raw = _order(raw)
-    lam = raw.lam
-    fig = pair_figures(problem, lam, raw.X, raw.Y, raw.MX, raw.CX, raw.KX)
-    left = fig.left.copy()
-    left_ok = fig.left_normalized.copy()
-    condition = fig.condition.copy()
-    bound = fig.error_bound.copy()
+
+def _clusters(problem: QuadraticProblem, lam, fig: PairFigures, tolerances) -> tuple[list[Cluster], list[str]]:
+    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, and notes."""
     notes: list[str] = []
-
-    # multiple eigenvalues
-    gamma = problem.scaling.gamma
     clusters: list[Cluster] = []
-    for idx in find_clusters(lam, cluster_tol, gamma, fig.error_bound, safety):
-        c = analyse_cluster(problem, lam, idx, rank_tol)
+    groups = find_clusters(
+        lam, tolerances["cluster_tol"], problem.scaling.gamma, fig.error_bound, tolerances["safety"]
+    )
+    for idx in groups:
+        c = analyse_cluster(problem, lam, idx, tolerances["rank_tol"])
         if c.geometric == 0:
             notes.append(
                 f"eigenvalues {[i + 1 for i in idx]} are within cluster_tol but L is nonsingular at their mean "
-                f"(rank_tol {rank_tol:g}): treated as distinct"
+                f"(rank_tol {tolerances['rank_tol']:g}): treated as distinct"
             )
             continue
         if not c.consistent:
             notes.append(c.note)
         clusters.append(c)
+    return clusters, notes
+
+
+def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
+    """Left vectors, condition numbers and the error model corrected for the clusters.
+
+    A semisimple cluster gets left vectors biorthogonalized at its mean
+    (Y^T L'(lam_c) X = I) and sensitivities w(lam) ||y||; a defective one unit
+    left vectors, kappa = inf and the bound spread + scale eta^(1/p)
+    (:class:`~pinlin.spectral.accuracy.DefectiveBound`, :func:`defective_scale`).
+    """
+    left = fig.left.copy()
+    left_ok = fig.left_normalized.copy()
+    condition = fig.condition.copy()
+    sens = fig.sensitivity.copy()
+    eta = np.maximum(fig.backward_error, ETA_FLOOR)
+    defective = []
+    notes: list[str] = []
+    gamma = problem.scaling.gamma
+    for c in clusters:
         ii = list(c.indices)
         if c.semisimple or c.index == 1:
-            Lp = 2 * c.center * problem.M + problem.C
             Y = fig.left_unit[:, ii]
-            P = Y.T @ Lp @ fig.right[:, ii]
+            P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
             try:
                 sv = np.linalg.svd(P, compute_uv=False)
-                if sv[-1] <= 1e3 * np.finfo(float).eps * sv[0] or sv[0] == 0:
-                    raise np.linalg.LinAlgError
+                if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
+                    raise np.linalg.LinAlgError("Y^T L' X is numerically singular")
                 Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
-                left[:, ii] = Yn
-                left_ok[ii] = True
-                eta_b = np.maximum(fig.backward_error[ii], ETA_FLOOR)
-                bound[ii] = eta_b * problem.weight(lam[ii]) * np.linalg.norm(Yn, axis=0)
             except np.linalg.LinAlgError:
                 notes.append(f"cluster at {c.center:.6g}: left vectors could not be biorthogonalized")
+                continue
+            left[:, ii] = Yn
+            left_ok[ii] = True
+            sens[ii] = problem.weight(lam[ii]) * np.linalg.norm(Yn, axis=0)
         else:
             left[:, ii] = fig.left_unit[:, ii]
             left_ok[ii] = False
             condition[ii] = np.inf
+            sens[ii] = np.inf
             spread = float(np.max(np.abs(lam[ii] - c.center)))
-            eta = max(float(np.max(fig.backward_error[ii])), ETA_FLOOR)
-            bound[ii] = spread + max(abs(c.center), gamma) * eta ** (1.0 / c.index)
-    multiplicity = np.ones(lam.shape[0], dtype=int)
-    for c in clusters:
-        multiplicity[list(c.indices)] = c.algebraic
-    is_simple = all(c.semisimple for c in clusters)
+            defective.append(
+                DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
+                               c.index)
+            )
+    return left, left_ok, condition, ErrorModel(eta, sens, tuple(defective)), notes
 
-    freq = np.abs(lam)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        zeta = np.where(freq > 0, -lam.real / np.where(freq > 0, freq, 1.0), np.nan)
-    r = safety * bound
-    # members of a cluster are classified by its mean, the accurate value
+
+def _mode_kinds(lam, r, clusters) -> tuple[str, ...]:
+    """Per eigenvalue one of MODE_KINDS against its bound r; cluster members by the cluster's mean."""
     typical = lam.copy()
     for c in clusters:
         typical[list(c.indices)] = c.center
@@ -285,45 +329,4 @@ def modal_analysis(
             kinds.append("underdamped")
         else:
             kinds.append("overdamped")
-
-    constants = mode_constants(lam, fig.right, *fig.products) if problem.mechanical else None
-    facts = structural_facts(problem, definiteness_tol)
-    K_zero = not np.any(problem.K)
-    # a coordinate on which neither K nor C acts drifts exactly: x(t) = t e_j
-    drift = bool(np.any(~np.any(problem.K, axis=0) & ~np.any(problem.C, axis=0)))
-    stability = decide_stability(
-        facts, lam, bound, clusters, K_is_zero=K_zero, exact_drift=drift, safety=safety
-    )
-    return Modes(
-        eigenvalues=lam,
-        right=fig.right,
-        left=left,
-        left_normalized=left_ok,
-        backward_error=fig.backward_error,
-        condition=condition,
-        error_bound=bound,
-        natural_frequency=freq,
-        damping_ratio=zeta,
-        kind=tuple(kinds),
-        multiplicity=multiplicity,
-        clusters=tuple(clusters),
-        is_simple=is_simple,
-        constants=constants,
-        structure=facts,
-        stability=stability,
-        method=Method(name, reason),
-        scaling=used_scaling,
-        block=raw.block,
-        tolerances={
-            "cluster_tol": cluster_tol,
-            "rank_tol": rank_tol,
-            "structure_tol": structure_tol,
-            "definiteness_tol": definiteness_tol,
-            "safety": safety,
-            "eigh_tol": eigh_tol,
-        },
-        system=problem.system,
-        matrices=(problem.M, problem.C, problem.K),
-        elapsed=time.perf_counter() - t0,
-        notes=tuple(notes),
-    )
+    return tuple(kinds)

@@ -8,8 +8,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..linearization.system import LinearizedSystem
-from .jordan import Cluster
-from .problem import Scaling
+from ..numerics.scaling import Scaling
+from ..results import Result, readonly
+from .multiplicity import Cluster
 from .qualitative import ModeConstants, StructuralFacts
 from .stability import Stability
 
@@ -47,14 +48,8 @@ class Method(str):
         return (Method, (self.name, self.reason))
 
 
-def _readonly(a):
-    a = np.array(a, copy=True)
-    a.flags.writeable = False
-    return a
-
-
 @dataclass(frozen=True, eq=False, repr=False)
-class Modes:
+class Modes(Result):
     """Eigenvalues and eigenvectors of L(lam) = lam^2 M + lam C + K with their error figures.
 
     Order: ascending natural frequency |lam|; a complex conjugate pair is
@@ -86,7 +81,8 @@ class Modes:
         Tisseur's absolute condition number (SPEC section 5's kappa eta |lam|),
         with eta at least machine epsilon.
         For a defective cluster: the spread of the cluster plus
-        max(|lam_c|, gamma) eta^(1/p), p the longest chain.
+        c eta^(1/p), p the longest chain and c of
+        :func:`pinlin.spectral.accuracy.defective_scale` (about max(|lam_c|, gamma)).
     natural_frequency : (2n,) float
         |lam_k| [rad/s].
     damping_ratio : (2n,) float
@@ -113,7 +109,7 @@ class Modes:
         The verdict (``.kind``, ``.reason``).
     method : Method
         Solver path ("symmetric", "squared", "proportional", "general") with
-        ``.reason``.
+        ``.reason`` (in ``to_dict()``: ``method`` and ``method_reason``).
     scaling : Scaling or None
         Fan-Lin-Van Dooren parameters used by the general path (None if none).
         A heavily damped problem is also solved with the tropical scalings (two
@@ -128,9 +124,17 @@ class Modes:
     matrices : tuple of (n, n) ndarray
         (M, C, K) as analysed.
     elapsed : float
-        Seconds spent in :func:`modal_analysis`.
+        Seconds spent in :func:`modal_analysis` [s].
     notes : tuple of str
+    error : float
+        The largest backward error eta of the eigenpairs, ``max(backward_error)``
+        (relative, SPEC section 4); the per-pair figures are ``backward_error``,
+        ``condition`` and ``error_bound``.
+
+    ``to_dict()`` leaves out ``system`` and ``matrices`` (the input).
     """
+
+    _dict_exclude = ("system", "matrices")
 
     eigenvalues: np.ndarray
     right: np.ndarray
@@ -171,7 +175,7 @@ class Modes:
             "multiplicity",
             "block",
         ):
-            object.__setattr__(self, name, _readonly(getattr(self, name)))
+            object.__setattr__(self, name, readonly(getattr(self, name)))
 
     # ------------------------------------------------------------------ access
 
@@ -194,6 +198,17 @@ class Modes:
     @property
     def max_backward_error(self) -> float:
         return float(np.max(self.backward_error))
+
+    @property
+    def error(self) -> float:
+        """``max(backward_error)``: the headline error figure (see the class docstring)."""
+        return self.max_backward_error
+
+    def to_dict(self) -> dict:
+        """JSON-serializable data: every field but ``system`` and ``matrices``, ``method_reason`` added."""
+        out = super().to_dict()
+        out["method_reason"] = self.method.reason
+        return out
 
     @property
     def frequency_hz(self) -> np.ndarray:

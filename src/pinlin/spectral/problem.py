@@ -9,6 +9,14 @@ number), and the Fan-Lin-Van Dooren scaling.  It is built either from a
 :class:`~pinlin.LinearizedSystem` (M symmetric positive definite, C = D + G,
 K = S + N) or from a tuple ``(M, C, K)`` of general real square matrices with M
 nonsingular, which need not be mechanical at all.
+
+Two rules, on purpose (issue 13): a LinearizedSystem is a mechanical system,
+and its constructor and :meth:`~pinlin.LinearizedSystem.from_matrices` refuse
+an M that is not symmetric positive definite; a tuple is the general quadratic
+eigenvalue problem of SPEC section 4 ("any nonsingular leading" coefficient,
+such as the SPEC's own check problem with a non-symmetric A2), solved by the
+general path with no theorem of SPEC section 5 applied.  Both refuse complex,
+non-finite and non-square input with the same messages.
 """
 
 from __future__ import annotations
@@ -19,73 +27,16 @@ import numpy as np
 
 from ..errors import ParameterError, SingularMassError
 from ..linearization.system import LinearizedSystem
+from ..numerics.accuracy import eigen_weight
+from ..numerics.checks import check_tolerance
+from ..numerics.scaling import Scaling, coefficient_norms, fan_lin_van_dooren
+from ..results import readonly
 
-__all__ = ["QuadraticProblem", "Scaling", "fan_lin_van_dooren", "as_problem", "check_tolerance"]
+__all__ = ["QuadraticProblem", "Scaling", "fan_lin_van_dooren", "as_problem", "SINGULAR_MASS_RCOND"]
 
 #: Default: a tuple's M counts as singular when its reciprocal 2-norm condition
 #: number is below this (n eps is where LU loses every digit).
 SINGULAR_MASS_RCOND = 1e-14
-
-
-def check_tolerance(name: str, value, *, upper: float | None = 1.0) -> float:
-    """Validate a tolerance: a finite number in (0, upper); return it as float.
-
-    Raises
-    ------
-    ParameterError
-        The value is not a real number, not finite, not positive or too large.
-    """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, f"expected a positive number, got {value!r}") from None
-    if not np.isfinite(v) or v <= 0:
-        raise ParameterError(name, f"expected a finite positive number, got {value!r}")
-    if upper is not None and v >= upper:
-        raise ParameterError(name, f"expected a number below {upper:g}, got {v:g}")
-    return v
-
-
-@dataclass(frozen=True)
-class Scaling:
-    """Fan-Lin-Van Dooren scaling lambda = gamma mu, L_s(mu) = delta L(gamma mu) (SPEC section 4).
-
-    .. math::
-        \\gamma = \\sqrt{\\|K\\|/\\|M\\|},\\quad
-        \\delta = 2 / (\\|K\\| + \\gamma \\|C\\|),\\quad
-        M_s = \\gamma^2\\delta M,\\; C_s = \\gamma\\delta C,\\; K_s = \\delta K
-
-    After scaling ||M_s|| = ||K_s|| and their common size and ||C_s|| add up to 2.
-    When K = 0 (only possible with rigid-body modes) gamma = ||C||/||M|| balances
-    M against C instead, and with C = K = 0 no scaling is done (gamma = 1).
-
-    Attributes
-    ----------
-    gamma : float
-        Frequency scale [rad/s]: lambda = gamma mu.
-    delta : float
-        Scale of the coefficients [1/(unit of K)].
-    """
-
-    gamma: float
-    delta: float
-
-    @property
-    def identity(self) -> bool:
-        return self.gamma == 1.0 and self.delta == 1.0
-
-
-def fan_lin_van_dooren(norm_M: float, norm_C: float, norm_K: float) -> Scaling:
-    """The Fan-Lin-Van Dooren parameters from the coefficient norms (see :class:`Scaling`)."""
-    if norm_K > 0:
-        gamma = np.sqrt(norm_K / norm_M)
-    elif norm_C > 0:
-        gamma = norm_C / norm_M
-    else:
-        return Scaling(1.0, 1.0 / norm_M)
-    denom = norm_K + gamma * norm_C
-    delta = 2.0 / denom
-    return Scaling(float(gamma), float(delta))
 
 
 @dataclass(frozen=True, eq=False)
@@ -127,16 +78,14 @@ class QuadraticProblem:
         s = self.scaling if scaling is None else scaling
         return s.gamma**2 * s.delta * self.M, s.gamma * s.delta * self.C, s.delta * self.K
 
+    @property
+    def norms(self) -> tuple[float, float, float]:
+        """(||M||, ||C||, ||K||), Frobenius."""
+        return self.norm_M, self.norm_C, self.norm_K
+
     def weight(self, lam) -> np.ndarray:
         """|lam|^2 ||M|| + |lam| ||C|| + ||K||: the scale of L(lam) in the backward error."""
-        a = np.abs(lam)
-        return a * a * self.norm_M + a * self.norm_C + self.norm_K
-
-
-def _readonly(a: np.ndarray) -> np.ndarray:
-    a = np.array(a, dtype=float, copy=True)
-    a.flags.writeable = False
-    return a
+        return eigen_weight(lam, self.norms)
 
 
 def _matrix(name: str, value, n: int | None) -> np.ndarray:
@@ -186,7 +135,7 @@ def as_problem(source, *, mass_rcond: float = SINGULAR_MASS_RCOND) -> QuadraticP
         M = _matrix("M", source[0], None)
         C = _matrix("C", source[1], M.shape[0])
         K = _matrix("K", source[2], M.shape[0])
-        rcond = check_tolerance("mass_rcond", mass_rcond)
+        rcond = check_tolerance(mass_rcond, "mass_rcond", upper=1.0)
         sv = np.linalg.svd(M, compute_uv=False)
         if sv[-1] <= rcond * sv[0]:
             raise SingularMassError(
@@ -194,10 +143,10 @@ def as_problem(source, *, mass_rcond: float = SINGULAR_MASS_RCOND) -> QuadraticP
                 f"{rcond:g}; the quadratic eigenproblem then has infinite eigenvalues, which pinlin does not treat",
                 (),
             )
-        M, C, K, system = _readonly(M), _readonly(C), _readonly(K), None
+        M, C, K, system = readonly(M, float), readonly(C, float), readonly(K, float), None
     else:
         raise ParameterError(
             "sys", f"expected a LinearizedSystem or a tuple (M, C, K) of arrays, got {type(source).__name__}"
         )
-    norms = [float(np.linalg.norm(a)) for a in (M, C, K)]
+    norms = coefficient_norms(M, C, K)
     return QuadraticProblem(M, C, K, system, *norms, fan_lin_van_dooren(*norms))

@@ -37,8 +37,9 @@ from scipy.linalg import lapack
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import ComputationError
-from .accuracy import backward_errors
-from .problem import QuadraticProblem, Scaling
+from ..numerics.accuracy import backward_errors
+from ..numerics.scaling import Scaling
+from .problem import QuadraticProblem
 
 __all__ = [
     "RawSpectrum",
@@ -126,8 +127,12 @@ def exact_pairs(alphar: np.ndarray, alphai: np.ndarray, beta: np.ndarray) -> np.
     return lam
 
 
+#: LAPACK's dggev needs a workspace of at least 8 n (its documented minimum).
+_DGGEV_MIN_WORK = 8
+
+
 def _dggev(A: np.ndarray, B: np.ndarray, left: bool = True):
-    lwork = 8 * A.shape[0]
+    lwork = _DGGEV_MIN_WORK * A.shape[0]
     vl = int(left)
     *_, work, info = lapack.dggev(A, B, compute_vl=vl, compute_vr=1, lwork=-1)
     if info == 0:
@@ -276,8 +281,8 @@ def _solve_scaled(
     X1, MX1, CX1, KX1 = (complex_columns(R, alphai) for R in (V[:n], MV, CV, KV))
     X2, MX2, CX2, KX2 = (complex_columns(R, alphai) for R in (V[n:], MW, CW, KW))
     with np.errstate(invalid="ignore"):  # lam = inf (allow_infinite): eta is set to inf below
-        eta1 = backward_errors(problem, lam, X1, MX1, CX1, KX1)
-        eta2 = backward_errors(problem, lam, X2, MX2, CX2, KX2)
+        eta1 = backward_errors(lam, X1, MX1, CX1, KX1, problem.norms)
+        eta2 = backward_errors(lam, X2, MX2, CX2, KX2, problem.norms)
     use1 = eta1 < eta2
     pick = use1[None, :]
     X = np.where(pick, X1, X2)

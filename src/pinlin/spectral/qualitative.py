@@ -19,15 +19,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sla
 
+from ..numerics.definiteness import DEFAULT_UNCERTAINTY, DEFINITENESS_TOL, Definiteness, definiteness
+from ..numerics.determinant import Nonsingularity, nonsingularity
 from .problem import QuadraticProblem
 
-__all__ = ["ModeConstants", "mode_constants", "StructuralFacts", "structural_facts", "DEFINITENESS_TOL"]
-
-#: Default relative tolerance of the definiteness and singularity tests: an
-#: eigenvalue of a symmetric matrix A with |w| <= tol ||A||_2 counts as zero.
-DEFINITENESS_TOL = 1e-10
+__all__ = [
+    "ModeConstants",
+    "mode_constants",
+    "StructuralFacts",
+    "structural_facts",
+    "DEFAULT_UNCERTAINTY",
+    "DEFINITENESS_TOL",
+]
 
 
 @dataclass(frozen=True)
@@ -76,71 +80,43 @@ def mode_constants(lam, X, MX, CX, KX) -> ModeConstants:
     return ModeConstants(one, d, g, kk, nn, res)
 
 
-def _definiteness(A: np.ndarray, tol: float) -> tuple[str, int, int, float]:
-    """("zero" | "positive_definite" | "positive_semidefinite" | "negative_definite" |
-    "negative_semidefinite" | "indefinite", #negative, #zero, smallest eigenvalue)."""
-    if not np.any(A):
-        return "zero", 0, A.shape[0], 0.0
-    w = np.linalg.eigvalsh(A)
-    thr = tol * np.max(np.abs(w))
-    neg = int(np.sum(w < -thr))
-    zero = int(np.sum(np.abs(w) <= thr))
-    pos = A.shape[0] - neg - zero
-    if neg == 0 and zero == 0:
-        kind = "positive_definite"
-    elif neg == 0:
-        kind = "positive_semidefinite"
-    elif pos == 0 and zero == 0:
-        kind = "negative_definite"
-    elif pos == 0:
-        kind = "negative_semidefinite"
-    else:
-        kind = "indefinite"
-    return kind, neg, zero, float(w[0])
-
-
-def _det_sign(A: np.ndarray, tol: float) -> int:
-    """Sign of det A from an LU factorization, or 0 when A is singular to tol.
-
-    Singular means LAPACK's reciprocal 1-norm condition estimate (``dgecon``)
-    is at most tol.
-    """
-    lu, piv, info = sla.lapack.dgetrf(A)
-    d = np.diag(lu)
-    if info != 0 or np.any(d == 0):
-        return 0
-    rcond, info = sla.lapack.dgecon(lu, float(np.linalg.norm(A, 1)), norm="1")
-    if info != 0 or rcond <= tol:
-        return 0
-    swaps = int(np.sum(piv != np.arange(piv.shape[0])))
-    return int(np.prod(np.sign(d)) * (-1) ** swaps)
-
-
 @dataclass(frozen=True)
 class StructuralFacts:
     """What the matrices alone say about the spectrum (SPEC section 5).
 
+    Every decision is made against the rounding bound of the data and the
+    relative data ``uncertainty`` (:func:`pinlin.numerics.definiteness`): a
+    definiteness or determinant sign is stated only when every system within
+    that uncertainty shares it.
+
     Attributes
     ----------
     damping, stiffness : str or None
-        Definiteness of D and S ("zero", "positive_definite",
-        "positive_semidefinite", "negative_definite", "negative_semidefinite",
-        "indefinite"); None for tuple input (no mechanical split).
+        Definiteness of D and S (one of :data:`pinlin.numerics.DEFINITENESS_KINDS`);
+        None for tuple input (no mechanical split).
     negative_stiffness : int or None
-        Number of negative eigenvalues of S (None for tuple input).
+        Number of eigenvalues of S certainly negative (None for tuple input).
     singular_stiffness : bool or None
-        S has an eigenvalue within tol ||S|| of zero.
+        Some eigenvalue of S is within its threshold of zero (its sign undecided).
     gyroscopic, circulatory, damped : bool or None
         G != 0, N != 0, D != 0 (exactly).
     det_sign_M, det_sign_K : int
-        Signs of det M and det K (0: singular to tol).  p(0) = det K and the
-        leading coefficient of p(lam) = det L(lam) is det M.
+        Signs of det M and det K, 0 when the data do not decide them.  p(0) = det K
+        and the leading coefficient of p(lam) = det L(lam) is det M.
     reflection_symmetric : bool
-        D = 0 and (G = 0 or N = 0): then det L(-lam) = det L(lam), so with real
-        coefficients the spectrum is symmetric under lam -> -lam and
+        D = 0 and (G = 0 or N = 0), exactly: then det L(-lam) = det L(lam), so with
+        real coefficients the spectrum is symmetric under lam -> -lam and
         lam -> -conj(lam) (reflection in the imaginary axis).
-    tol : float
-        The relative tolerance of the definiteness and singularity tests.
+    uncertainty : float
+        The relative data uncertainty the decisions hold against.
+    definiteness_D, definiteness_S, definiteness_M : Definiteness or None
+        The decisions about D, S and M with their numbers (inertia, extreme
+        eigenvalues, threshold, margin); None for tuple input.
+    det_margin_M, det_margin_K : float
+        Relative perturbations that keep det M and det K of their sign (0 when undecided).
+    mass : str or None
+        Definiteness of M ("positive_definite" unless M is so ill-conditioned that
+        rounding could make it singular); None for tuple input.
     """
 
     damping: str | None
@@ -153,7 +129,35 @@ class StructuralFacts:
     det_sign_M: int
     det_sign_K: int
     reflection_symmetric: bool
-    tol: float
+    uncertainty: float
+    definiteness_D: Definiteness | None = None
+    definiteness_S: Definiteness | None = None
+    definiteness_M: Definiteness | None = None
+    det_margin_M: float = 0.0
+    det_margin_K: float = 0.0
+
+    # The determinant decisions, for :meth:`at` (attributes, not fields: never dumped or compared).
+    _det_K = None
+    _det_M = None
+
+    @property
+    def tol(self) -> float:
+        """The name of pinlin 0.2 for :attr:`uncertainty` (pass it to :func:`pinlin.numerics.definiteness`)."""
+        return self.uncertainty
+
+    @property
+    def mass(self) -> str | None:
+        return None if self.definiteness_M is None else self.definiteness_M.kind
+
+    def at(self, uncertainty: float) -> StructuralFacts:
+        """The same facts decided against another data uncertainty (no new factorization)."""
+        if self.definiteness_S is None:
+            return _general(self._det_M.at(uncertainty), self._det_K.at(uncertainty))
+        return _mechanical(
+            self.definiteness_M.at(uncertainty), self.definiteness_D.at(uncertainty),
+            self.definiteness_S.at(uncertainty), self.gyroscopic, self.circulatory, self.damped,
+            None if self._det_K is None else self._det_K.at(uncertainty),
+        )
 
     def describe(self) -> str:
         if self.damping is None:
@@ -164,28 +168,58 @@ class StructuralFacts:
             "G = 0" if not self.gyroscopic else "G != 0",
             "N = 0" if not self.circulatory else "N != 0",
         ]
+        if self.mass != "positive_definite":
+            parts.insert(0, f"M {self.mass.replace('_', ' ')} within rounding")
         return ", ".join(parts)
 
 
-def structural_facts(problem: QuadraticProblem, tol: float = DEFINITENESS_TOL) -> StructuralFacts:
+def _mechanical(on_M, on_D, on_S, gyro, circ, damped, det_K) -> StructuralFacts:
+    sign_M = 1 if on_M.kind == "positive_definite" else 0
+    if circ:
+        sign_K, margin_K = det_K.sign, det_K.margin
+    else:
+        sign_K = 0 if on_S.zero else (-1) ** on_S.negative
+        margin_K = on_S.margin
+    symmetric = (not damped) and (not gyro or not circ)
+    facts = StructuralFacts(
+        on_D.kind, on_S.kind, on_S.negative, on_S.zero > 0, gyro, circ, damped, sign_M, sign_K, symmetric,
+        on_S.uncertainty, on_D, on_S, on_M, on_M.margin, margin_K,
+    )
+    object.__setattr__(facts, "_det_K", det_K)
+    return facts
+
+
+def _general(dM: Nonsingularity, dK: Nonsingularity) -> StructuralFacts:
+    """The facts of a tuple (general coefficients): determinant signs only."""
+    facts = StructuralFacts(
+        None, None, None, None, None, None, None, dM.sign, dK.sign, False, dM.uncertainty,
+        det_margin_M=dM.margin, det_margin_K=dK.margin,
+    )
+    object.__setattr__(facts, "_det_K", dK)
+    object.__setattr__(facts, "_det_M", dM)
+    return facts
+
+
+def structural_facts(problem: QuadraticProblem, uncertainty: float = DEFAULT_UNCERTAINTY) -> StructuralFacts:
     """Definiteness, inertia and determinant signs of the coefficients (O(n^3), no spectrum).
 
-    For a LinearizedSystem, det M > 0 (M is positive definite by construction)
-    and, when N = 0, the sign of det K = det S follows from the inertia of S;
-    otherwise determinant signs come from LU factorizations with a condition
-    estimate (``tol`` on the reciprocal condition number).
+    For a LinearizedSystem the definiteness of M, D and S comes from
+    :func:`pinlin.numerics.definiteness` and, when N = 0, the sign of
+    det K = det S from the inertia of S; otherwise determinant signs come from
+    :func:`pinlin.numerics.nonsingularity` (one SVD).  All against the rounding
+    bound and the relative data ``uncertainty``.
+
+    Raises
+    ------
+    ParameterError
+        ``uncertainty`` not in [0, 1).
     """
     sys = problem.system
     if sys is None:
-        sign_M = _det_sign(problem.M, tol)
-        sign_K = _det_sign(problem.K, tol)
-        return StructuralFacts(None, None, None, None, None, None, None, sign_M, sign_K, False, tol)
-    damping, *_ = _definiteness(sys.D, tol)
-    stiffness, neg, zero, _ = _definiteness(sys.S, tol)
-    gyro, circ, damped = not sys.is_zero("G"), not sys.is_zero("N"), not sys.is_zero("D")
-    if circ:
-        sign_K = _det_sign(sys.K, tol)
-    else:
-        sign_K = 0 if zero else (-1) ** neg
-    symmetric = (not damped) and (not gyro or not circ)
-    return StructuralFacts(damping, stiffness, neg, zero > 0, gyro, circ, damped, 1, sign_K, symmetric, tol)
+        return _general(nonsingularity(problem.M, uncertainty), nonsingularity(problem.K, uncertainty))
+    circ = not sys.is_zero("N")
+    det_K = nonsingularity(sys.K, uncertainty) if circ else None
+    return _mechanical(
+        definiteness(sys.M, uncertainty), definiteness(sys.D, uncertainty), definiteness(sys.S, uncertainty),
+        not sys.is_zero("G"), circ, not sys.is_zero("D"), det_K,
+    )

@@ -92,6 +92,11 @@ def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
     with vectors (x, y) gives the two eigenvalues +-sqrt(mu) of L with the same
     vectors.  A conjugate pair (mu, conj mu) gives the four eigenvalues
     +-sqrt(mu), +-conj(sqrt(mu)), arranged as two conjugate pairs.
+
+    Raises
+    ------
+    ComputationError
+        QZ failed or found an infinite eigenvalue (M numerically singular).
     """
     M, K = problem.M, problem.K
     alphar, alphai, beta, vl, vr = _dggev(-K, M.copy())

@@ -13,14 +13,36 @@ distance as a tie-breaker (a mode and its complex conjugate have the same MAC).
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import ParameterError
+from ..results import Result, readonly
 
-__all__ = ["TrackedModes", "track_modes", "mac"]
+__all__ = [
+    "TrackedModes",
+    "track_modes",
+    "mac",
+    "one_per_conjugate_pair",
+    "DEFAULT_EIGENVALUE_WEIGHT",
+    "CONJUGATE_RTOL",
+    "IMAG_SIGN_RTOL",
+]
+
+#: Weight of the relative eigenvalue distance against 1 - MAC: a mode and its
+#: complex conjugate have equal MAC, and half a unit of cost for swapping them
+#: (their relative distance is ~1) decides between them without overriding a
+#: clear shape match (1 - MAC of a wrong shape is ~1).
+DEFAULT_EIGENVALUE_WEIGHT = 0.5
+#: Columns j, k of tracked eigenvalues are a conjugate pair when lam_k = conj(lam_j) to this relative
+#: distance at every step: far above rounding of computed pairs (~1e-15), far below distinct modes.
+CONJUGATE_RTOL = 1e-8
+#: An unpaired column counts as Im lambda >= 0 when Im lambda >= -this * (1 + |lambda|): rounding of a
+#: real eigenvalue's zero imaginary part.
+IMAG_SIGN_RTOL = 1e-12
 
 
 def mac(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
@@ -33,46 +55,54 @@ def mac(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
     return cross / np.maximum(np.outer(nx, ny), np.finfo(float).tiny)
 
 
-@dataclass(frozen=True)
-class TrackedModes:
+@dataclass(frozen=True, repr=False, eq=False)
+class TrackedModes(Result):
     """Eigenvalues (and shapes) reordered so that column j is the same mode at every step.
 
     Attributes
     ----------
     eigenvalues : (steps, m) complex ndarray
+        lam [1/s], one row per step, one column per followed mode.
     vectors : (steps, n, m) complex ndarray or None
+        The mode shapes in the same order (None when none were given).
     order : (steps, m) int ndarray
         ``eigenvalues[s] = input[s][order[s]]``.
     match : (steps,) ndarray
         The smallest MAC between a mode and its match at the previous step (1 at
         step 0; nan without shapes): low values flag steps too coarse to follow.
+    jump : (steps,) ndarray
+        The largest relative eigenvalue distance |lam_s - lam_{s-1}| / (|lam_s| +
+        |lam_{s-1}|) between a mode and its match at the previous step (0 at step 0).
+    method : str
+        How the modes were matched (MAC of the shapes with the eigenvalue distance
+        as tie-breaker, or the eigenvalue distance alone).
+    error : float
+        The matching defect of the worst match, in [0, 1] (0: every mode matched
+        perfectly; near 1: some step is too coarse to follow a mode): with shapes
+        ``1 - min(match)``, without shapes ``max(jump)``.
+    elapsed : float
+        Wall time [s] of :func:`track_modes`.
     """
 
     eigenvalues: np.ndarray
     vectors: np.ndarray | None
     order: np.ndarray
     match: np.ndarray
+    jump: np.ndarray
+    method: str
+    error: float
+    elapsed: float
+
+    def __repr__(self) -> str:
+        steps, m = self.eigenvalues.shape
+        shapes = "with shapes" if self.vectors is not None else "without shapes"
+        return (
+            f"TrackedModes({steps} steps x {m} modes, {shapes}, error={self.error:.2e}, "
+            f"elapsed={self.elapsed * 1e3:.3g} ms)"
+        )
 
 
-def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = 0.5) -> TrackedModes:
-    """Reorder the modes of a sweep so that each column follows one mode.
-
-    Parameters
-    ----------
-    eigenvalues : (steps, m) array_like
-        Eigenvalues at each step, in any order.
-    vectors : (steps, n, m) array_like, optional
-        The matching mode shapes (right eigenvectors as columns).  Without them
-        the modes are matched by eigenvalue distance alone.
-    eigenvalue_weight : float
-        Weight of the relative eigenvalue distance |lam_i - lam_j| / (|lam_i| +
-        |lam_j|) added to 1 - MAC in the assignment cost (>= 0).
-
-    Raises
-    ------
-    ParameterError
-        Shapes that do not agree, non-finite values, a negative weight.
-    """
+def _checked(eigenvalues, vectors, eigenvalue_weight) -> tuple[np.ndarray, np.ndarray | None]:
     lam = np.asarray(eigenvalues, dtype=complex)
     if lam.ndim != 2 or lam.shape[0] == 0:
         raise ParameterError("eigenvalues", f"expected shape (steps, m), got {lam.shape}")
@@ -80,30 +110,123 @@ def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = 0.5) ->
         raise ParameterError("eigenvalues", "has non-finite values")
     if not (np.isfinite(eigenvalue_weight) and eigenvalue_weight >= 0):
         raise ParameterError("eigenvalue_weight", f"must be >= 0, got {eigenvalue_weight!r}")
+    if vectors is None:
+        return lam, None
     steps, m = lam.shape
-    X = None
-    if vectors is not None:
-        X = np.asarray(vectors, dtype=complex)
-        if X.ndim != 3 or X.shape[0] != steps or X.shape[2] != m:
-            raise ParameterError("vectors", f"expected shape ({steps}, n, {m}), got {X.shape}")
-        if not np.all(np.isfinite(X)):
-            raise ParameterError("vectors", "has non-finite values")
+    X = np.asarray(vectors, dtype=complex)
+    if X.ndim != 3 or X.shape[0] != steps or X.shape[2] != m:
+        raise ParameterError("vectors", f"expected shape ({steps}, n, {m}), got {X.shape}")
+    if not np.all(np.isfinite(X)):
+        raise ParameterError("vectors", "has non-finite values")
+    return lam, X
+
+
+def _relative_distance(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """|a_i - b_j| / (|a_i| + |b_j|) for every pair, in [0, 1]."""
+    scale = np.abs(a)[:, None] + np.abs(b)[None, :] + np.finfo(float).tiny
+    return np.abs(a[:, None] - b[None, :]) / scale
+
+
+def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = DEFAULT_EIGENVALUE_WEIGHT) -> TrackedModes:
+    """Reorder the modes of a sweep so that each column follows one mode.
+
+    At each step the modes are assigned to those of the previous step by
+    minimizing the total cost
+
+    .. math::  c_{ij} = 1 - \\mathrm{MAC}(x_i, x_j)
+               + w \\frac{|\\lambda_i - \\lambda_j|}{|\\lambda_i| + |\\lambda_j|}
+
+    (the MAC term only with shapes), solved exactly (Hungarian algorithm).
+
+    Parameters
+    ----------
+    eigenvalues : (steps, m) array_like
+        Eigenvalues [1/s] at each step, in any order.
+    vectors : (steps, n, m) array_like, optional
+        The matching mode shapes (right eigenvectors as columns).  Without them
+        the modes are matched by eigenvalue distance alone.
+    eigenvalue_weight : float
+        Weight w of the relative eigenvalue distance in the assignment cost (>= 0);
+        see :data:`DEFAULT_EIGENVALUE_WEIGHT`.
+
+    Returns
+    -------
+    TrackedModes
+        ``error`` is the matching defect of the worst match (see its docstring).
+
+    Raises
+    ------
+    ParameterError
+        Shapes that do not agree, non-finite values, a negative weight.
+    """
+    t0 = time.perf_counter()
+    lam, X = _checked(eigenvalues, vectors, eigenvalue_weight)
+    steps, m = lam.shape
     order = np.empty((steps, m), dtype=int)
     order[0] = np.arange(m)
     match = np.full(steps, np.nan if X is None else 1.0)
+    jump = np.zeros(steps)
     for s in range(1, steps):
-        prev = lam[s - 1, order[s - 1]]
-        scale = np.abs(prev)[:, None] + np.abs(lam[s])[None, :] + np.finfo(float).tiny
-        cost = eigenvalue_weight * np.abs(prev[:, None] - lam[s][None, :]) / scale
+        distance = _relative_distance(lam[s - 1, order[s - 1]], lam[s])
+        cost = eigenvalue_weight * distance
         if X is not None:
             similarity = mac(X[s - 1][:, order[s - 1]], X[s])
             cost = cost + (1.0 - similarity)
         rows, cols = linear_sum_assignment(cost)
         order[s, rows] = cols
+        jump[s] = distance[rows, cols].max(initial=0.0)
         if X is not None:
-            match[s] = similarity[rows, cols].min()
+            match[s] = similarity[rows, cols].min(initial=1.0)
     tracked = np.take_along_axis(lam, order, axis=1)
-    tracked_vectors = None
+    tracked_vectors = None if X is None else readonly(np.take_along_axis(X, order[:, None, :], axis=2))
     if X is not None:
-        tracked_vectors = np.take_along_axis(X, order[:, None, :], axis=2)
-    return TrackedModes(tracked, tracked_vectors, order, match)
+        method = f"assignment by shape (1 - MAC) plus {eigenvalue_weight:g} x relative eigenvalue distance"
+        error = float(1.0 - match.min())
+    else:
+        method = "assignment by relative eigenvalue distance (no shapes given)"
+        error = float(jump.max())
+    return TrackedModes(
+        readonly(tracked), tracked_vectors, readonly(order), readonly(match), readonly(jump), method, error,
+        time.perf_counter() - t0,
+    )
+
+
+def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
+    """Columns of tracked eigenvalues (steps, m) to draw: one of each conjugate pair.
+
+    Columns j and k are a pair when lam[:, k] = conj(lam[:, j]) at every step
+    (relative to the step's largest |lam|); of a pair the column with the larger
+    sum of Im lam is kept.  Unpaired columns are kept when Im lam >= 0 throughout
+    (to :data:`IMAG_SIGN_RTOL`).  Campbell diagrams draw these columns.
+
+    Parameters
+    ----------
+    lam : (steps, m) array_like
+        Tracked eigenvalues [1/s] (``TrackedModes.eigenvalues``).
+    rtol : float
+        Relative distance within which two columns are conjugates (see :data:`CONJUGATE_RTOL`).
+
+    Raises
+    ------
+    ParameterError
+        ``lam`` not two-dimensional.
+    """
+    lam = np.asarray(lam, dtype=complex)
+    if lam.ndim != 2:
+        raise ParameterError("lam", f"expected shape (steps, m), got {lam.shape}")
+    scale = np.abs(lam).max(axis=1, keepdims=True) + np.finfo(float).tiny
+    keep: list[int] = []
+    used: set[int] = set()
+    for j in range(lam.shape[1]):
+        if j in used:
+            continue
+        dist = np.max(np.abs(lam - np.conj(lam[:, [j]])) / scale, axis=0)
+        dist[j] = np.inf
+        dist[list(used)] = np.inf
+        k = int(np.argmin(dist))
+        if dist[k] <= rtol:
+            used.update((j, k))
+            keep.append(j if lam[:, j].imag.sum() >= lam[:, k].imag.sum() else k)
+        elif np.all(lam[:, j].imag >= -IMAG_SIGN_RTOL * (1 + np.abs(lam[:, j]))):
+            keep.append(j)
+    return sorted(keep)

@@ -1,8 +1,9 @@
-"""The modal expansion of the first-order state space: eigenvectors and Jordan chains.
+"""The modal expansion of the first-order state space: eigenvectors and Jordan chains (SPEC sections 4 and 6).
 
 Built on the spectral module (:func:`pinlin.modal_analysis`,
-:func:`pinlin.jordan_chains`); used by the free and the harmonic response
-(SPEC sections 4 and 6).
+:func:`pinlin.jordan_chains`); the modal method of the H(s) engine
+(:mod:`pinlin.frf.engine`) and the free response (:mod:`pinlin.response.free`)
+both evaluate it.
 
 In first-order form z = (x, x'), z' = A z, a (semi)simple eigenvalue lam_k
 with right vector x_k spans v_k = (x_k, lam_k x_k), and the normalized left
@@ -25,17 +26,22 @@ reported.
 
 from __future__ import annotations
 
+import functools
+import time
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import ComputationError, ParameterError
 from ..linearization.system import LinearizedSystem
+from ..numerics import system_scaling
+from ..results import Result
 
 __all__ = [
     "JordanBlock",
     "ModalExpansion",
     "modal_expansion",
+    "check_modes",
     "complex_matmul",
     "conjugate_partners",
     "REFINE_STEPS",
@@ -43,14 +49,19 @@ __all__ = [
     "CHUNK_ROWS",
 ]
 
-#: Relative distance |lam_j - conj(lam_k)| / |lam_k| within which two eigenvalues are a conjugate pair.
+#: Relative distance |lam_j - conj(lam_k)| / |lam_k| within which two eigenvalues are a conjugate
+#: pair: far above the rounding of a computed pair (about eps kappa), far below any physical gap.
 CONJUGATE_TOL = 1e-10
 
-#: Rows per block in :func:`complex_matmul`.
+#: Rows per block in :func:`complex_matmul` (see there why products are blocked).
 CHUNK_ROWS = 1024
 
-#: Steps of iterative refinement of the modal coefficients (see :meth:`ModalExpansion.coefficients`).
+#: Steps of iterative refinement of the modal coefficients (see :meth:`ModalExpansion.coefficients`):
+#: each step gains the digits the left vectors lose; two reach rounding level on the test cases.
 REFINE_STEPS = 2
+
+#: The attributes of a :func:`pinlin.modal_analysis` result that the expansion reads.
+_MODES_ATTRIBUTES = ("eigenvalues", "right", "left", "left_normalized", "clusters", "matrices")
 
 
 @dataclass(frozen=True)
@@ -72,8 +83,8 @@ class JordanBlock:
         return np.vstack([X, Xd])
 
 
-@dataclass(frozen=True)
-class ModalExpansion:
+@dataclass(frozen=True, repr=False, eq=False)
+class ModalExpansion(Result):
     """Eigenvalues, vectors and chains of a system, ready for responses.
 
     Attributes
@@ -82,7 +93,7 @@ class ModalExpansion:
     modes : Modes
         The modal analysis it was built from.
     lam : (k,) complex
-        Semisimple eigenvalues (members of a semisimple cluster take the
+        Semisimple eigenvalues [1/s] (members of a semisimple cluster take the
         cluster's mean, the accurate value of the multiple eigenvalue).
     right, left : (n, k) complex
         Their right vectors and normalized left vectors.
@@ -91,13 +102,23 @@ class ModalExpansion:
     chain_residual : float
         Largest relative residual of the chain equations (0 without chains).
     gamma : float
-        Natural frequency scale sqrt(||K|| / ||M||) [1/s] (or ||C|| / ||M||, or 1),
-        weighting velocity against displacement in the least squares.
+        Natural frequency scale sqrt(||K|| / ||M||) [1/s] (or ||C|| / ||M||, or 1:
+        the Fan-Lin-Van Dooren gamma), weighting velocity against displacement
+        in the least squares.
     partner : (k,) int ndarray or None
         For each semisimple mode, the index of its complex conjugate (itself for
         a real eigenvalue); None when the computed spectrum is not
         conjugate-symmetric to ``CONJUGATE_TOL``.  A real response then needs
-        only one member of each pair (twice its real part).
+        only one member of each pair (twice its real part).  Computed on first
+        use (the frequency domain does not need it).
+    elapsed : float
+        Seconds spent in :func:`modal_expansion` (the modal analysis included
+        when it was computed there).
+    method : str
+        ``"modal"`` (every eigenvalue semisimple) or ``"modal + Jordan chains"``.
+    error : float
+        The largest relative residual of the eigen-data used: the backward
+        errors eta of the eigenpairs and the chain residuals.
     """
 
     system: LinearizedSystem
@@ -108,11 +129,33 @@ class ModalExpansion:
     blocks: tuple[JordanBlock, ...]
     chain_residual: float
     gamma: float
-    partner: np.ndarray | None = None
+    elapsed: float = 0.0
+    method: str = "modal"
+
+    _dict_exclude = ("system", "modes")
+
+    @property
+    def error(self) -> float:
+        return max(float(np.max(self.modes.backward_error, initial=0.0)), float(self.chain_residual))
 
     @property
     def is_simple(self) -> bool:
         return not self.blocks
+
+    @functools.cached_property
+    def partner(self) -> np.ndarray | None:
+        return conjugate_partners(self.lam)
+
+    @property
+    def eigenvalues(self) -> np.ndarray:
+        """Every eigenvalue that appears in a denominator: ``lam`` and each block's lam0 [1/s]."""
+        return np.concatenate([self.lam, np.array([b.lam0 for b in self.blocks], dtype=complex)])
+
+    def __repr__(self) -> str:
+        return (
+            f"ModalExpansion(n={self.right.shape[0]}, modes={self.lam.size}, "
+            f"chains={[b.length for b in self.blocks]}, error={self.error:.1e}, elapsed={self.elapsed:.3g} s)"
+        )
 
     def _first_guess(self, w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Coefficients of a weighted state w = (a, b / gamma): semisimple modes by their left vectors,
@@ -157,7 +200,7 @@ class ModalExpansion:
         d : list of (r,) or (r, m) complex
             On each Jordan block.
         residual : float
-            ||w - V (c, d)|| / ||w||, velocities weighted by 1/gamma.
+            ||w - V (c, d)|| / ||w|| (Frobenius), velocities weighted by 1/gamma.
         """
         w = np.concatenate([a, b / self.gamma]).astype(complex)
         Vs, Vd = self._basis_simple, self._basis_chains
@@ -194,95 +237,135 @@ def complex_matmul(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     return out
 
 
-def _gamma(sys: LinearizedSystem) -> float:
-    nM, nC, nK = (float(np.linalg.norm(a)) for a in (sys.M, sys.C, sys.K))
-    if nK > 0:
-        return float(np.sqrt(nK / nM))
-    if nC > 0:
-        return nC / nM
-    return 1.0
-
-
 def conjugate_partners(lam: np.ndarray, tol: float | None = None) -> np.ndarray | None:
-    """Index of the conjugate of each eigenvalue (itself if real), or None if the set is not symmetric."""
+    """Index of the conjugate of each eigenvalue (itself if real), or None if the set is not symmetric.
+
+    Each eigenvalue with Im > 0, in turn, takes the nearest free conjugate of one with Im < 0;
+    the pair must agree to ``tol`` (default ``CONJUGATE_TOL``) relative to |lam|.
+    """
     tol = CONJUGATE_TOL if tol is None else tol
-    k = lam.size
-    partner = np.arange(k)
+    partner = np.arange(lam.size)
     pos = np.flatnonzero(lam.imag > 0)
     neg = np.flatnonzero(lam.imag < 0)
     if pos.size != neg.size:
         return None
-    free = set(neg.tolist())
-    for i in pos:
-        if not free:
+    gap = np.abs(lam[pos][:, None] - np.conj(lam[neg])[None, :])  # (pairs, pairs)
+    for row, i in enumerate(pos):
+        col = int(np.argmin(gap[row]))
+        if not gap[row, col] <= tol * abs(lam[i]):  # (taken columns are inf)
             return None
-        cand = np.array(sorted(free))
-        j = int(cand[np.argmin(np.abs(lam[cand] - np.conj(lam[i])))])
-        if abs(lam[j] - np.conj(lam[i])) > tol * abs(lam[i]):
-            return None
+        j = int(neg[col])
         partner[i], partner[j] = j, i
-        free.discard(j)
+        gap[:, col] = np.inf
     return partner
+
+
+def check_modes(sys: LinearizedSystem, modes):
+    """``modes`` validated as a modal analysis of ``sys`` (or a fresh :func:`pinlin.modal_analysis`).
+
+    Raises
+    ------
+    ParameterError
+        ``modes`` is not a modal analysis, or is the analysis of another system
+        (other size or other M, C, K).
+    """
+    if modes is None:
+        from ..spectral import modal_analysis
+
+        return modal_analysis(sys)
+    missing = [a for a in _MODES_ATTRIBUTES if not hasattr(modes, a)]
+    if missing:
+        raise ParameterError("modes", f"expected the result of pinlin.modal_analysis, got {type(modes).__name__}")
+    n = sys.n
+    M, C, K = modes.matrices
+    if np.shape(modes.right) != (n, 2 * n) or np.shape(M) != (n, n):
+        raise ParameterError(
+            "modes",
+            f"the modal analysis given is of another system: expected eigenvectors of shape {(n, 2 * n)} "
+            f"for n = {n}, got {np.shape(modes.right)}",
+        )
+    if not (np.array_equal(M, sys.M) and np.array_equal(C, sys.C) and np.array_equal(K, sys.K)):
+        raise ParameterError("modes", "the modal analysis given is of another system (M, C, K differ)")
+    return modes
+
+
+def _chain_blocks(sys: LinearizedSystem, cluster) -> tuple[list[JordanBlock], float]:
+    """The Jordan chains of one defective (or not normalizable) cluster, and their largest residual."""
+    from ..spectral import jordan_chains
+
+    chains = jordan_chains(sys, cluster.center)
+    if chains.algebraic != cluster.algebraic:
+        raise ComputationError(
+            f"modal expansion: the eigenvalue cluster at {cluster.center:.6g} has algebraic "
+            f"multiplicity {cluster.algebraic}, but its Jordan chains have total length "
+            f"{chains.algebraic} (partial multiplicities {chains.partial}); the rank decisions are "
+            f"ambiguous at this tolerance. Use method='direct' (frequency domain) or forced_response "
+            f"(time domain, exact discretization) instead."
+        )
+    blocks = [JordanBlock(complex(chains.lam0), np.column_stack(chain).astype(complex)) for chain in chains]
+    return blocks, float(chains.max_residual)
 
 
 def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
     """Build the expansion from ``pinlin.modal_analysis(sys)`` (or given ``modes``) and Jordan chains.
 
+    Semisimple eigenvalues (single, or clusters whose left vectors were
+    normalized) enter with their vectors; every other cluster enters through
+    its Jordan chains (:func:`pinlin.jordan_chains`, SPEC section 4).
+
+    Parameters
+    ----------
+    sys : LinearizedSystem
+    modes : Modes, optional
+        A modal analysis of ``sys`` to reuse (computed when omitted).
+
+    Returns
+    -------
+    ModalExpansion
+
     Raises
     ------
     ParameterError
-        ``modes`` belongs to another system.
+        ``modes`` is not a modal analysis of ``sys``.
     ComputationError
         The spectral analysis left an eigenvalue neither normalized nor in a
         cluster whose Jordan chains account for its multiplicity.
     """
-    from ..spectral import jordan_chains, modal_analysis
-
-    if modes is None:
-        modes = modal_analysis(sys)
-    else:
-        M, C, K = modes.matrices
-        if M.shape != sys.M.shape or not (np.array_equal(M, sys.M) and np.array_equal(C, sys.C) and np.array_equal(K, sys.K)):
-            raise ParameterError("modes", "the modal analysis given is of another system (M, C, K differ)")
+    t0 = time.perf_counter()
+    modes = check_modes(sys, modes)
     lam = np.array(modes.eigenvalues, dtype=complex)
+    normalized = np.asarray(modes.left_normalized)
     in_cluster = np.zeros(lam.size, dtype=bool)
-    keep = []
+    keep: list[int] = []
     blocks: list[JordanBlock] = []
     residual = 0.0
     for cluster in modes.clusters:
         idx = list(cluster.indices)
         in_cluster[idx] = True
-        if cluster.semisimple and np.all(modes.left_normalized[idx]):
+        if cluster.semisimple and np.all(normalized[idx]):
             lam[idx] = cluster.center
             keep += idx
             continue
-        chains = jordan_chains(sys, cluster.center)
-        if chains.algebraic != cluster.algebraic:
-            raise ComputationError(
-                f"free/harmonic response: the eigenvalue cluster at {cluster.center:.6g} has algebraic "
-                f"multiplicity {cluster.algebraic}, but its Jordan chains have total length "
-                f"{chains.algebraic} (partial multiplicities {chains.partial}); the rank decisions are "
-                f"ambiguous at this tolerance. Use forced_response (exact discretization) instead."
-            )
-        for chain in chains:
-            blocks.append(JordanBlock(complex(chains.lam0), np.column_stack(chain).astype(complex)))
-        residual = max(residual, chains.max_residual)
+        found, res = _chain_blocks(sys, cluster)
+        blocks += found
+        residual = max(residual, res)
     lone = np.flatnonzero(~in_cluster)
-    if not np.all(modes.left_normalized[lone]):
-        bad = lam[lone[~modes.left_normalized[lone]]]
+    if not np.all(normalized[lone]):
+        bad = lam[lone[~normalized[lone]]]
         raise ComputationError(
-            f"free/harmonic response: eigenvalues {bad} have no normalized left vector and are not in a "
-            f"cluster; the modal expansion does not apply (use forced_response)"
+            f"modal expansion: eigenvalues {bad} have no normalized left vector and are not in a "
+            f"cluster; the modal expansion does not apply (use method='direct' or forced_response)"
         )
-    keep = np.sort(np.concatenate([lone, np.array(keep, dtype=int)])).astype(int)
+    keep_idx = np.sort(np.concatenate([lone, np.array(keep, dtype=int)])).astype(int)
     return ModalExpansion(
-        partner=conjugate_partners(lam[keep]),
         system=sys,
         modes=modes,
-        lam=lam[keep],
-        right=np.array(modes.right[:, keep], dtype=complex),
-        left=np.array(modes.left[:, keep], dtype=complex),
+        lam=lam[keep_idx],
+        right=np.array(modes.right[:, keep_idx], dtype=complex),
+        left=np.array(modes.left[:, keep_idx], dtype=complex),
         blocks=tuple(blocks),
         chain_residual=float(residual),
-        gamma=_gamma(sys),
+        gamma=system_scaling(sys.M, sys.C, sys.K).gamma,
+        elapsed=time.perf_counter() - t0,
+        method="modal" if not blocks else "modal + Jordan chains",
     )

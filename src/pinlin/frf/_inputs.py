@@ -1,0 +1,64 @@
+"""Input checks of the linear responses: angular frequencies and vectors of coordinates (SPEC section 9).
+
+Each raises a :class:`~pinlin.ParameterError` naming the parameter, the
+expected and the found value or shape.  Checks shared beyond ``frf`` live in
+:mod:`pinlin.numerics.checks`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ParameterError
+
+__all__ = ["real_frequencies", "check_vector"]
+
+
+def real_frequencies(omega, label: str = "omega") -> tuple[np.ndarray, bool]:
+    """Finite real angular frequencies [rad/s] as a 1-D float array, and whether a scalar was given.
+
+    Raises
+    ------
+    ParameterError
+        Not real numbers (complex, bool, text), more than one dimension, empty, or non-finite.
+    """
+    try:
+        w = np.asarray(omega)
+    except (TypeError, ValueError):
+        raise ParameterError(label, "expected real angular frequencies [rad/s]") from None
+    if w.dtype == object or not np.issubdtype(w.dtype, np.number) or np.iscomplexobj(w) or w.dtype == bool:
+        raise ParameterError(label, f"expected real angular frequencies [rad/s], got {omega!r:.80} (dtype {w.dtype})")
+    scalar = w.ndim == 0
+    if w.ndim > 1 or w.size == 0:
+        raise ParameterError(label, f"expected a number or a non-empty 1-D array, got shape {w.shape}")
+    w = np.atleast_1d(w).astype(float)
+    bad = ~np.isfinite(w)
+    if np.any(bad):
+        raise ParameterError(label, f"must be finite; entry {int(np.flatnonzero(bad)[0])} is {w[bad][0]}")
+    return w, scalar
+
+
+def check_vector(value, n: int, label: str, *, complex_ok: bool = False, allow_none: bool = True) -> np.ndarray:
+    """A finite vector of n real (or, with ``complex_ok``, complex) numbers; None gives zeros when allowed.
+
+    Used for force amplitudes here and initial conditions in :mod:`pinlin.response`.
+
+    Raises
+    ------
+    ParameterError
+        None where not allowed, a callable, not numbers, another shape, or non-finite.
+    """
+    kind = "complex" if complex_ok else "real"
+    if value is None and allow_none:
+        return np.zeros(n, dtype=complex if complex_ok else float)
+    if value is None or callable(value):
+        raise ParameterError(label, f"expected {n} {kind} numbers (one per coordinate), got {value!r:.80}")
+    try:
+        arr = np.array(value, dtype=complex if complex_ok else float)
+    except (TypeError, ValueError):
+        raise ParameterError(label, f"expected {n} {kind} numbers (one per coordinate), got {value!r:.80}") from None
+    if arr.shape != (n,):
+        raise ParameterError(label, f"expected shape ({n},) (one value per coordinate), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(label, f"must be finite, got {arr}")
+    return arr

@@ -1,0 +1,105 @@
+"""The right-hand side of the nonlinear equations of motion of a scene (SPEC sections 1-2).
+
+The free coordinates obey
+
+.. math::
+    M_{ff}(q)\\, a_f = Q_{e,f}(q, v) - h_f(q, v), \\qquad
+    h = \\mathrm{rnea}(q, v, 0, f_{ext})
+
+with every scene element: joint springs, dampers and Rayleigh damping through
+their generalized forces Q_e, follower and dead wrenches through Pinocchio's
+``fext`` (:func:`pinlin.linearization.assembly.external_forces`), gravity in the
+scene's model.  Prescribed joints keep their constant velocity (zero
+acceleration; the torque that takes is not computed).  Without prescribed
+joints the accelerations come from ``aba`` directly.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pinocchio as pin
+import scipy.linalg
+
+from ..errors import ConfigurationError
+from ..linearization.assembly import external_forces
+from ..linearization.workspace import Evaluation, workspace
+from ..model.scene import Scene
+
+__all__ = ["FreeDynamics", "initial_velocity"]
+
+
+class FreeDynamics:
+    """Free accelerations a_f(q, v) of a scene: M_ff a_f = Q_f - h_f, prescribed accelerations zero.
+
+    Everything is computed in the calling thread's Pinocchio workspace
+    (:func:`pinlin.linearization.workspace.workspace`), fetched once: an
+    instance belongs to the thread that created it.
+    """
+
+    def __init__(self, scene: Scene):
+        self.scene = scene
+        self.model = scene.model
+        self.ws = workspace(scene)
+        self.data = self.ws.data
+        self.free = scene.free_dofs
+        self.prescribed = bool(scene.prescribed)
+        self.zero = np.zeros(self.model.nv)
+
+    def acceleration(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """The full acceleration (nv,) on the aba path, or the free accelerations (n,) with prescribed joints."""
+        model, data = self.model, self.data
+        ev = Evaluation(self.scene, q, v, self.ws)
+        fext = external_forces(self.scene, ev)
+        Q = np.zeros(model.nv)
+        for group in self.scene.groups:  # joint-space elements, vectorized by class
+            group.add_force(ev, Q)
+        extra = () if fext is None else (fext,)
+        if not self.prescribed:
+            return np.array(pin.aba(model, data, q, v, Q, *extra))
+        # Prescribed joints move at constant velocity (zero acceleration): the actuator
+        # holding them supplies whatever torque that takes, so only the free rows count.
+        h = np.array(pin.rnea(model, data, q, v, self.zero, *extra))
+        f = self.free
+        M = ev.mass_matrix()[np.ix_(f, f)]
+        return scipy.linalg.cho_solve(scipy.linalg.cho_factor(M), Q[f] - h[f])
+
+
+def initial_velocity(scene: Scene, v0) -> np.ndarray:
+    """The full initial velocity (nv,): ``v0`` given in full or on the free joints only.
+
+    Parameters
+    ----------
+    scene : Scene
+    v0 : (nv,) or (n,) array, or None
+        The full velocity (its prescribed entries must equal the scene's), the n
+        free velocities, or None for the steady velocity (zero on the free joints).
+
+    Raises
+    ------
+    ConfigurationError
+        Not numbers, not finite, of neither size, or contradicting a prescribed velocity.
+    """
+    nv, n = scene.model.nv, scene.n
+    v = np.array(scene.v0, dtype=float)
+    if v0 is None:
+        return v
+    try:
+        arr = np.array(v0, dtype=float)
+    except (TypeError, ValueError):
+        raise ConfigurationError(f"v0 must be an array of numbers, got {v0!r:.80}") from None
+    if arr.shape not in ((nv,), (n,)):
+        sizes = f"nv = {nv}" if n == nv else f"nv = {nv} (all joints) or n = {n} (free joints)"
+        raise ConfigurationError(f"v0 has shape {arr.shape}; scene needs a velocity of size {sizes}")
+    if not np.all(np.isfinite(arr)):
+        raise ConfigurationError(f"v0 has non-finite entries: {arr}")
+    if arr.shape == (n,):
+        v[scene.free_dofs] = arr
+        return v
+    for name, omega in scene.prescribed.items():
+        i = scene.robot.joint(name).idx_v
+        if arr[i] != omega:
+            raise ConfigurationError(
+                f"v0[{i}] = {arr[i]!r} for prescribed joint {name!r}, but the scene prescribes "
+                f"{omega!r}; give the full velocity with the prescribed values, or only the {n} free velocities"
+            )
+    return arr

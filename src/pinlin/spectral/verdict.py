@@ -1,0 +1,183 @@
+"""The stability verdict and the theorems that decide it without eigenvalues (SPEC section 5).
+
+:class:`Stability` is the verdict; :func:`theorem_verdict` applies the theorems
+of SPEC section 5 that need only the structural facts (definiteness of D and S,
+N = 0, determinant signs).  The rules that also look at the computed
+eigenvalues are in :mod:`pinlin.spectral.stability_rules`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..numerics.floating import EPS
+from ..results import Result
+from .qualitative import StructuralFacts
+
+__all__ = ["Stability", "KINDS", "STABILITY_SAFETY", "MARGIN_CAP", "theorem_verdict", "mass_verdict"]
+
+KINDS = ("asymptotically_stable", "marginally_stable", "divergence", "flutter", "undecided")
+
+#: Default factor applied to the first-order error bounds before they decide: the
+#: bounds are first-order estimates, and a decade of margin covers their
+#: second-order terms for all but nearly defective eigenvalues.
+STABILITY_SAFETY = 10.0
+
+#: Largest margin looked for: a verdict that survives a relative perturbation of
+#: one half of the data survives anything a margin could usefully say.
+MARGIN_CAP = 0.5
+
+_SPECTRUM_METHOD = "computed eigenvalues against their first-order error bounds"
+
+
+@dataclass(frozen=True)
+class Stability(Result):
+    """A stability verdict and why.
+
+    Attributes
+    ----------
+    kind : str
+        One of :data:`KINDS`.
+    reason : str
+        The theorem applied, or the eigenvalue that decides and its error bound.
+    theorem : str or None
+        Short name of the theorem used ("Thomson-Tait-Chetaev", ...), None when
+        the computed eigenvalues alone decide.
+    eigenvalue : complex or None
+        The deciding eigenvalue (the one farthest right, or the doubtful one) [rad/s].
+    error_bound : float or None
+        Its error bound after the safety factor [rad/s].
+    bounded : bool or None
+        True when every free motion is known to stay bounded (Lyapunov
+        stable), False when some certainly grows, None when unknown.
+    safety : float
+        Factor applied to the first-order bounds.
+    elapsed : float
+        Seconds spent deciding [s] (the eigenvalues' own cost is in ``Modes.elapsed``).
+    margin : float
+        The largest relative perturbation of the data (each matrix in its own
+        norm, and normwise for the eigenvalue bounds) for which the verdict
+        keeps its kind: the verdict decided against that uncertainty instead of
+        ``uncertainty`` is the same (capped at :data:`MARGIN_CAP`).  At least
+        ``uncertainty`` for a decided verdict; 0 for "undecided" (no claim).
+    uncertainty : float
+        The relative data uncertainty the verdict was decided against (0: the
+        data as stored, only their rounding).
+    method : str
+        The theorem, or "computed eigenvalues against their first-order error bounds".
+    error : float
+        ``min(1, max(uncertainty, eps) / margin)``: the data's uncertainty (at
+        least the unit of rounding eps) as a share of the perturbation the
+        verdict survives (relative; below 1 the verdict holds beyond the
+        uncertainty of the data, 1 for "undecided", whose margin is 0).
+    """
+
+    kind: str
+    reason: str
+    theorem: str | None = None
+    eigenvalue: complex | None = None
+    error_bound: float | None = None
+    bounded: bool | None = None
+    safety: float = STABILITY_SAFETY
+    elapsed: float = 0.0
+    margin: float = 0.0
+    uncertainty: float = 0.0
+
+    @property
+    def stable(self) -> bool:
+        return self.kind in ("asymptotically_stable", "marginally_stable")
+
+    @property
+    def unstable(self) -> bool:
+        return self.kind in ("divergence", "flutter")
+
+    @property
+    def method(self) -> str:
+        return self.theorem if self.theorem is not None else _SPECTRUM_METHOD
+
+    @property
+    def error(self) -> float:
+        floor = max(self.uncertainty, EPS)
+        return 1.0 if self.margin <= floor else float(floor / self.margin)
+
+    def __str__(self) -> str:
+        return f"{self.kind.replace('_', ' ')}: {self.reason}"
+
+    def __repr__(self) -> str:
+        lam = "None" if self.eigenvalue is None else f"{complex(self.eigenvalue):.6g}"
+        return (
+            f"Stability(kind={self.kind!r}, theorem={self.theorem!r}, eigenvalue={lam}, "
+            f"error={self.error:.2g}, bounded={self.bounded}, margin={self.margin:.2g})"
+        )
+
+
+_DET_REASON = (
+    "p(lam) = det L(lam) has leading coefficient det M and p(0) = det K of opposite signs (each certain "
+    "within rounding), so a real root lies in (0, inf)"
+)
+_TTC_REASON = (
+    "N = 0, D positive definite, S positive definite (both certain within rounding): every eigenvalue has "
+    "Re lam < 0 (Thomson-Tait-Chetaev, whatever G)"
+)
+_LD_REASON = (
+    "N = 0, D = 0, S positive definite (certain within rounding): Re lam <= 0 (Lagrange-Dirichlet, whatever G) "
+    "and the spectrum is symmetric under lam -> -conj(lam), so every eigenvalue lies on the imaginary axis, "
+    "semisimple since the energy bounds every motion"
+)
+
+
+def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) -> Stability | None:
+    """"undecided" when M is positive definite (or, for a tuple, nonsingular) only within rounding, else None.
+
+    Every theorem of SPEC section 5 assumes M > 0, and a rounding-level change of
+    such an M makes it singular (an infinite eigenvalue) or indefinite: the data
+    decide nothing (issue 13).
+    """
+    on_M = facts.definiteness_M
+    if on_M is None:
+        if facts.det_sign_M != 0:
+            return None
+        reason = (
+            f"M is singular within rounding (relative distance to singularity {facts.det_margin_M:.1e} <= "
+            f"the uncertainty {facts.uncertainty:g} plus rounding): the eigenvalues of largest modulus have no meaning"
+        )
+        return Stability("undecided", reason, None, None, None, None, safety)
+    if on_M.kind == "positive_definite":
+        return None
+    reason = (
+        f"M is positive definite only within rounding: its smallest eigenvalue {on_M.min_eigenvalue:.3g} lies "
+        f"within {on_M.threshold:.2g} (rounding c n eps ||M|| plus the uncertainty) of zero, so a perturbation of "
+        f"the data at that level makes M singular or indefinite and moves eigenvalues to infinity: no theorem "
+        f"applies and the largest eigenvalues have no meaning"
+    )
+    return Stability("undecided", reason, None, None, None, None, safety)
+
+
+def theorem_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) -> Stability | None:
+    """The verdict the theorems of SPEC section 5 give without any eigenvalue, or None.
+
+    Decides (every definiteness and sign certain within rounding and the
+    uncertainty, :func:`pinlin.numerics.definiteness`): sign(det M) !=
+    sign(det K) => divergence; N = 0, D > 0, S > 0 => asymptotically stable
+    (Thomson-Tait-Chetaev); N = 0, D = 0, S > 0 => marginally stable
+    (Lagrange-Dirichlet and the reflection symmetry).  An M positive definite
+    only within rounding decides "undecided" (:func:`mass_verdict`).
+    Kelvin-Tait-Chetaev with an even, nonzero number of negative eigenvalues
+    of S proves instability but not its kind, and D >= 0 singular with S > 0
+    proves boundedness but not whether it is asymptotic: both return None
+    (:func:`~pinlin.spectral.stability.decide_stability` completes them with the spectrum).
+    """
+    doubt = mass_verdict(facts, safety=safety)
+    if doubt is not None:
+        return doubt
+    if facts.det_sign_M * facts.det_sign_K < 0:
+        return Stability("divergence", _DET_REASON, "sign of det K", None, None, False, safety)
+    if facts.damping is None or facts.circulatory:
+        return None
+    if facts.damping == "positive_definite" and facts.stiffness == "positive_definite":
+        return Stability("asymptotically_stable", _TTC_REASON, "Thomson-Tait-Chetaev", None, None, True, safety)
+    if facts.stiffness == "positive_definite" and not facts.damped:
+        return Stability(
+            "marginally_stable", _LD_REASON, "Lagrange-Dirichlet + symmetry", None, None, True, safety
+        )
+    return None
