@@ -2,8 +2,8 @@
 
 The packages follow the data flow:
 
-- :mod:`pinlin.model` -- URDF -> :class:`Robot` -> :class:`Scene` (elements, gravity,
-  prescribed joints): descriptions, immutable;
+- :mod:`pinlin.model` -- URDF / MJCF -> :class:`Robot` -> :class:`Scene` (elements,
+  constraints, gravity, prescribed joints): descriptions, immutable;
 - :mod:`pinlin.linearization` -- :func:`find_equilibrium`, :func:`linearize` ->
   :class:`LinearizedSystem` (M, D, G, S, N), each call in its own Pinocchio workspace;
 - :mod:`pinlin.spectral` -- eigenvalues, eigenvectors, Jordan chains, stability;
@@ -12,6 +12,8 @@ The packages follow the data flow:
 - :mod:`pinlin.response` -- free and forced responses in time, energy budgets;
 - :mod:`pinlin.nonlinear` -- the nonlinear reference simulation;
 - :mod:`pinlin.studies` -- parameter sweeps and mode tracking;
+- :mod:`pinlin.boundaries` -- eigenvalue sensitivities, exact stability boundaries;
+- :mod:`pinlin.interop` -- state-space models for python-control and scipy;
 - :mod:`pinlin.cli`, :mod:`pinlin.plot`, :mod:`pinlin.testing` -- around them.
 
 Conventions (names, units, axis orders, what ``.error`` means per result) are in
@@ -19,6 +21,7 @@ Conventions (names, units, axis orders, what ``.error`` means per result) are in
 """
 
 from . import _compat
+from . import testing  # noqa: F401 -- pinlin.testing.check_element (SPEC section 9) after a plain `import pinlin`
 from .adjoint import (
     AdjugateMatrix,
     CharacteristicPolynomial,
@@ -27,7 +30,16 @@ from .adjoint import (
     characteristic_polynomial,
     check_free_response,
 )
-from .model.elements import DeadWrench, Element, FollowerWrench, JointDamper, JointSpring, RayleighDamping
+from .model.elements import (
+    Bushing,
+    DeadWrench,
+    Element,
+    FollowerWrench,
+    JointDamper,
+    JointSpring,
+    LinearSpringDamper,
+    RayleighDamping,
+)
 from .linearization.equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
 from .errors import (
     AccuracyWarning,
@@ -67,8 +79,38 @@ from .nonlinear import Simulation, linear_coordinates, simulate
 from .response import EnergyBudget, ForcedResponse, FreeResponse, energy_budget, forced_response, free_response
 from .model import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
 from .model.scene import Scene
+from .model.constraints import (
+    Constraint,
+    ConstraintForce,
+    ContactStatus,
+    FrameConstraint,
+    PointConstraint,
+    ground_contacts,
+)
+from .model.mjcf import load_mjcf
+from .linearization.closure import ClosureResult, close_loops
+from .linearization.constrained import constraint_stiffness
+from .errors import (
+    AssemblyError,
+    ConstraintError,
+    ConstraintViolationError,
+    MjcfError,
+    OverconstrainedError,
+    SingularConstraintError,
+)
 from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
 from .studies.sweep import SweepFailure, SweepResult, sweep
+from .boundaries import (
+    BoundaryFailure,
+    CriticalParameter,
+    EigenvalueSensitivity,
+    StabilityBoundary,
+    critical_parameter,
+    eigenvalue_sensitivity,
+    stability_boundary,
+)
+from .errors import BoundaryNotIsolatedError, BracketError, SystemFunctionError
+from .interop import StateSpaceModel, state_space
 from .linearization.system import LinearizedSystem
 
 __version__ = "0.2.0"
@@ -96,6 +138,8 @@ __all__ = [
     "RayleighDamping",
     "FollowerWrench",
     "DeadWrench",
+    "LinearSpringDamper",
+    "Bushing",
     # equilibrium and linearization
     "EquilibriumResult",
     "find_equilibrium",
@@ -103,10 +147,38 @@ __all__ = [
     "linearize",
     "generalized_force",
     "LinearizedSystem",
+    # constraints: closed loops and contacts (SPEC section 10)
+    "Constraint",
+    "PointConstraint",
+    "FrameConstraint",
+    "ConstraintForce",
+    "ContactStatus",
+    "ground_contacts",
+    "load_mjcf",
+    "close_loops",
+    "ClosureResult",
+    "constraint_stiffness",
+    "ConstraintError",
+    "ConstraintViolationError",
+    "AssemblyError",
+    "SingularConstraintError",
+    "OverconstrainedError",
+    "MjcfError",
     # parameter sweeps
     "sweep",
     "SweepResult",
     "SweepFailure",
+    # sensitivities and stability boundaries (SPEC section 12)
+    "eigenvalue_sensitivity",
+    "EigenvalueSensitivity",
+    "critical_parameter",
+    "CriticalParameter",
+    "stability_boundary",
+    "StabilityBoundary",
+    "BoundaryFailure",
+    "BracketError",
+    "BoundaryNotIsolatedError",
+    "SystemFunctionError",
     # errors
     "PinlinError",
     "InputError",
@@ -159,4 +231,7 @@ __all__ = [
     "Residues",
     "frequency_response",
     "FrequencyResponse",
+    # other tools' forms (issue 17)
+    "state_space",
+    "StateSpaceModel",
 ]

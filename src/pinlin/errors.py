@@ -30,10 +30,20 @@ __all__ = [
     "ModelTooLargeError",
     "MissingDependencyError",
     "IntegrationError",
+    "IntegrationBudgetError",
     "AccuracyWarning",
     "NotAnEigenvalueError",
     "NotSimpleError",
     "EigenvalueNotIsolatedError",
+    "BracketError",
+    "BoundaryNotIsolatedError",
+    "SystemFunctionError",
+    "MjcfError",
+    "ConstraintError",
+    "ConstraintViolationError",
+    "AssemblyError",
+    "SingularConstraintError",
+    "OverconstrainedError",
 ]
 
 
@@ -234,6 +244,31 @@ class IntegrationError(ComputationError):
         self.t_reached = float(t_reached)
 
 
+class IntegrationBudgetError(IntegrationError):
+    """A time integration stopped at its budget of steps or wall time, or would clearly exceed it.
+
+    Attributes
+    ----------
+    t_reached : float
+        The time [s] up to which the solution is valid.
+    t_end : float
+        The time [s] the integration was asked to reach.
+    steps : int
+        Solver steps taken when it stopped.
+    elapsed : float
+        Wall time [s] spent when it stopped.
+    budget : str
+        The limit that stopped it: ``"max_steps"`` or ``"max_time"``.
+    """
+
+    def __init__(self, message: str, t_reached: float, t_end: float, steps: int, elapsed: float, budget: str):
+        super().__init__(message, t_reached)
+        self.t_end = float(t_end)
+        self.steps = int(steps)
+        self.elapsed = float(elapsed)
+        self.budget = budget
+
+
 class AccuracyWarning(UserWarning):
     """A result was computed but its own error figure exceeds the requested tolerance.
 
@@ -300,3 +335,108 @@ class EigenvalueNotIsolatedError(ComputationError):
 
 class MissingDependencyError(PinlinError, ImportError):
     """An optional dependency (matplotlib for plots, ...) is not installed; the message says which extra to install."""
+
+
+class BracketError(InputError):
+    """A parameter bracket cannot hold a stability boundary (SPEC section 12).
+
+    Its ends have the same stability verdict (both stable, both flutter, ...),
+    one end's verdict is "undecided", or the ends are not two distinct finite
+    numbers.
+
+    Attributes
+    ----------
+    bracket : tuple of float
+        The bracket as given.
+    verdicts : tuple of str
+        The stability kinds at its ends (empty when they were not computed).
+    """
+
+    def __init__(self, message: str, bracket, verdicts=()):
+        super().__init__(message)
+        self.bracket = tuple(bracket)
+        self.verdicts = tuple(verdicts)
+
+
+class BoundaryNotIsolatedError(InputError):
+    """The stability verdict changes, but not at an isolated parameter value (SPEC section 12).
+
+    For example the verdict stays "undecided" over an interval much wider than
+    the tolerance, or the critical eigenvalue sits on the imaginary axis over a
+    whole interval: no single boundary value exists to be located.
+
+    Attributes
+    ----------
+    interval : tuple of float
+        The parameter interval where the boundary could not be isolated.
+    """
+
+    def __init__(self, message: str, interval):
+        super().__init__(message)
+        self.interval = tuple(float(x) for x in interval)
+
+
+class SystemFunctionError(InputError):
+    """A user function ``func(p) -> LinearizedSystem`` failed (SPEC section 12).
+
+    It raised, returned something other than a LinearizedSystem, or returned
+    systems of different sizes (or coordinates) at different parameter values.
+    The original exception, if any, is chained as ``__cause__``.
+
+    Attributes
+    ----------
+    p : float
+        The parameter value at which it failed.
+    """
+
+    def __init__(self, message: str, p: float):
+        super().__init__(message)
+        self.p = float(p)
+
+
+class MjcfError(InputError):
+    """An MJCF file could not be turned into a usable model (SPEC section 10); ``source``: its path."""
+
+    def __init__(self, message: str, source: str):
+        super().__init__(message)
+        self.source = source
+
+
+class ConstraintError(InputError):
+    """The constraints do not allow what was asked (SPEC section 10); ``constraints``: the labels concerned."""
+
+    def __init__(self, message: str, constraints=()):
+        super().__init__(message)
+        self.constraints = tuple(constraints)
+
+
+class ConstraintViolationError(ConstraintError):
+    """A configuration violates the constraints by ``gap`` [m] (largest distance) and ``rotation_gap`` [rad]."""
+
+    def __init__(self, message: str, gap: float, rotation_gap: float = 0.0, constraints=()):
+        super().__init__(message, constraints)
+        self.gap, self.rotation_gap = float(gap), float(rotation_gap)
+
+
+class AssemblyError(ConstraintViolationError):
+    """Assembly could not close the constraints; ``gap`` is what the closest configuration leaves, ``history`` ||Phi||."""
+
+    def __init__(self, message: str, gap: float, rotation_gap: float, constraints, history):
+        super().__init__(message, gap, rotation_gap, constraints)
+        self.history = tuple(history)
+
+
+class SingularConstraintError(ConstraintError):
+    """J_c has rank ``rank`` at q but ``nearby_rank`` at assembled configurations nearby (a toggle or change point)."""
+
+    def __init__(self, message: str, rank: int, nearby_rank: int, constraints=()):
+        super().__init__(message, constraints)
+        self.rank, self.nearby_rank = int(rank), int(nearby_rank)
+
+
+class OverconstrainedError(ConstraintError):
+    """The constraints leave no motion: ``rank`` J_c equals ``nv``."""
+
+    def __init__(self, message: str, rank: int, nv: int, constraints=()):
+        super().__init__(message, constraints)
+        self.rank, self.nv = int(rank), int(nv)

@@ -9,13 +9,21 @@ One concept per module:
 - :mod:`.equilibrium` -- Newton on the configuration manifold;
 - :mod:`.linearize` -- :func:`linearize`: restriction to the free coordinates,
   symmetric and skew parts;
-- :mod:`.system` -- :class:`LinearizedSystem`, the frozen result.
+- :mod:`.system` -- :class:`LinearizedSystem`, the frozen result;
+- constraints (SPEC section 10): :mod:`.constraint_set` (Phi, J_c, rank and
+  multipliers at one q), :mod:`.closure` (the assembly step, :func:`close_loops`),
+  :mod:`.singularity` (redundant constraints or a singular configuration?),
+  :mod:`.coordinates` (the basis B of ker J_c), :mod:`.constrained_equilibrium`
+  (Newton with the KKT matrix), :mod:`.constrained` (the projected linearization,
+  the constraint stiffness K_lambda).
 """
 
 from .equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
 from .linearize import generalized_force, linearize
 from .system import LinearizedSystem
 from .workspace import Evaluation, Workspace
+from .closure import ClosureResult, close_loops
+from .constrained import constraint_stiffness
 
 __all__ = [
     "Workspace",
@@ -26,4 +34,7 @@ __all__ = [
     "linearize",
     "generalized_force",
     "LinearizedSystem",
+    "close_loops",
+    "ClosureResult",
+    "constraint_stiffness",
 ]

@@ -50,7 +50,27 @@ class EquilibriumResult(Result):
     error : float
         The headline error figure: ``relative_residual``.
     notes : tuple of str
-        Anything the solver wants the user to know (least-squares steps).
+        Anything the solver wants the user to know (least-squares steps; for
+        constraints: the assembly step, redundant equations, contacts whose force
+        the ground cannot give).
+    constraint_forces : tuple of ConstraintForce
+        With constraints (SPEC section 10): one entry per constraint, in scene
+        order, the world-axes force (``.force`` [N]) and, for a frame constraint,
+        torque (``.torque`` [N m]) that the constraint applies on its frame (at the
+        frame origin; the target frame receives the opposite).  Minimum-norm when
+        the constraints are redundant (``redundant`` > 0).  Empty without constraints.
+    contacts : tuple of ContactStatus
+        One entry per contact (``PointConstraint(..., contact=True)``): normal and
+        tangential force, whether the ground must pull or friction exceeds mu.
+    redundant : int
+        Number of redundant constraint equations, m - rank J_c.
+    constraint_gap : float
+        Largest distance [m] left between a constrained frame and its target.
+    assembly : ClosureResult or None
+        The assembly step that closed the constraints from q0 (None without constraints).
+
+    For a scene with constraints, ``residual`` is ||r - J_c^T lambda|| and the
+    relative residual divides it by ||tau|| + ||Q_e|| + ||J_c^T lambda|| + ||K - K_lambda||.
     """
 
     q: np.ndarray
@@ -61,6 +81,11 @@ class EquilibriumResult(Result):
     elapsed: float
     method: str = "newton"
     notes: tuple[str, ...] = ()
+    constraint_forces: tuple = ()
+    contacts: tuple = ()
+    redundant: int = 0
+    constraint_gap: float = 0.0
+    assembly: Result | None = None
 
     @property
     def error(self) -> float:
@@ -96,6 +121,10 @@ def _result(q, norm, rel, iteration, history, least_squares, t0) -> EquilibriumR
 def equilibrium_residual(scene: Scene, q) -> np.ndarray:
     """r(q) = tau(q, v0, 0, fext) - Q_e(q, v0) on the free coordinates (n,).
 
+    Constraint forces are not included: with constraints, the equilibrium
+    condition is r = J_c^T lambda (SPEC section 10), and
+    :func:`find_equilibrium` reports ||r - J_c^T lambda|| as its residual.
+
     Raises
     ------
     ConfigurationError
@@ -129,7 +158,7 @@ def find_equilibrium(
     max_iterations: int = 50,
     min_step: float = 1e-10,
 ) -> EquilibriumResult:
-    """Newton's method for r(q) = 0 on the configuration manifold (SPEC section 3).
+    """Newton's method for r(q) = 0 on the configuration manifold (SPEC sections 3, 10).
 
     Each step solves K dx = -r with the analytic stiffness K of the free
     coordinates (least squares if K is singular), then backtracks along
@@ -139,6 +168,12 @@ def find_equilibrium(
     equilibrium (a chain curled by several radians against its springs) it can
     stall at a local minimum of ||r|| where K is nearly singular; the error then
     says so.  Start closer, or raise the load in steps (continuation).
+
+    A scene with constraints is solved by
+    :func:`pinlin.linearization.constrained_equilibrium.find_constrained_equilibrium`: an
+    assembly step closes the constraints from q0, then Newton on (q, lambda) with
+    the KKT matrix [[K - K_lambda, -J_c^T], [J_c, 0]] solves
+    r(q) = J_c(q)^T lambda, Phi(q) = 0; the result carries the constraint forces.
 
     Parameters
     ----------
@@ -159,7 +194,13 @@ def find_equilibrium(
         q0 has the wrong size or is not finite.
     ConvergenceError
         No convergence; ``.history`` holds the residual norms.
+    AssemblyError
+        (With constraints) the constraints cannot be closed from q0.
     """
+    if scene.constraints:
+        from .constrained_equilibrium import find_constrained_equilibrium
+
+        return find_constrained_equilibrium(scene, q0, tol=tol, max_iterations=max_iterations, min_step=min_step)
     t0 = time.perf_counter()
     if not (np.isfinite(tol) and tol > 0):
         raise ParameterError("tol", f"must be a positive number, got {tol!r}")

@@ -19,6 +19,7 @@ from ..errors import (
     TimePeriodicError,
 )
 from ..model.scene import Scene
+from .constraint_set import CONSTRAINT_TOL, RANK_TOL
 from .system import LinearizedSystem, null_motion
 from .workspace import Evaluation
 
@@ -117,12 +118,15 @@ def linearize(
     scene: Scene,
     q,
     *,
+    coordinates=None,
     balancing: bool = False,
     equilibrium_tol: float = 1e-8,
     structure_tol: float | None = None,
     periodic_tol: float = 1e-8,
+    constraint_tol: float = CONSTRAINT_TOL,
+    rank_tol: float = RANK_TOL,
 ) -> LinearizedSystem:
-    """The linearized equations of ``scene`` around configuration ``q`` (SPEC section 1).
+    """The linearized equations of ``scene`` around configuration ``q`` (SPEC sections 1, 10).
 
     .. math::
         M = \\partial\\tau/\\partial a,\\quad
@@ -135,11 +139,29 @@ def linearize(
     scene needs are run (see :mod:`pinlin.assembly`); they are listed in
     ``sys.calls``.
 
+    With constraints (closed loops, contacts; SPEC section 10) the system has
+    n = nv - rank J_c coordinates z, joint velocities = ``sys.basis @ z``:
+
+    .. math::
+        M_z = B^T M B,\\quad C_z = B^T C B,\\quad K_z = B^T (K - K_\\lambda) B
+
+    with lambda the constraint forces at q (minimum-norm when redundant, in
+    ``sys.constraint_forces``) and K_lambda their stiffness
+    (:mod:`pinlin.linearization.constrained`).  Contacts are linearized as
+    bilateral (the stance linearization); ``sys.notes`` says when the ground
+    would have to pull or friction exceed mu.
+
     Parameters
     ----------
     scene : Scene
     q : (nq,) array
         Full configuration (prescribed joints included) at which to linearize.
+    coordinates : None, "orthonormal" or sequence of str
+        Scenes with constraints only: the coordinates z.  None picks joints by a
+        column-pivoted QR of J_c (``sys.dof_names`` names them); a list names the
+        joints (or degrees of freedom) to use; ``"orthonormal"`` takes an
+        orthonormal basis of ker J_c (names ``z1``, ...).  The eigenvalues do not
+        depend on the choice; ``sys.basis_condition`` reports cond(J_d).
     balancing : bool
         Accept a q that is not an equilibrium by holding it with constant
         generalized forces (actuators); they are returned in ``sys.balancing``
@@ -155,6 +177,11 @@ def linearize(
     periodic_tol : float
         Largest relative change of M, C, K, r allowed when a prescribed joint is
         moved by :data:`PERIODIC_TEST_ANGLES`.
+    constraint_tol : float
+        With constraints: largest gap [m] (and rotation [rad]) accepted at q.
+    rank_tol : float
+        With constraints: a singular value of J_c counts as zero at or below
+        rank_tol times the largest (:data:`~pinlin.linearization.constraint_set.RANK_TOL`).
 
     Raises
     ------
@@ -166,6 +193,12 @@ def linearize(
         The mass matrix of the free coordinates is not positive definite.
     TimePeriodicError
         The equations depend on a prescribed joint's position.
+    ConstraintViolationError
+        q violates the scene's constraints (``gap`` [m] attached).
+    OverconstrainedError
+        The constraints leave no motion (rank J_c = nv).
+    SingularConstraintError
+        J_c loses rank at q (a linkage at a toggle or change point), naming the constraints.
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
@@ -173,6 +206,15 @@ def linearize(
         raise ParameterError("equilibrium_tol", f"must be a positive number, got {equilibrium_tol!r}")
     if not (periodic_tol > 0 and math.isfinite(periodic_tol)):
         raise ParameterError("periodic_tol", f"must be a positive number, got {periodic_tol!r}")
+    if scene.constraints:
+        from .constrained import linearize_constrained
+
+        return linearize_constrained(
+            scene, q, coordinates=coordinates, balancing=balancing, equilibrium_tol=equilibrium_tol,
+            structure_tol=structure_tol, constraint_tol=constraint_tol, rank_tol=rank_tol,
+        )  # fmt: skip
+    if coordinates is not None:
+        raise ParameterError("coordinates", "applies to scenes with constraints only; this scene has none")
     f = scene.free_dofs
     n = len(f)
     everything = n == scene.model.nv
@@ -257,7 +299,9 @@ def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:
 
     Use it to build the input vector of f(t) in M x'' + C x' + K x = f(t): for a
     follower couple of unit size, ``generalized_force(scene, q,
-    FollowerWrench("tip", torque=(0, 1, 0)))``.
+    FollowerWrench("tip", torque=(0, 1, 0)))``.  With constraints the system's
+    coordinates are z (SPEC section 10): its input vector is
+    ``sys.basis.T @ generalized_force(scene, q, wrench)``.
 
     Returns
     -------

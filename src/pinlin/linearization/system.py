@@ -92,6 +92,21 @@ class LinearizedSystem(Result):
         example the skew part of a gravity stiffness).
     notes : tuple of str
         Anything the builder wants the user to know.
+    basis : (nv, n) ndarray or None
+        For a scene with constraints (SPEC section 10): the basis B of ker J_c
+        with joint velocities = ``basis @ z`` (z the coordinates, ``dof_names``);
+        ``expand`` maps mode shapes and responses to all joints.  None without
+        constraints (the coordinates are the free joints themselves).
+    basis_names : tuple of str
+        Names of the rows of ``basis`` (the robot's degrees of freedom); empty
+        without constraints.
+    basis_condition : float or None
+        cond(J_d) of the joints that follow the coordinates (1 for an orthonormal
+        basis); it grows without bound near a position where the chosen
+        coordinates cannot drive the mechanism.  None without constraints.
+    constraint_forces : tuple of ConstraintForce
+        The constraint forces at q (world axes, on each constraint's frame), in
+        scene order; empty without constraints.
 
     Raises
     ------
@@ -116,6 +131,10 @@ class LinearizedSystem(Result):
     dropped: Mapping[str, float] = field(default_factory=dict)
     notes: tuple[str, ...] = ()
     method: str = "matrices"
+    basis: np.ndarray | None = None
+    basis_names: tuple[str, ...] = ()
+    basis_condition: float | None = None
+    constraint_forces: tuple = ()
     C: np.ndarray = field(init=False)
     K: np.ndarray = field(init=False)
 
@@ -172,6 +191,22 @@ class LinearizedSystem(Result):
         object.__setattr__(self, "dropped", dict(self.dropped))
         object.__setattr__(self, "calls", tuple(self.calls))
         object.__setattr__(self, "notes", tuple(self.notes))
+        self._check_basis(n)
+
+    def _check_basis(self, n: int) -> None:
+        if self.basis is None:
+            return
+        try:
+            B = np.array(self.basis, dtype=float)
+        except (TypeError, ValueError):
+            raise ParameterError("basis", "expected a real matrix") from None
+        if B.ndim != 2 or B.shape[1] != n or not np.all(np.isfinite(B)):
+            raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
+        if self.basis_names and len(self.basis_names) != B.shape[0]:
+            raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(self.basis_names)}")
+        object.__setattr__(self, "basis", _readonly(B))
+        object.__setattr__(self, "basis_names", tuple(str(x) for x in self.basis_names))
+        object.__setattr__(self, "constraint_forces", tuple(self.constraint_forces))
 
     # ------------------------------------------------------------------ construction
 
@@ -196,6 +231,9 @@ class LinearizedSystem(Result):
         SingularMassError
             M is not positive definite.
         """
+        for name, a in (("M", M), ("C", C), ("K", K)):  # numpy would drop the imaginary part with a warning
+            if a is not None and np.iscomplexobj(a):
+                raise ParameterError(name, "expected a real matrix, got complex entries")
         try:
             M = np.array(M, dtype=float)
         except (TypeError, ValueError):
@@ -233,6 +271,10 @@ class LinearizedSystem(Result):
         dropped: Mapping[str, float] | None = None,
         notes: tuple[str, ...] = (),
         method: str = "analytic",
+        basis: np.ndarray | None = None,
+        basis_names: tuple[str, ...] = (),
+        basis_condition: float | None = None,
+        constraint_forces: tuple = (),
     ) -> LinearizedSystem:
         """Wrap matrices that are valid by construction, without re-validating them.
 
@@ -244,7 +286,7 @@ class LinearizedSystem(Result):
         """
         obj = object.__new__(cls)
         C, K = D + G, S + N
-        for a in (M, D, G, S, N, C, K, q, v, balancing):
+        for a in (M, D, G, S, N, C, K, q, v, balancing, basis):
             if a is not None:
                 a.flags.writeable = False
         set_ = object.__setattr__
@@ -253,6 +295,8 @@ class LinearizedSystem(Result):
             ("dof_names", tuple(dof_names)), ("q", q), ("v", v), ("residual", residual),
             ("balancing", balancing), ("elapsed", elapsed), ("calls", tuple(calls)),
             ("dropped", dict(dropped or {})), ("notes", tuple(notes)), ("method", method),
+            ("basis", basis), ("basis_names", tuple(basis_names)), ("basis_condition", basis_condition),
+            ("constraint_forces", tuple(constraint_forces)),
         ):  # fmt: skip
             set_(obj, name, value)
         return obj
@@ -286,6 +330,28 @@ class LinearizedSystem(Result):
         """Names of the matrices among M, D, G, S, N that are not exactly zero."""
         return tuple(name for name in MATRIX_NAMES if not self.is_zero(name))
 
+    def expand(self, x) -> np.ndarray:
+        """Coordinates z to joint velocities (or displacements): ``basis @ x``.
+
+        ``x`` is any array whose first axis has length n: a vector (n,), mode
+        shapes in columns (n, k), ...; the first axis becomes the robot's nv
+        degrees of freedom (``basis_names``).  Without constraints x is returned
+        unchanged (a copy).
+
+        .. math::  \\dot q = B z  \\quad \\text{(SPEC section 10)}
+
+        Raises
+        ------
+        ParameterError
+            The first axis of x is not of length n.
+        """
+        x = np.asarray(x)
+        if x.ndim == 0 or x.shape[0] != self.n:
+            raise ParameterError("x", f"expected an array whose first axis has length n = {self.n}, got shape {x.shape}")
+        if self.basis is None:
+            return x.copy()
+        return np.tensordot(self.basis, x, axes=(1, 0))
+
     # ------------------------------------------------------------------ dynamic stiffness
 
     def dynamic_stiffness(self, lam) -> np.ndarray:
@@ -298,7 +364,8 @@ class LinearizedSystem(Result):
 
     def __repr__(self) -> str:
         names = self.dof_names if self.n <= 6 else self.dof_names[:3] + ("...",) + self.dof_names[-2:]
+        basis = "" if self.basis is None else f", basis={self.basis.shape[0]}x{self.n}"
         return (
-            f"LinearizedSystem(n={self.n}, dofs={names}, nonzero={'+'.join(self.nonzero)}, "
+            f"LinearizedSystem(n={self.n}, dofs={names}, nonzero={'+'.join(self.nonzero)}{basis}, "
             f"method={self.method!r}, error={self.error:.1e})"
         )

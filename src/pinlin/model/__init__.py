@@ -9,15 +9,29 @@ One concept per module:
 - :mod:`.elements` -- force elements: a base class and one file per kind;
 - :mod:`.scene` -- :class:`Scene`, an immutable description (robot, elements,
   gravity, prescribed joints) that holds no Pinocchio workspace;
-- :mod:`.scenefile` -- scenes from TOML files.
+- :mod:`.scenefile` -- scenes from TOML files;
+- :mod:`.constraints` -- kinematic constraints (closed loops, contacts): point and frame constraints;
+- :mod:`.mjcf` -- MJCF (MuJoCo) models with their ``<connect>`` and ``<weld>`` loops.
 """
 
-from .elements import DeadWrench, Element, FollowerWrench, JointDamper, JointSpring, RayleighDamping, WrenchElement
+from .elements import (
+    Bushing,
+    DeadWrench,
+    Element,
+    FollowerWrench,
+    JointDamper,
+    JointSpring,
+    LinearSpringDamper,
+    RayleighDamping,
+    WrenchElement,
+)
 from .generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
 from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
 from .robot import Robot
 from .scene import Scene
 from .scenefile import SceneSpec, load_scene
+from .constraints import Constraint, ConstraintForce, ContactStatus, FrameConstraint, PointConstraint, ground_contacts
+from .mjcf import load_mjcf
 
 __all__ = [
     "Robot",
@@ -37,7 +51,16 @@ __all__ = [
     "RayleighDamping",
     "FollowerWrench",
     "DeadWrench",
+    "LinearSpringDamper",
+    "Bushing",
     "Scene",
     "SceneSpec",
     "load_scene",
+    "Constraint",
+    "PointConstraint",
+    "FrameConstraint",
+    "ConstraintForce",
+    "ContactStatus",
+    "ground_contacts",
+    "load_mjcf",
 ]

@@ -4,7 +4,9 @@ Only Pinocchio's kinematic model is built: no geometry model, no meshes, no
 collision data (the linearized equations need inertia and kinematics only).
 Joints can be locked away at load time through Pinocchio's reduced model, and
 the memory Pinocchio would allocate is estimated before any ``createData``.
-Pinocchio's PyPI wheels have no SDF parser: convert SDF to URDF or MJCF.
+Pinocchio's PyPI wheels have no SDF parser: convert SDF to URDF or MJCF.  MJCF
+models, with their closed loops (``<connect>``, ``<weld>``), load through
+:func:`pinlin.load_mjcf` (:mod:`.mjcf`).
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import JointNotFoundError, ParameterError, UrdfError
+from .inertia import check_inertials
 from .memory import check_memory
 from .robot import Robot
 
@@ -138,6 +141,7 @@ def _captured_stderr() -> Iterator[list[str]]:
 
 
 def _check_xml(text: str, source: str) -> None:
+    """Well-formed XML with a <robot> root, a <link>, and physically valid inertial data."""
     try:
         root = ET.fromstring(text)
     except ET.ParseError as exc:
@@ -146,6 +150,21 @@ def _check_xml(text: str, source: str) -> None:
         raise UrdfError(f"{source}: root element is <{root.tag}>, expected <robot>", source)
     if root.find("link") is None:
         raise UrdfError(f"{source}: the URDF has no <link>", source)
+    check_inertials(root, source)
+
+
+def _report_parser_messages(messages: list[str], source: str) -> None:
+    """What urdfdom printed while building a model that it did build: errors raise, the rest warn.
+
+    urdfdom prints "Error: ..." for elements it could not parse and then goes on
+    without them, so the model would silently differ from the file.
+    """
+    text = "\n".join(m for m in messages if m).strip()
+    if not text:
+        return
+    if "Error" in text:
+        raise UrdfError(f"{source}: the URDF parser could not read part of the model: {' '.join(text.split())}", source)
+    warnings.warn(f"{source}: the URDF parser says: {' '.join(text.split())}", UserWarning, stacklevel=4)
 
 
 def _build(text: str | None, path: str | None, source: str, free_flyer: bool) -> pin.Model:
@@ -170,6 +189,7 @@ def _build(text: str | None, path: str | None, source: str, free_flyer: bool) ->
     if error is not None:
         detail = " ".join(m for m in messages if m) or str(error)
         raise UrdfError(f"{source}: not a valid URDF model ({detail})", source) from None
+    _report_parser_messages(messages, source)
     return model
 
 
@@ -214,7 +234,9 @@ def load_urdf(
     Raises
     ------
     UrdfError
-        Missing file, malformed XML, invalid URDF, no movable joint.
+        Missing file, malformed XML, invalid URDF, no movable joint, a link whose
+        inertial data is not finite or not physically possible (see
+        :mod:`pinlin.model.inertia`), anything the URDF parser could not read.
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
@@ -298,6 +320,11 @@ def load_example(
     source = f"example:{name}"
     if not path.is_file():
         raise UrdfError(f"example-robot-data file missing: {path}", source)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise UrdfError(f"cannot read URDF file {path}: {exc}", source) from None
+    _check_xml(text, source)
     model = _build(None, str(path), source, ff)
     refs = _reference_configurations(model, srdf_rel, source)
     return _finish(model, source, locked, memory_limit, refs)

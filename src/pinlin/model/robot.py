@@ -1,18 +1,19 @@
 """A rigid multibody: :class:`Robot`, a Pinocchio model without geometry, with name lookups.
 
-Loading from URDF, example-robot-data and MJCF is in :mod:`.loading`; the memory
+Loading from URDF and example-robot-data is in :mod:`.loading`, from MJCF in :mod:`.mjcf`; the memory
 guard in front of ``createData`` in :mod:`.memory`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
 
-from ..errors import FrameNotFoundError, JointNotFoundError
+from ..errors import FrameNotFoundError, JointNotFoundError, ParameterError
+from .constraints import Constraint
 from .memory import check_memory
 
 __all__ = ["Robot", "JointInfo"]
@@ -56,7 +57,7 @@ class Robot:
 
     The model is never modified by pinlin; analyses copy it when they need to
     change it (gravity, for instance).  Build one with :func:`load_urdf`,
-    :func:`load_urdf_string` or :func:`load_example`.
+    :func:`load_urdf_string`, :func:`load_example` or :func:`load_mjcf`.
 
     Attributes
     ----------
@@ -66,6 +67,18 @@ class Robot:
         Where the model came from (a path, ``"<string>"`` or ``"example:NAME"``).
     reference_configurations : dict of str to ndarray
         Named configurations from the SRDF, when one was available.
+    constraints : tuple of Constraint
+        Kinematic constraints that come with the model (an MJCF file's
+        ``<equality>`` connects and welds, :func:`pinlin.load_mjcf`); empty for
+        URDF robots.  A :class:`~pinlin.Scene` includes them unless its
+        ``constraints=`` says otherwise (SPEC section 10).
+
+    Raises
+    ------
+    ParameterError
+        A constraint is not a :class:`~pinlin.Constraint`.
+    FrameNotFoundError
+        A constraint names a frame the model lacks.
     """
 
     def __init__(
@@ -73,6 +86,7 @@ class Robot:
         model: pin.Model,
         source: str = "<model>",
         reference_configurations: Mapping[str, np.ndarray] | None = None,
+        constraints: Sequence[Constraint] = (),
     ):
         self._model = model
         self.source = source
@@ -94,6 +108,17 @@ class Robot:
         self._frames = {}
         for fid, frame in enumerate(model.frames):
             self._frames.setdefault(frame.name, fid)
+        dof_joint = np.zeros(model.nv, dtype=int)
+        for j in self._joints.values():
+            dof_joint[j.v_slice] = j.id
+        # Pinocchio numbers joints parent before child: along one chain, a smaller id supports a larger one
+        self._dof_supports = dof_joint[None, :] <= dof_joint[:, None]
+        self._dof_supports.flags.writeable = False
+        self.constraints: tuple[Constraint, ...] = tuple(constraints)
+        for i, constraint in enumerate(self.constraints):
+            if not isinstance(constraint, Constraint):
+                raise ParameterError(f"constraints[{i}]", f"expected a PointConstraint or FrameConstraint, got {constraint!r}")
+            constraint.check(self)
 
     @property
     def model(self) -> pin.Model:
@@ -127,6 +152,17 @@ class Robot:
         for j in self._joints.values():
             names.extend([j.name] if j.nv == 1 else [f"{j.name}[{k}]" for k in range(j.nv)])
         return tuple(names)
+
+    @property
+    def dof_supports(self) -> np.ndarray:
+        """(nv, nv) bool, read-only: [i, j] when the joint of degree of freedom j comes no later than that of i.
+
+        Pinocchio numbers joints parent before child, so for two degrees of freedom
+        that move one frame (they lie on one chain) this says that j's joint
+        supports i's, or is it; the derivative of frame Jacobians needs no more
+        (:func:`pinlin.model.constraints.dead_wrench_stiffness`).
+        """
+        return self._dof_supports
 
     def joint(self, name: str) -> JointInfo:
         """Look a joint up by name.
@@ -183,7 +219,8 @@ class Robot:
         return model.createData()
 
     def __repr__(self) -> str:
+        loops = f", constraints={len(self.constraints)}" if self.constraints else ""
         return (
             f"Robot({self.name!r}, nq={self.nq}, nv={self.nv}, "
-            f"joints={len(self._joints)}, source={self.source!r})"
+            f"joints={len(self._joints)}{loops}, source={self.source!r})"
         )

@@ -1,4 +1,4 @@
-"""A scene: a robot, its force elements, gravity and prescribed joint velocities."""
+"""A scene: a robot, its force elements, its kinematic constraints, gravity and prescribed joint velocities."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from collections.abc import Iterable, Mapping
 import numpy as np
 import pinocchio as pin
 
+from .constraints import Constraint, PointConstraint
 from .elements import Element, JointDamper, WrenchElement
 from .elements.base import check_vector3
 from ..errors import ConfigurationError, ParameterError, PrescribedJointError
@@ -17,7 +18,7 @@ __all__ = ["Scene"]
 
 
 class Scene:
-    """What acts on a robot: elements, gravity, prescribed joint velocities (SPEC section 2).
+    """What acts on a robot: elements, constraints, gravity, prescribed joint velocities (SPEC sections 2, 10).
 
     A scene is an immutable description: it owns a copy of the robot's model
     (with the scene's gravity) and no Pinocchio ``Data``.  Each computation runs
@@ -36,6 +37,15 @@ class Scene:
     prescribed : mapping of str to float, optional
         Joint name -> constant velocity [rad/s or m/s] of a 1-DOF joint (a
         turntable, a rotor).  These joints are not coordinates of the result.
+        Not allowed together with constraints: the steady motion of a constrained
+        system needs the J_c-dot terms, which pinlin does not linearize; such a
+        scene is refused rather than linearized approximately.
+    constraints : iterable of Constraint, optional
+        Closed loops and contacts (:class:`~pinlin.PointConstraint`,
+        :class:`~pinlin.FrameConstraint`).  Default: the robot's own
+        (``robot.constraints``, from an MJCF file; none for a URDF); a list given
+        here replaces them (``robot.constraints + (...)`` adds to them).  The
+        linearized system then has n = nv - rank J_c coordinates (SPEC section 10).
     urdf_damping : bool
         Add the URDF's ``<dynamics damping>`` as joint dampers (Pinocchio reads
         it into ``model.damping`` but its dynamics ignore it).  Off by default.
@@ -50,7 +60,8 @@ class Scene:
     JointNotFoundError, FrameNotFoundError
         An element or prescribed velocity names something the robot lacks.
     PrescribedJointError
-        A prescribed joint is not 1-DOF, or every joint is prescribed.
+        A prescribed joint is not 1-DOF, every joint is prescribed, or the scene
+        has both prescribed joints and constraints.
     """
 
     def __init__(
@@ -62,6 +73,7 @@ class Scene:
         prescribed: Mapping[str, float] | None = None,
         urdf_damping: bool = False,
         memory_limit: int | None = None,
+        constraints: Iterable[Constraint] | None = None,
     ):
         if not isinstance(robot, Robot):
             raise ParameterError("robot", f"expected a pinlin.Robot, got {type(robot).__name__}")
@@ -98,6 +110,8 @@ class Scene:
             pres[name] = omega
         self.prescribed = types.MappingProxyType(pres)
         self.memory_limit = memory_limit
+        self._user_constraints = None if constraints is None else tuple(constraints)
+        self.constraints = self._check_constraints(robot, self._user_constraints)
 
         mask = np.ones(robot.nv, dtype=bool)
         self.v0 = np.zeros(robot.nv)
@@ -119,6 +133,7 @@ class Scene:
         self.model.gravity = pin.Motion(self.gravity, np.zeros(3))
         robot.check_memory(memory_limit)  # refuse a model whose workspace would not fit, now
         self._compile()
+        self._compile_constraints()
 
     def _compile(self) -> None:
         """Group the elements for evaluation and precompute what does not depend on q.
@@ -146,6 +161,58 @@ class Scene:
                     fext[jid] = fext[jid] + f
             self.constant_fext = fext
 
+    def _compile_constraints(self) -> None:
+        """Row layout of the stacked constraint equations (scene order), for vectorized checks.
+
+        ``constraint_rows``: one slice per constraint; ``position_rows`` (k x 3) and
+        ``rotation_rows`` (frame constraints x 3): where each constraint's distance and
+        rotation are; ``contact_index``: the contacts' constraint indices, with their
+        rows ``contact_rows`` (c x 3), ``contact_normals`` (c x 3) and
+        ``contact_friction`` (mu, inf when unchecked); ``world_points``: when every
+        constraint holds a frame's origin at a world point, (frame ids, targets (k x 3)).
+        """
+        rows, position, rotation, contacts = [], [], [], []
+        start = 0
+        for i, c in enumerate(self.constraints):
+            rows.append(slice(start, start + c.size))
+            position.append(range(start, start + 3))
+            if c.size == 6:
+                rotation.append(range(start + 3, start + 6))
+            if getattr(c, "contact", False):
+                contacts.append(i)
+            start += c.size
+        self.constraint_rows = tuple(rows)
+        self.position_rows = np.array(position, dtype=int).reshape(-1, 3)
+        self.rotation_rows = np.array(rotation, dtype=int).reshape(-1, 3)
+        self.contact_index = tuple(contacts)
+        self.contact_rows = self.position_rows[contacts] if contacts else np.zeros((0, 3), dtype=int)
+        self.contact_normals = np.array([self.constraints[i].normal for i in contacts]).reshape(-1, 3)
+        friction = [self.constraints[i].friction for i in contacts]
+        self.contact_friction = np.array([np.inf if mu is None else mu for mu in friction], dtype=float)
+        # the common case, points held at world points (contacts, pins to the ground), is evaluated as one group
+        self.world_points = None
+        if self.constraints and all(isinstance(c, PointConstraint) and c.target_frame is None for c in self.constraints):
+            self.world_points = (
+                tuple(self.robot.frame_id(c.frame) for c in self.constraints),
+                np.array([c.target for c in self.constraints]),
+            )
+
+    def _check_constraints(self, robot: Robot, given: tuple | None) -> tuple[Constraint, ...]:
+        constraints = robot.constraints if given is None else given
+        for i, constraint in enumerate(constraints):
+            if not isinstance(constraint, Constraint):
+                raise ParameterError(
+                    f"constraints[{i}]", f"expected a PointConstraint or FrameConstraint, got {constraint!r}"
+                )
+            constraint.check(robot)
+        if constraints and self.prescribed:
+            raise PrescribedJointError(
+                f"a scene with constraints cannot have prescribed joint velocities ({sorted(self.prescribed)}): "
+                f"the steady motion of a constrained system needs the J_c-dot terms, which pinlin does not "
+                f"linearize; remove the prescribed velocities or the constraints"
+            )
+        return tuple(constraints)
+
     @staticmethod
     def _urdf_dampers(robot: Robot) -> tuple[Element, ...]:
         dampers = []
@@ -159,7 +226,8 @@ class Scene:
 
     @property
     def n(self) -> int:
-        """Number of free degrees of freedom (size of the linearized system)."""
+        """Number of free velocity coordinates: the size of the linearized system of a scene
+        without constraints (with constraints the size is nv - rank J_c at the operating point)."""
         return len(self.free_dofs)
 
     @property
@@ -175,6 +243,11 @@ class Scene:
         return out
 
     @property
+    def constraint_size(self) -> int:
+        """Number of scalar constraint equations m (3 per point, 6 per frame constraint)."""
+        return sum(c.size for c in self.constraints)
+
+    @property
     def has_gravity(self) -> bool:
         return bool(np.any(self.gravity != 0))
 
@@ -187,6 +260,7 @@ class Scene:
             prescribed=dict(self.prescribed),
             urdf_damping=self.urdf_damping,
             memory_limit=self.memory_limit,
+            constraints=self._user_constraints,
         )
         unknown = set(changes) - set(args)
         if unknown:
@@ -232,4 +306,5 @@ class Scene:
             kinds[e.kind] = kinds.get(e.kind, 0) + 1
         parts = ", ".join(f"{v} {k}" for k, v in kinds.items()) or "no elements"
         pres = f", prescribed={dict(self.prescribed)}" if self.prescribed else ""
-        return f"Scene({self.robot.name!r}, n={self.n}, {parts}, gravity={self.gravity.tolist()}{pres})"
+        loops = f", {len(self.constraints)} constraints (m = {self.constraint_size})" if self.constraints else ""
+        return f"Scene({self.robot.name!r}, n={self.n}, {parts}{loops}, gravity={self.gravity.tolist()}{pres})"

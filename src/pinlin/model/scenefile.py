@@ -43,6 +43,31 @@ Format (every table is optional except ``[robot]``)::
     frame = "tip"
     force = [1.0, 0.0, 0.0]
 
+    [[spring_damper]]               # spring and dashpot between two points
+    frame = "tip"
+    target = "base"                 # a frame (its origin) or a world point [x, y, z] [m]
+    stiffness = 100.0               # [N/m]
+    damping = 1.0                   # [N s/m], default 0
+    rest_length = 0.5               # [m], default 0
+
+    [[bushing]]                     # six-axis spring and damper on the relative placement
+    frame = "tip"
+    target = "base"                 # a frame, or a world placement { xyz = [...], rpy = [...] } or 4x4
+    stiffness = [1e4, 1e4, 1e4, 50.0, 50.0, 50.0]   # translations [N/m], rotations [N m/rad]; or 6x6
+    damping = [10.0, 10.0, 10.0, 0.1, 0.1, 0.1]     # optional, same form
+    offset = { xyz = [0.0, 0.0, 0.1], rpy = [0.0, 0.0, 0.0] }  # optional unloaded placement
+
+    [[constraint]]                  # a closed loop or a contact (SPEC section 10)
+    type = "point"                  # "point" (keeps the frame's origin at target) or "frame"
+    frame = "rocker_tip"
+    target = [0.7, 0.0, 0.0]        # a frame, a world point [m], or (frame) a world placement
+    # name = "loop"                 # label in reports
+    # contact = true                # point only: one-sided ground contact, checked and reported
+    # friction = 0.8                # its friction coefficient
+    # normal = [0.0, 0.0, 1.0]      # the ground's normal
+
+Without ``[[constraint]]`` tables a scene keeps its robot's own constraints (none for a URDF).
+
 Errors name the file and the key (``spring[2].stiffness``).
 """
 
@@ -53,9 +78,19 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+import pinocchio as pin
 
-from .elements import DeadWrench, FollowerWrench, JointDamper, JointSpring, RayleighDamping
+from .elements import (
+    Bushing,
+    DeadWrench,
+    FollowerWrench,
+    JointDamper,
+    JointSpring,
+    LinearSpringDamper,
+    RayleighDamping,
+)
 from ..errors import PinlinError, SceneFileError
+from .constraints import FrameConstraint, PointConstraint
 from .loading import data_path, load_example, load_urdf
 from .robot import Robot
 from .scene import Scene
@@ -69,7 +104,8 @@ __all__ = ["SceneSpec", "load_scene", "default_scene_path", "SCENE_FORMAT"]
 
 SCENE_FORMAT = __doc__.split("Format (every table is optional except ``[robot]``)::")[1].split("Errors name")[0]
 
-_TOP = {"robot", "scene", "prescribed", "start", "spring", "damper", "rayleigh", "follower", "dead"}
+_ELEMENT_TABLES = ("spring", "damper", "rayleigh", "follower", "dead", "spring_damper", "bushing")
+_TOP = {"robot", "scene", "prescribed", "start", "constraint", *_ELEMENT_TABLES}
 _KEYS = {
     "robot": {"urdf", "example", "free_flyer", "locked"},
     "scene": {"gravity", "urdf_damping"},
@@ -79,6 +115,9 @@ _KEYS = {
     "rayleigh": {"alpha", "beta"},
     "follower": {"frame", "force", "torque"},
     "dead": {"frame", "force", "torque"},
+    "spring_damper": {"frame", "target", "stiffness", "damping", "rest_length"},
+    "bushing": {"frame", "target", "stiffness", "damping", "offset"},
+    "constraint": {"type", "frame", "target", "name", "contact", "friction", "normal"},
 }
 
 
@@ -134,8 +173,8 @@ class _Reader:
             return default
         value = table[key]
         if kind is float:
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                self.fail(full, f"expected a number, got {value!r}")
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not abs(value) <= sys.float_info.max:
+                self.fail(full, f"expected a finite number, got {value!r:.80}")
             return float(value)
         if kind is bool:
             if not isinstance(value, bool):
@@ -145,15 +184,26 @@ class _Reader:
             if not isinstance(value, str):
                 self.fail(full, f"expected a string, got {value!r}")
             return value
-        if kind == "numbers":
+        if kind == "numbers":  # numbers only: numpy would also read "3.0" and true as numbers
             try:
-                arr = np.asarray(value, dtype=float)
-            except (TypeError, ValueError):
-                self.fail(full, f"expected a number or a list of numbers, got {value!r}")
-            if isinstance(value, bool) or arr.dtype == bool:
-                self.fail(full, f"expected numbers, got {value!r}")
-            return arr
+                if not _only_numbers(value):
+                    raise TypeError
+                return np.asarray(value, dtype=float)
+            except (TypeError, ValueError, OverflowError):
+                self.fail(full, f"expected a number or a (rectangular) list of numbers, got {value!r:.80}")
         return value
+
+
+def _only_numbers(value) -> bool:
+    """Whether ``value`` is a number or nested lists of numbers (no strings, booleans or tables)."""
+    stack = [value]
+    while stack:
+        item = stack.pop()
+        if isinstance(item, list):
+            stack.extend(item)
+        elif isinstance(item, bool) or not isinstance(item, (int, float)):
+            return False
+    return True
 
 
 def _robot(r: _Reader, table: dict, base: Path) -> Robot:
@@ -162,6 +212,8 @@ def _robot(r: _Reader, table: dict, base: Path) -> Robot:
     example = r.get(table, "example", "robot", str)
     if (urdf is None) == (example is None):
         r.fail("robot", "give exactly one of 'urdf' (a file) or 'example' (an example-robot-data name)")
+    if urdf is not None and not urdf.strip():
+        r.fail("robot.urdf", "is empty; expected a URDF file (relative to the scene file) or a bundled URDF's name")
     free_flyer = r.get(table, "free_flyer", "robot", bool)
     locked = table.get("locked")
     if locked is not None and not (
@@ -184,6 +236,36 @@ def _robot(r: _Reader, table: dict, base: Path) -> Robot:
         r.fail("robot", str(exc), exc)
 
 
+def _placement(r: _Reader, value, key: str):
+    """A placement from a table { xyz = [m], rpy = [rad] } (URDF's origin convention) or a 4x4 matrix."""
+    if isinstance(value, dict):
+        r.check_keys(value, {"xyz", "rpy"}, key)
+        xyz = r.get(value, "xyz", key, "numbers", np.zeros(3))
+        rpy = r.get(value, "rpy", key, "numbers", np.zeros(3))
+        for name, arr in (("xyz", xyz), ("rpy", rpy)):
+            if arr.shape != (3,) or not np.all(np.isfinite(arr)):
+                r.fail(f"{key}.{name}", f"expected 3 finite numbers, got {arr.tolist()}")
+        return pin.SE3(pin.rpy.rpyToMatrix(*rpy), xyz)
+    if isinstance(value, list):
+        try:
+            return np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            r.fail(key, f"expected a 4x4 matrix of numbers, got {value!r}")
+    r.fail(key, f"expected a table {{ xyz = [...], rpy = [...] }} or a 4x4 matrix, got {value!r}")
+
+
+def _target(r: _Reader, table: dict, where: str, placement: bool):
+    """A frame name, or a world point (3 numbers) / world placement."""
+    value = r.get(table, "target", where, None, required=True)
+    if isinstance(value, str):
+        return value
+    if placement:
+        return _placement(r, value, f"{where}.target")
+    if not isinstance(value, list):
+        r.fail(f"{where}.target", f"expected a frame name or a world point [x, y, z], got {value!r}")
+    return r.get(table, "target", where, "numbers")
+
+
 def _elements(r: _Reader, doc: dict, robot: Robot) -> list:
     elements = []
     makers = {
@@ -204,6 +286,20 @@ def _elements(r: _Reader, doc: dict, robot: Robot) -> list:
             r.get(t, "frame", w, str, required=True),
             r.get(t, "force", w, "numbers", np.zeros(3)),
             r.get(t, "torque", w, "numbers", np.zeros(3)),
+        ),
+        "spring_damper": lambda t, w: LinearSpringDamper(
+            r.get(t, "frame", w, str, required=True),
+            _target(r, t, w, placement=False),
+            stiffness=r.get(t, "stiffness", w, float, required=True),
+            damping=r.get(t, "damping", w, float, 0.0),
+            rest_length=r.get(t, "rest_length", w, float, 0.0),
+        ),
+        "bushing": lambda t, w: Bushing(
+            r.get(t, "frame", w, str, required=True),
+            _target(r, t, w, placement=True),
+            stiffness=r.get(t, "stiffness", w, "numbers", required=True),
+            damping=r.get(t, "damping", w, "numbers"),
+            offset=None if "offset" not in t else _placement(r, t["offset"], f"{w}.offset"),
         ),
     }
     for kind, make in makers.items():
@@ -280,6 +376,46 @@ def _start(r: _Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, boo
     return q, equilibrium, balancing
 
 
+def _constraints(r: _Reader, doc: dict, robot: Robot) -> list | None:
+    """The ``[[constraint]]`` tables, or None when there are none (the robot's own constraints stay)."""
+    tables = doc.get("constraint")
+    if tables is None:
+        return None
+    if not isinstance(tables, list):
+        r.fail("constraint", "use [[constraint]] (an array of tables), one per constraint")
+    out = []
+    for i, t in enumerate(tables, start=1):
+        where = f"constraint[{i}]"
+        r.check_keys(t, _KEYS["constraint"], where)
+        kind = r.get(t, "type", where, str, "point")
+        if kind not in ("point", "frame"):
+            r.fail(f"{where}.type", f"expected 'point' or 'frame', got {kind!r}")
+        if kind == "frame" and any(k in t for k in ("contact", "friction", "normal")):
+            r.fail(where, "contact, friction and normal apply to point constraints only")
+        try:
+            frame = r.get(t, "frame", where, str, required=True)
+            target = _target(r, t, where, placement=kind == "frame")
+            name = r.get(t, "name", where, str)
+            if kind == "frame":
+                constraint = FrameConstraint(frame, target, name=name)
+            else:
+                constraint = PointConstraint(
+                    frame,
+                    target,
+                    contact=r.get(t, "contact", where, bool, False),
+                    friction=r.get(t, "friction", where, float),
+                    normal=r.get(t, "normal", where, "numbers", np.array([0.0, 0.0, 1.0])),
+                    name=name,
+                )
+            constraint.check(robot)
+        except SceneFileError:
+            raise
+        except PinlinError as exc:
+            r.fail(where, str(exc), exc)
+        out.append(constraint)
+    return out
+
+
 def load_scene(path) -> SceneSpec:
     """Read a scene file (format in :data:`SCENE_FORMAT`).
 
@@ -299,11 +435,14 @@ def load_scene(path) -> SceneSpec:
         r.fail(None, f"cannot read: {exc}", exc)
     except tomllib.TOMLDecodeError as exc:
         r.fail(None, f"invalid TOML: {exc}", exc)
+    except RecursionError as exc:  # tomllib parses nested arrays and tables recursively
+        r.fail(None, "invalid TOML: arrays or tables nested too deeply to read", exc)
     r.check_keys(doc, _TOP, None)
     if "robot" not in doc:
         r.fail("robot", "missing the [robot] table")
     robot = _robot(r, doc["robot"], path.parent)
     elements = _elements(r, doc, robot)
+    constraints = _constraints(r, doc, robot)
     scene_table = doc.get("scene", {})
     r.check_keys(scene_table, _KEYS["scene"], "scene")
     gravity = r.get(scene_table, "gravity", "scene", "numbers", np.array([0.0, 0.0, -9.81]))
@@ -313,8 +452,14 @@ def load_scene(path) -> SceneSpec:
         r.fail("prescribed", "expected a table joint = velocity")
     for name in prescribed:
         r.get(prescribed, name, "prescribed", float)
+        try:
+            robot.joint(name)
+        except PinlinError as exc:
+            r.fail(f"prescribed.{name}", str(exc), exc)
     try:
-        scene = Scene(robot, elements, gravity=gravity, prescribed=prescribed, urdf_damping=urdf_damping)
+        scene = Scene(
+            robot, elements, gravity=gravity, prescribed=prescribed, urdf_damping=urdf_damping, constraints=constraints
+        )
     except PinlinError as exc:
         key = "prescribed" if prescribed and "prescribed" in str(exc) else "scene"
         r.fail(key, str(exc), exc)

@@ -1,0 +1,249 @@
+"""Linearization of scenes with constraints in independent coordinates (SPEC section 10).
+
+At an equilibrium (q0, lambda0) (:mod:`.constrained_equilibrium`), v0 = 0, in
+coordinates z with x = B z, B a basis of ker J_c (:mod:`.coordinates`):
+
+.. math::
+    M_z = B^T M B,\\quad C_z = B^T C B,\\quad K_z = B^T (K - K_\\lambda) B
+
+K_lambda = d(J_c^T lambda)/dq at fixed lambda is the stiffness of the constraint
+forces (the Hessian of -lambda^T Phi): without it the frequencies are wrong
+wherever the constraints carry load.  J_c^T lambda is the generalized force of
+world-fixed wrenches at the constrained frames, so K_lambda is their dead-wrench
+stiffness, in closed form from the frame Jacobians the constraints already
+computed (:func:`pinlin.model.constraints.dead_wrench_stiffness`): a constrained
+scene runs the Pinocchio passes of the same scene without constraints, plus one
+``computeJointJacobians`` + ``updateFramePlacements``.
+
+Contacts stay bilateral in the linearization (the standard stance
+linearization): the equilibrium and the system's notes say when the ground
+would have to pull or friction exceed mu.  Prescribed joint velocities are
+refused with constraints (:class:`~pinlin.Scene`): their steady motion would
+need the J_c-dot terms.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+import scipy.linalg.lapack as lapack
+
+from ..errors import (
+    AccuracyWarning,
+    ComputationError,
+    ConstraintViolationError,
+    NotAnEquilibriumError,
+    OverconstrainedError,
+    ParameterError,
+    SingularMassError,
+)
+from ..model.scene import Scene
+from .assembly import fro
+from .constraint_set import (
+    CONSTRAINT_TOL,
+    RANK_TOL,
+    constrained_point,
+    constraint_forces,
+    constraint_notes,
+    evaluate_constraints,
+    relative_residual,
+)
+from .coordinates import coordinate_basis
+from .linearize import STRUCTURE_EPS_FACTOR
+from .singularity import check_regular
+from .system import LinearizedSystem, null_motion
+
+__all__ = [
+    "linearize_constrained",
+    "constraint_stiffness",
+    "BILATERAL_NOTE",
+    "COORDINATE_CONDITION_WARN",
+]
+
+_TINY, _EPS = float(np.finfo(float).tiny), float(np.finfo(float).eps)
+
+#: linearize warns when cond(J_d) of the chosen coordinates exceeds this: the basis entries
+#: grow like cond(J_d), the projected matrices like its square, so their relative rounding
+#: reaches eps cond^2 ~ 2e-8 at 1e4.
+COORDINATE_CONDITION_WARN = 1e4
+
+#: What sys.notes says about contacts (the linearization keeps them bilateral).
+BILATERAL_NOTE = "contacts are treated as bilateral (the stance linearization): they neither lift off nor slide"
+
+def linearize_constrained(
+    scene: Scene,
+    q,
+    *,
+    coordinates=None,
+    balancing: bool = False,
+    equilibrium_tol: float = 1e-8,
+    structure_tol: float | None = None,
+    constraint_tol: float = CONSTRAINT_TOL,
+    rank_tol: float = RANK_TOL,
+) -> LinearizedSystem:
+    """The linearized equations of a scene with constraints in independent coordinates (SPEC section 10).
+
+    Called by :func:`pinlin.linearize` for scenes with constraints, with ``q``
+    already checked (:meth:`Scene.check_configuration`); see there for the
+    parameters, and the module docstring for the mathematics.
+
+    Raises
+    ------
+    ConstraintViolationError
+        q violates the constraints by more than ``constraint_tol`` (the gap [m] attached).
+    OverconstrainedError
+        No motion is left: rank J_c = nv.
+    SingularConstraintError
+        J_c loses rank at q (a toggle or change point), naming the constraints.
+    NotAnEquilibriumError
+        r - J_c^T lambda does not vanish at q and ``balancing`` is False.
+    SingularMassError
+        B^T M B is not positive definite.
+    ParameterError, JointNotFoundError
+        Bad ``coordinates`` (see :func:`~pinlin.linearization.coordinates.coordinate_basis`).
+
+    Warns
+    -----
+    AccuracyWarning
+        The coordinates are nearly singular: cond(J_d) > :data:`COORDINATE_CONDITION_WARN`.
+    """
+    t0 = time.perf_counter()
+    state = evaluate_constraints(scene, q, rank_tol=rank_tol)
+    calls = list(state.calls)
+    gap, rot, worst = state.gaps()
+    if gap > constraint_tol or rot > constraint_tol:
+        raise ConstraintViolationError(
+            f"q violates the constraints: constraint {worst!r} is open by {gap:.4g} m"
+            + (f" (largest rotation gap {rot:.3g} rad)" if rot > constraint_tol else "")
+            + f" > constraint_tol {constraint_tol:g}; close them first with find_equilibrium or close_loops",
+            gap,
+            rot,
+            [worst],
+        )
+    nv = scene.model.nv
+    if state.rank == nv:
+        raise OverconstrainedError(
+            f"no motion left: the constraints {[c.label for c in scene.constraints]} have rank J_c = {state.rank} "
+            f"= nv, so they hold every degree of freedom of {scene.robot.name!r}; there is nothing to linearize",
+            state.rank,
+            nv,
+            [c.label for c in scene.constraints],
+        )
+    check_regular(scene, q, state, calls)
+    lam, g, asm, Kt = constrained_point(scene, q, state, stiffness=True, damping=True, mass=True)
+    calls += asm.calls
+    rel = relative_residual(g, state, lam, asm, Kt)
+    if rel > equilibrium_tol and not balancing:
+        worst_dof = int(np.argmax(np.abs(g)))
+        raise NotAnEquilibriumError(
+            f"q is not an equilibrium of the constrained scene: relative residual of r - J_c^T lambda {rel:.3e} "
+            f"> equilibrium_tol {equilibrium_tol:g} (largest unbalanced force {g[worst_dof]:.4g} on "
+            f"{scene.dof_names[worst_dof]!r}); use find_equilibrium, or balancing=True",
+            residual=fro(g),
+            relative_residual=rel,
+        )
+    basis = coordinate_basis(state, scene.dof_names, coordinates)
+    if basis.condition > COORDINATE_CONDITION_WARN:
+        warnings.warn(
+            f"linearize: the coordinates {list(basis.dof_names)} are nearly singular here: the joints that follow "
+            f"them have cond(J_d) = {basis.condition:.2e} > {COORDINATE_CONDITION_WARN:g}, so M, C, K lose up to "
+            f"about eps cond(J_d)^2 = {np.finfo(float).eps * basis.condition**2:.1e} relative accuracy; choose "
+            f"other joints, coordinates=None or coordinates='orthonormal'",
+            AccuracyWarning,
+            stacklevel=3,
+        )
+    return _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, structure_tol, calls, t0)
+
+
+def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, structure_tol, calls, t0):
+    B = basis.B
+    M = B.T @ asm.M @ B
+    M = (M + M.T) * 0.5
+    C = B.T @ asm.C @ B
+    K = B.T @ Kt @ B
+    if not math.isfinite(float(M.sum() + C.sum() + K.sum())):
+        raise ComputationError("linearize: non-finite entries in the projected M, C or K")
+    if lapack.dpotrf(M, lower=1, clean=0)[1] != 0:
+        smallest, weak = null_motion(M, basis.dof_names)
+        raise SingularMassError(
+            f"the mass matrix B^T M B of the constrained system is not positive definite (smallest eigenvalue "
+            f"{smallest:.3g}); the coordinates {weak} carry no inertia",
+            weak,
+        )
+    dropped: dict[str, float] = {}
+    S, N = (K + K.T) * 0.5, (K - K.T) * 0.5
+    # rounding in B^T (K - K_lambda) B: eps-relative to ||B||^2 (||K|| + ||K_lambda||) (||B||_2 <= ||B||_F)
+    size = fro(N) / max(fro(B) ** 2 * asm.rounding_scale_K, _TINY)
+    if structure_tol is None:
+        structure_tol = STRUCTURE_EPS_FACTOR * len(basis.dof_names) * _EPS
+    if size <= structure_tol:
+        if size:
+            dropped["N"] = size
+        N = np.zeros_like(K)
+    D, G = (C + C.T) * 0.5, np.zeros_like(K)  # v0 = 0: C comes from the (symmetric) elements alone
+    notes, _ = constraint_notes(scene, state, lam, all_contacts=False)
+    if scene.contact_index:
+        notes.append(BILATERAL_NOTE)
+    notes.append(
+        f"{len(basis.dof_names)} coordinates z ({basis.method}) for {len(scene.constraints)} constraints "
+        f"(rank J_c = {state.rank} of m = {state.m}); joint velocities = basis @ z; cond(J_d) = {basis.condition:.3g}"
+    )
+    balance = None
+    if balancing:
+        balance = B.T @ g
+        notes.append(
+            f"held at q by constant actuator forces (relative residual {rel:.2e}): the minimum-norm joint forces "
+            f"g = r - J_c^T lambda, orthogonal to the constraint forces; balancing = B^T g"
+        )
+    return LinearizedSystem.trusted(
+        M, D, G, S, N,
+        dof_names=basis.dof_names,
+        q=q,
+        v=scene.v0,
+        residual=rel,
+        balancing=balance,
+        elapsed=time.perf_counter() - t0,
+        calls=tuple(calls),
+        dropped=dropped,
+        notes=tuple(notes),
+        method="analytic",
+        basis=B,
+        basis_names=scene.dof_names,
+        basis_condition=basis.condition,
+        constraint_forces=constraint_forces(scene, lam),
+    )  # fmt: skip
+
+
+def constraint_stiffness(scene: Scene, q, lam) -> np.ndarray:
+    """K_lambda = d(J_c(q)^T lambda)/dq at fixed lambda (nv x nv, tangent space; SPEC section 10).
+
+    The stiffness of the constraint forces alone: the dead-wrench stiffness of
+    lambda at each constrained frame's origin and -lambda at its target frame's
+    (:func:`pinlin.model.constraints.dead_wrench_stiffness`), what
+    :func:`pinlin.linearize` subtracts from K.
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene with constraints.
+    q : (nq,) array
+    lam : (m,) array
+        Multipliers in scene order (3 per point constraint: force [N]; 6 per frame
+        constraint: force [N], torque [N m]), world axes.
+
+    Raises
+    ------
+    ParameterError
+        No constraints, or lam of the wrong size.
+    ConfigurationError
+        q has the wrong size or is not finite.
+    """
+    if not scene.constraints:
+        raise ParameterError("scene", "has no constraints")
+    lam = np.asarray(lam, dtype=float)
+    if lam.shape != (scene.constraint_size,) or not np.all(np.isfinite(lam)):
+        raise ParameterError("lam", f"expected {scene.constraint_size} finite multipliers, got shape {lam.shape}")
+    return evaluate_constraints(scene, scene.check_configuration(q)).force_stiffness(lam)

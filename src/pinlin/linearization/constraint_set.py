@@ -1,0 +1,258 @@
+"""A scene's constraints at one configuration: Phi, J_c, its rank and the multipliers (SPEC section 10).
+
+:func:`evaluate_constraints` stacks the constraints of a scene in scene order
+(3 rows per point constraint, 6 per frame constraint).  The rank of J_c comes from
+a rank-revealing factorization, the column-pivoted QR of J_c (LAPACK ``dgeqp3``:
+J_c P = Q R with |R_11| >= |R_22| >= ...): the rank is the number of diagonal
+entries |R_kk| > ``rank_tol`` |R_11| (:data:`RANK_TOL`); the same factorization
+picks the dependent joints of the default coordinates (:mod:`.coordinates`).  The
+multipliers are the minimum-norm least-squares solution of J_c^T lambda = r
+(LAPACK ``dgelsy``, a complete orthogonal factorization with the same threshold;
+the SVD truncated at the rank if the two rank decisions ever differ): a redundant
+set (a planar loop's point constraint has an out-of-plane equation that is always
+satisfied, so its force along that direction is not determined) gets the
+minimum-norm forces.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import scipy.linalg.lapack as lapack
+
+from ..model.constraints import ConstraintForce, ContactStatus, dead_wrench_stiffness, stack_wrenches
+from ..model.scene import Scene
+from .assembly import Assembly, assemble, fro
+from .workspace import Evaluation, Workspace
+
+__all__ = [
+    "ConstraintState",
+    "constrained_point",
+    "relative_residual",
+    "constraint_notes",
+    "evaluate_constraints",
+    "constraint_forces",
+    "contact_statuses",
+    "RANK_TOL",
+    "CONSTRAINT_TOL",
+]
+
+#: A pivot |R_kk| of the column-pivoted QR of J_c counts as zero when it is at most
+#: RANK_TOL |R_11|: rounding leaves ~1e-15 relative in an exactly dependent row, while a
+#: linkage 1e-8 rad from a toggle still has ~1e-8; 1e-9 separates the two with margin.
+RANK_TOL = 1e-9
+
+#: Default largest constraint gap [m] (and rotation [rad]) that ``linearize`` accepts as
+#: closed: the equilibrium solver closes loops to ~1e-15 m; 1e-8 m leaves room for
+#: configurations assembled by other tools while staying far below any physical gap.
+CONSTRAINT_TOL = 1e-8
+
+
+@dataclass
+class ConstraintState:
+    """The constraints of a scene evaluated at q.
+
+    Attributes
+    ----------
+    scene : Scene
+    q : (nq,) ndarray
+    phi : (m,) ndarray
+        Phi(q), stacked in scene order [m, rad].
+    J : (m, nv) ndarray
+        J_c in velocity form (world-axes relative velocity of each frame).
+    J_closure : (m, nv) ndarray or None
+        dPhi/dq, exact off the manifold (only when asked for).
+    rows : tuple of slice
+        The rows of each constraint.
+    calls : list of str
+        Pinocchio algorithms run.
+    ev : Evaluation
+        The kinematics at q (frame Jacobians, placements), kept for K_lambda.
+    rank_tol : float
+        Relative threshold of the rank decisions.
+    frames : (k, 6, nv) ndarray or None
+        The constrained frames' Jacobians (LOCAL_WORLD_ALIGNED) when every constraint
+        holds a point at a world point (``scene.world_points``): K_lambda in one product.
+    """
+
+    scene: Scene
+    q: np.ndarray
+    phi: np.ndarray
+    J: np.ndarray
+    J_closure: np.ndarray | None
+    rows: tuple[slice, ...]
+    calls: list[str]
+    ev: Evaluation
+    rank_tol: float = RANK_TOL
+    frames: np.ndarray | None = None
+
+    @cached_property
+    def qr(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Column-pivoted QR of J_c: (LAPACK's packed Q and R, 0-based column pivots, Householder tau)."""
+        qr, pivots, tau, _, _ = lapack.dgeqp3(self.J)
+        return qr, pivots - 1, tau
+
+    @cached_property
+    def rank(self) -> int:
+        """Numerical rank of J_c: pivots |R_kk| above ``rank_tol`` |R_11|."""
+        d = np.abs(np.diagonal(self.qr[0]))
+        if not len(d) or d[0] == 0:
+            return 0
+        return int(np.count_nonzero(d > self.rank_tol * d[0]))
+
+    @cached_property
+    def svd(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Full SVD of J_c: U (m x m), s, Vt (nv x nv) (bases of the null spaces, minimum-norm multipliers)."""
+        return np.linalg.svd(self.J, full_matrices=True)
+
+    @property
+    def m(self) -> int:
+        return len(self.phi)
+
+    @cached_property
+    def left_null(self) -> np.ndarray:
+        """Orthonormal basis of ker J_c^T (m x (m - rank)): the dependent combinations of the equations."""
+        return self.svd[0][:, self.rank :]
+
+    def kernel(self) -> np.ndarray:
+        """Orthonormal basis of ker J_c (nv x (nv - rank))."""
+        return self.svd[2][self.rank :].T
+
+    def multipliers(self, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Minimum-norm lambda minimizing ||r - J_c^T lambda||, and g = r - J_c^T lambda.
+
+        .. math::  \\lambda = \\arg\\min \\|\\lambda\\| \\ \\text{among the minimizers of}
+                   \\ \\|r - J_c^T \\lambda\\|
+        """
+        k, (nv, m) = self.rank, self.J.T.shape
+        if not k:
+            return np.zeros(m), r.copy()
+        b = np.zeros((max(nv, m), 1))
+        b[:nv, 0] = r
+        mn = min(nv, m)
+        _, x, _, rank, _ = lapack.dgelsy(self.J.T, b, np.zeros(m, dtype=np.int32), self.rank_tol, max(mn + 3 * m + 1, 2 * mn + 1))
+        if rank == k:
+            lam = x[:m, 0]
+        else:  # the two rank decisions differ at the threshold: follow this state's rank
+            U, s, Vt = self.svd
+            lam = U[:, :k] @ ((Vt[:k] @ r) / s[:k])
+        return lam, r - self.J.T @ lam
+
+    def force_stiffness(self, lam: np.ndarray) -> np.ndarray:
+        """K_lambda = d(J_c^T lambda)/dq at fixed lambda (nv x nv; SPEC section 10)."""
+        before = self.scene.robot.dof_supports
+        if self.frames is not None:
+            return dead_wrench_stiffness(self.frames, lam.reshape(-1, 3), None, before)
+        terms = [t for c, rows in zip(self.scene.constraints, self.rows) for t in c.wrench_terms(self.ev, lam[rows])]
+        return dead_wrench_stiffness(*stack_wrenches(terms), before)
+
+    def gaps(self) -> tuple[float, float, str]:
+        """Largest distance [m], largest rotation [rad], and the label of the constraint with the largest distance."""
+        P = self.phi[self.scene.position_rows]
+        d2 = (P * P).sum(axis=1)
+        worst = int(d2.argmax())
+        rot = 0.0
+        if len(self.scene.rotation_rows):
+            R = self.phi[self.scene.rotation_rows]
+            rot = math.sqrt(float((R * R).sum(axis=1).max()))
+        return math.sqrt(float(d2[worst])), rot, self.scene.constraints[worst].label
+
+    def contacts_violated(self, lam: np.ndarray) -> bool:
+        """True when a contact needs the ground to pull or more friction than its mu."""
+        scene = self.scene
+        if not scene.contact_index:
+            return False
+        L = lam[scene.contact_rows]
+        n = scene.contact_normals
+        fn = (L * n).sum(axis=1)
+        t = L - fn[:, None] * n
+        return bool((fn < 0).any() or ((t * t).sum(axis=1) > (scene.contact_friction * fn) ** 2).any())
+
+    def row_owners(self, vector: np.ndarray, share: float) -> list[str]:
+        """Labels of the constraints whose rows carry at least ``share`` of a unit vector (m,)."""
+        weights = [float(np.linalg.norm(vector[rows])) for rows in self.rows]
+        top = max(weights) if weights else 0.0
+        return [c.label for c, w in zip(self.scene.constraints, weights) if top > 0 and w >= share * top]
+
+
+def evaluate_constraints(
+    scene: Scene,
+    q: np.ndarray,
+    *,
+    closure: bool = False,
+    rank_tol: float = RANK_TOL,
+    ws: Workspace | None = None,
+) -> ConstraintState:
+    """Phi(q) and J_c(q) of every constraint of ``scene``, stacked (and dPhi/dq if ``closure``).
+
+    ``q`` must already be checked (:meth:`Scene.check_configuration`).  Runs
+    ``computeJointJacobians`` + ``updateFramePlacements`` once.
+    """
+    ev = Evaluation(scene, q, scene.v0, ws)
+    if scene.world_points is not None:  # points at world points: one group, same numbers
+        ids, targets = scene.world_points
+        ev.frame_position(ids[0])  # the kinematics, once
+        oMf = ev.data.oMf
+        frames = np.array([ev.world_aligned_jacobian(i) for i in ids])
+        phi = (np.array([oMf[i].translation for i in ids]) - targets).ravel()
+        J = frames[:, :3].reshape(-1, scene.model.nv)
+        return ConstraintState(scene, q, phi, J, J if closure else None, scene.constraint_rows, ev.calls, ev, rank_tol, frames)
+    constraints = scene.constraints
+    phi = np.concatenate([c.residual(ev) for c in constraints])
+    J = np.vstack([c.jacobian(ev) for c in constraints])
+    Jx = np.vstack([c.closure_jacobian(ev) for c in constraints]) if closure else None
+    return ConstraintState(scene, q, phi, J, Jx, scene.constraint_rows, ev.calls, ev, rank_tol)
+
+
+def constraint_forces(scene: Scene, lam: np.ndarray) -> tuple[ConstraintForce, ...]:
+    """One :class:`~pinlin.ConstraintForce` per constraint, in scene order."""
+    return tuple(c.force(lam[rows]) for c, rows in zip(scene.constraints, scene.constraint_rows))
+
+
+def contact_statuses(scene: Scene, lam: np.ndarray) -> tuple[ContactStatus, ...]:
+    """The status of every contact (``PointConstraint(..., contact=True)``), in scene order."""
+    rows = scene.constraint_rows
+    return tuple(scene.constraints[i].contact_status(lam[rows[i]]) for i in scene.contact_index)
+
+
+def constrained_point(scene: Scene, q: np.ndarray, state: ConstraintState, stiffness: bool = False, **asked):
+    """(lambda, g = r - J_c^T lambda, assembly, K - K_lambda or None) at q.
+
+    The assembly is the scene's own (as without constraints); lambda are the
+    minimum-norm multipliers of its residual.
+    """
+    asm = assemble(scene, q, stiffness=stiffness, **asked)
+    lam, g = state.multipliers(asm.residual)
+    if not stiffness:
+        return lam, g, asm, None
+    K_lambda = state.force_stiffness(lam)
+    asm.rounding_scale_K += fro(K_lambda)  # K - K_lambda carries the rounding of both
+    return lam, g, asm, asm.K - K_lambda
+
+
+def relative_residual(g: np.ndarray, state: ConstraintState, lam: np.ndarray, asm: Assembly, Kt: np.ndarray) -> float:
+    """||g|| / (||tau|| + ||Q_e|| + ||K|| + ||J_c^T lambda|| + ||K - K_lambda||)."""
+    scale = asm.force_scale + fro(asm.residual - g) + fro(Kt)  # r - g = J_c^T lambda
+    return fro(g) / scale if scale > 0 else 0.0
+
+
+def constraint_notes(scene: Scene, state: ConstraintState, lam: np.ndarray, all_contacts: bool) -> tuple[list[str], tuple]:
+    """Notes on redundancy and on contacts the ground cannot hold, and the contact statuses.
+
+    The statuses are built for every contact when ``all_contacts``, else only when
+    one is violated (the vectorized check is cheaper than the objects).
+    """
+    notes = []
+    if state.rank < state.m:
+        notes.append(
+            f"{state.m - state.rank} of the {state.m} constraint equations are redundant (rank J_c = "
+            f"{state.rank}): the constraint forces are the minimum-norm ones, not unique"
+        )
+    contacts = ()
+    if all_contacts or state.contacts_violated(lam):
+        contacts = contact_statuses(scene, lam)
+        notes.extend(c.describe() for c in contacts if not c.feasible)
+    return notes, contacts

@@ -1,0 +1,128 @@
+"""The constraint interface: what every kinematic constraint of a scene implements (SPEC section 10)."""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
+
+from ...errors import ParameterError
+from .forces import ConstraintForce
+from .stiffness import CONSTANT_SUBSPACE_JOINTS, dead_wrench_stiffness, stack_wrenches
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ...linearization.workspace import Evaluation
+    from ..robot import Robot
+
+__all__ = ["Constraint"]
+
+
+class Constraint(ABC):
+    """A kinematic constraint Phi(q) = 0 between a frame and a target (SPEC section 10).
+
+    Subclasses are frozen dataclasses with fields ``frame``, ``target`` and
+    ``name``; a :class:`~pinlin.Scene` checks them against its robot.
+    """
+
+    #: Short label for reports and scene files.
+    kind: ClassVar[str] = "constraint"
+    #: Number of scalar equations m.
+    size: ClassVar[int] = 0
+    frame: str
+    target: object
+    name: str | None
+
+    @property
+    def label(self) -> str:
+        """The name, else ``frame`` (a world target) or ``frame-target``."""
+        if self.name:
+            return self.name
+        return f"{self.frame}-{self.target}" if isinstance(self.target, str) else self.frame
+
+    @property
+    def target_frame(self) -> str | None:
+        """The target's frame name, or None for a fixed world target."""
+        return self.target if isinstance(self.target, str) else None
+
+    def check(self, robot: Robot) -> None:
+        """Raise when the frame or the target frame is not in ``robot`` or moves with unsupported joints.
+
+        Raises
+        ------
+        FrameNotFoundError
+            Unknown frame or target frame (the message lists the valid names).
+        ParameterError
+            The frame is its own target, or a joint moving a frame has a
+            configuration-dependent motion subspace (composite, universal,
+            spherical-ZYX, mimic joints), where :func:`dead_wrench_stiffness` does not hold.
+        """
+        label = f"{type(self).__name__}({self.frame!r})"
+        frames = [self.frame] if self.target_frame is None else [self.frame, self.target_frame]
+        if self.target_frame == self.frame:
+            raise ParameterError(f"{label}.target", "a frame cannot be its own target")
+        model = robot.model
+        for frame in frames:
+            fid = robot.frame_id(frame)
+            for jid in model.supports[model.frames[fid].parentJoint]:
+                joint = model.joints[jid]
+                kind = joint.shortname()
+                if jid and not ((joint.nv == 1 and "Mimic" not in kind) or kind in CONSTANT_SUBSPACE_JOINTS):
+                    raise ParameterError(
+                        label,
+                        f"joint {model.names[jid]!r} ({kind}) moves frame {frame!r}; constraints support 1-DOF "
+                        f"joints and {sorted(CONSTANT_SUBSPACE_JOINTS)} (motion subspace constant in the joint frame)",
+                    )
+
+    def _target_placement(self, ev: Evaluation) -> tuple[np.ndarray, np.ndarray, int | None]:
+        """World position, rotation and frame id (None for world targets) of the target."""
+        if self.target_frame is not None:
+            fid = ev.robot.frame_id(self.target_frame)
+            return ev.frame_position(fid), ev.frame_rotation(fid), fid
+        H = np.asarray(self.target)
+        if H.shape == (3,):
+            return H, np.eye(3), None
+        return H[:3, 3], H[:3, :3], None
+
+    def _relative_jacobian(self, ev: Evaluation) -> np.ndarray:
+        """Frame Jacobian minus target Jacobian, LOCAL_WORLD_ALIGNED (6 x nv)."""
+        J = ev.world_aligned_jacobian(ev.robot.frame_id(self.frame))
+        if self.target_frame is not None:
+            J = J - ev.world_aligned_jacobian(ev.robot.frame_id(self.target_frame))
+        return J
+
+    def _pair(self, ev: Evaluation, force: np.ndarray, torque: np.ndarray | None) -> list[tuple]:
+        """(J, force, torque) on the frame, and the opposite on a target frame."""
+        out = [(ev.world_aligned_jacobian(ev.robot.frame_id(self.frame)), force, torque)]
+        if self.target_frame is not None:
+            J_b = ev.world_aligned_jacobian(ev.robot.frame_id(self.target_frame))
+            out.append((J_b, -force, None if torque is None else -torque))
+        return out
+
+    def force_stiffness(self, ev: Evaluation, lam: np.ndarray) -> np.ndarray:
+        """K_lambda = d(J_c^T lam)/dq at fixed lam (nv x nv), see :func:`dead_wrench_stiffness`."""
+        return dead_wrench_stiffness(*stack_wrenches(self.wrench_terms(ev, lam)), ev.robot.dof_supports)
+
+    @abstractmethod
+    def residual(self, ev: Evaluation) -> np.ndarray:
+        """Phi(q) (m,): [m] for positions, [rad] for rotations."""
+
+    @abstractmethod
+    def jacobian(self, ev: Evaluation) -> np.ndarray:
+        """J_c (m x nv) in velocity form: the frame's velocity relative to the target, world axes."""
+
+    def closure_jacobian(self, ev: Evaluation) -> np.ndarray:
+        """dPhi/dq (m x nv, tangent space), exact also off the manifold (for closing loops)."""
+        return self.jacobian(ev)
+
+    @abstractmethod
+    def wrench_terms(self, ev: Evaluation, lam: np.ndarray) -> list[tuple]:
+        """The world-fixed wrenches J_c^T lam stands for: (J, force, torque) per frame (:func:`dead_wrench_stiffness`)."""
+
+    @abstractmethod
+    def force(self, lam: np.ndarray) -> ConstraintForce:
+        """The wrench ``lam`` (this constraint's multipliers) as a :class:`ConstraintForce`."""
+
+    def gaps(self, phi: np.ndarray) -> tuple[float, float]:
+        """Distance [m] and rotation [rad] between the frame and its target for this constraint's Phi."""
+        return float(np.linalg.norm(phi[:3])), float(np.linalg.norm(phi[3:])) if len(phi) > 3 else 0.0
