@@ -5,7 +5,10 @@ do not share the method; these are the multiprecision ones, computed with
 mpmath (``pip install 'pinlin[test]'`` or ``'pinlin[bench]'``): the eigenvalues
 of the first-order companion matrix and the characteristic polynomial's
 coefficients, both formed and solved at ``dps`` decimal digits from the
-(exactly representable) double-precision matrices.
+(exactly representable) double-precision matrices.  :func:`check_element`
+checks a force element's analytic derivatives against central differences on
+the configuration manifold (SPEC section 11): use it for every element you write
+(docs/elements.md).
 """
 
 from __future__ import annotations
@@ -15,9 +18,27 @@ from collections.abc import Sequence
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from .errors import MissingDependencyError, ParameterError
+from .errors import ConfigurationError, MissingDependencyError, ParameterError
 
-__all__ = ["mp_eigenvalues", "mp_characteristic_coefficients", "paired", "cantilever_beam"]
+__all__ = [
+    "mp_eigenvalues",
+    "mp_characteristic_coefficients",
+    "paired",
+    "cantilever_beam",
+    "check_element",
+    "CHECK_STEP",
+    "NOISE_FACTOR",
+]
+
+#: Central-difference step of :func:`check_element` [rad, m; rad/s, m/s]: the
+#: truncation error (h^2 times third derivatives, ~1e-10 relative) and the rounding
+#: error (eps |Q| / h, ~1e-11 relative) are both far below the 1e-6 a test asks for
+#: (benchmarks/bench_linearize.py finds the best central step of pinlin's residual near it).
+CHECK_STEP = 1e-5
+#: Matrices whose analytic and difference values are both below this multiple of the
+#: rounding level of the differences (eps |Q| sqrt(nv) / h) are equal to the
+#: precision differences can see: their mismatch counts as 0.
+NOISE_FACTOR = 100.0
 
 
 def _mpmath():
@@ -169,3 +190,119 @@ def cantilever_beam(
     D[j, j] = c
     Z = np.zeros_like(K)
     return LinearizedSystem(M, D, Z, K, Z)
+
+
+def _relative(a: np.ndarray, b: np.ndarray, noise: float) -> float:
+    """||a - b||_F / max(||a||_F, ||b||_F), or 0 when both are below ``noise``."""
+    size = max(float(np.linalg.norm(a)), float(np.linalg.norm(b)))
+    if size <= noise:
+        return 0.0
+    return float(np.linalg.norm(a - b)) / size
+
+
+def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> float:
+    """Largest relative mismatch between an element's analytic derivatives and central differences (SPEC 11).
+
+    The analytic side is what the element adds to :func:`~pinlin.linearize`'s K
+    and C at (q, v): its group's ``add_stiffness`` / ``add_damping`` (the path
+    linearize takes), evaluated in ``scene`` (Rayleigh damping reads the other
+    elements' elastic stiffness); for a wrench element (``is_wrench``), K and C
+    of a scene holding only it minus those of the bare robot, gravity off, so
+    that Pinocchio's derivative of its ``fext`` is included.  The reference is
+    central differences of ``element.generalized_force`` on the manifold:
+
+    .. math::
+        K_{fd}[:, k] = -\\frac{Q(q \\oplus h e_k, v) - Q(q \\oplus (-h e_k), v)}{2h},\\qquad
+        C_{fd}[:, k] = -\\frac{Q(q, v + h e_k) - Q(q, v - h e_k)}{2h}
+
+    with q (+) dq = ``pin.integrate``.  The mismatch of a matrix is
+    ||A - A_fd||_F / max(||A||_F, ||A_fd||_F), counted 0 when both norms are below
+    :data:`NOISE_FACTOR` times the differences' rounding level eps max|Q| sqrt(nv) / h;
+    the result is the largest of the mismatches of K, C and of the assembled
+    force against ``generalized_force`` at (q, v).  Differences resolve a
+    matrix only to about eps |Q| / h: where the element's stiffness is small
+    against its forces (a spring whose two frames nearly move together) the
+    mismatch measures that rounding, not the element, so check at generic
+    configurations.
+
+    Parameters
+    ----------
+    element : Element
+        In ``scene`` or not (then it is evaluated in a copy holding it too).
+    scene : Scene
+        Gives the robot, prescribed joints and the other elements (Rayleigh
+        damping reads their elastic stiffness).
+    q : (nq,) array
+        Configuration.
+    v : (nv,) array, optional
+        Velocity; default ``scene.v0``.
+    step : float
+        h [rad, m; rad/s, m/s], see :data:`CHECK_STEP`.
+
+    Returns
+    -------
+    float
+        The largest relative mismatch (about 1e-9 for exact derivatives).
+
+    Raises
+    ------
+    ParameterError
+        ``element`` is not an element, or ``step`` is not a positive number.
+    ConfigurationError
+        ``q`` or ``v`` has the wrong size or non-finite entries.
+    """
+    import pinocchio as pin
+
+    from .linearization.assembly import assemble
+    from .linearization.workspace import Evaluation
+    from .model.elements import Element
+
+    if not isinstance(element, Element):
+        raise ParameterError("element", f"expected a pinlin element, got {element!r}")
+    if not (isinstance(step, (int, float)) and np.isfinite(step) and step > 0):
+        raise ParameterError("step", f"must be a positive number, got {step!r}")
+    host = scene if any(e is element for e in scene.elements) else scene.replace(
+        elements=scene.elements + (element,), urdf_damping=False
+    )
+    q = host.check_configuration(q)
+    v = np.array(host.v0 if v is None else v, dtype=float)
+    nv = host.model.nv
+    if v.shape != (nv,) or not np.all(np.isfinite(v)):
+        raise ConfigurationError(f"v must be {nv} finite numbers, got {v!r}")
+
+    def force(qq, vv):
+        return element.generalized_force(Evaluation(host, qq, vv))
+
+    eps = np.finfo(float).eps
+    if element.is_wrench:
+        zero_g = dict(gravity=(0.0, 0.0, 0.0), urdf_damping=False)
+        alone, bare = (scene.replace(elements=els, **zero_g) for els in ((element,), ()))
+        with_, without = (assemble(s, q, v, stiffness=True, damping=True) for s in (alone, bare))
+        K, C = with_.K - without.K, with_.C - without.C
+        Q_asm = without.residual - with_.residual
+        force_noise = NOISE_FACTOR * eps * (np.linalg.norm(with_.residual) + np.linalg.norm(without.residual))
+    else:
+        ev = Evaluation(host, q, v)
+        group = type(element).group((element,), host.robot)
+        K, C, Q_asm = np.zeros((nv, nv)), np.zeros((nv, nv)), np.zeros(nv)
+        group.add_stiffness(ev, K)
+        group.add_damping(ev, C)
+        group.add_force(ev, Q_asm)
+        force_noise = 0.0
+    K_fd, C_fd = np.zeros((nv, nv)), np.zeros((nv, nv))
+    size_q, size_v = 0.0, 0.0
+    for k in range(nv):
+        e = np.zeros(nv)
+        e[k] = step
+        plus, minus = force(pin.integrate(host.model, q, e), v), force(pin.integrate(host.model, q, -e), v)
+        K_fd[:, k] = -(plus - minus) / (2 * step)
+        size_q = max(size_q, np.linalg.norm(plus), np.linalg.norm(minus))
+        plus, minus = force(q, v + e), force(q, v - e)
+        C_fd[:, k] = -(plus - minus) / (2 * step)
+        size_v = max(size_v, np.linalg.norm(plus), np.linalg.norm(minus))
+    rounding = NOISE_FACTOR * eps * np.sqrt(nv) / step
+    return max(
+        _relative(K, K_fd, rounding * size_q),
+        _relative(C, C_fd, rounding * size_v),
+        _relative(Q_asm, force(q, v), force_noise),
+    )

@@ -1,0 +1,159 @@
+"""The logarithm of SE(3) to second order: what a bushing needs beyond Pinocchio's ``log6`` and ``Jlog6``.
+
+A bushing's deflection is e = log6(X) (SPEC section 11).  Its stiffness away
+from e = 0 needs how the Jacobian of the log changes, i.e. the second-order
+expansion of
+
+.. math::  e(X \\exp \\xi) = e + J_{log}(X)\\, \\xi + \\tfrac12 E_2[\\xi, \\xi] + O(|\\xi|^3),
+           \\qquad \\xi = (v, \\omega)
+
+(right perturbation, Pinocchio's convention: linear part first).  With
+X = (R, p), theta = log3(R) and t = |theta|, the log is e = (W(theta) p, theta)
+where W = J_l^{-1} is the inverse left Jacobian of SO(3), and the inverse right
+Jacobian is
+
+.. math::  A(\\theta) = J_r^{-1}(\\theta) = I + \\tfrac12[\\theta]_\\times
+           + \\beta(t)\\,[\\theta]_\\times^2,\\qquad
+           \\beta(t) = \\frac{1}{t^2} - \\frac{1 + \\cos t}{2 t \\sin t}
+           = \\sum_{n\\ge 1} \\frac{2\\zeta(2n)}{(2\\pi)^{2n}} t^{2n-2},
+
+W = A^T.  Differentiating this closed form (no third derivative of log3 is
+needed) gives, with theta' = log(exp(theta) exp(omega)) and
+p' = p + R J_l(omega) v:
+
+- J_log = [[A, B], [0, A]] with B omega = DW[A omega] p (equal to Pinocchio's ``Jlog6``);
+- E_2 in the rotation rows: DA[A omega_2] omega_1 - (1/2) A (omega_2 x omega_1);
+- in the translation rows: D^2 W[A omega_1, A omega_2] p + DW[theta_2] p
+  + DW[A omega_1] R v_2 + DW[A omega_2] R v_1 + (1/2) A (omega_1 x v_2 + omega_2 x v_1)
+  (theta_2 the rotation rows' second-order term).
+
+beta and its derivatives are summed from their power series in t^2, which
+converges for t < 2 pi (log3 gives t <= pi) without the cancellation of the
+closed form at small angles.  Tests compare everything with finite
+differences of ``pin.log6``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.special import zeta
+
+__all__ = ["skew", "log_expansion", "log_jacobian_derivative", "ad_matrix", "SERIES_TERMS"]
+
+#: Terms of the series of beta(t): at t = pi the ratio of successive terms is 1/4,
+#: so 40 terms leave a truncation below 1e-20 even for the second derivative.
+SERIES_TERMS = 40
+
+_n = np.arange(1, SERIES_TERMS + 1)
+_B = 2.0 * zeta(2.0 * _n) / (2.0 * np.pi) ** (2 * _n)  # coefficient of t^(2n-2) in beta(t)
+#: Coefficients of t^(2m), m = 0, 1, ... of beta, gamma = beta'(t)/t and gamma2 = gamma'(t)/t
+#: (zero-padded to SERIES_TERMS): beta, gamma, gamma2 = powers(t^2) @ _SERIES.
+_SERIES = np.zeros((SERIES_TERMS, 3))
+_SERIES[:, 0] = _B
+_SERIES[: SERIES_TERMS - 1, 1] = _B[1:] * (2 * _n[1:] - 2)
+_SERIES[: SERIES_TERMS - 2, 2] = _B[2:] * (2 * _n[2:] - 2) * (2 * _n[2:] - 4)
+_POWERS = np.arange(SERIES_TERMS)
+
+#: Levi-Civita symbol: (a x b)_k = eps_ijk a_i b_j.
+_EPS = np.zeros((3, 3, 3))
+for _i, _j, _k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+    _EPS[_i, _j, _k] = 1.0
+    _EPS[_j, _i, _k] = -1.0
+#: _S[:, :, j] = [e_j]x: ([u]x)_ac = eps_abc u_b.
+_S = np.einsum("ajc->acj", _EPS)
+#: [e_j]x [e_k]x + [e_k]x [e_j]x, indexed [a, b, j, k].
+_SS = np.einsum("abj,bck->acjk", _S, _S)
+_SS = _SS + _SS.transpose(0, 1, 3, 2)
+
+
+def skew(a: np.ndarray) -> np.ndarray:
+    """[a]x, the matrix of the cross product a x . ((..., 3) -> (..., 3, 3))."""
+    return np.einsum("abj,...j->...ab", _S, a)
+
+
+def ad_matrix(xi: np.ndarray) -> np.ndarray:
+    """ad(xi) for twists xi = (v, omega): ad(xi) eta = [xi, eta] ((..., 6) -> (..., 6, 6))."""
+    out = np.zeros(xi.shape[:-1] + (6, 6))
+    w = skew(xi[..., 3:])
+    out[..., :3, :3] = w
+    out[..., 3:, 3:] = w
+    out[..., :3, 3:] = skew(xi[..., :3])
+    return out
+
+
+def _jr_inv_derivatives(theta: np.ndarray, second: bool = True):
+    """A = J_r^{-1}(theta) (..., 3, 3), dA[..., :, :, j] = dA/dtheta_j and d2A[..., :, :, j, k] (or None)."""
+    t2 = np.einsum("...j,...j->...", theta, theta)
+    beta, gamma, gamma2 = np.moveaxis(np.power.outer(t2, _POWERS) @ _SERIES, -1, 0)
+    T = skew(theta)
+    T2 = T @ T
+    A = np.eye(3) + 0.5 * T + beta[..., None, None] * T2
+    ST = np.einsum("abj,...bc->...acj", _S, T) + np.einsum("...ab,bcj->...acj", T, _S)  # S_j T + T S_j
+    dA = 0.5 * _S + gamma[..., None, None, None] * np.einsum("...j,...ab->...abj", theta, T2) + beta[..., None, None, None] * ST
+    if not second:
+        return A, dA, None
+    g = gamma[..., None, None, None, None]
+    d2A = (
+        gamma2[..., None, None, None, None] * np.einsum("...j,...k,...ab->...abjk", theta, theta, T2)
+        + g * np.einsum("jk,...ab->...abjk", np.eye(3), T2)
+        + g * (np.einsum("...j,...abk->...abjk", theta, ST) + np.einsum("...k,...abj->...abjk", theta, ST))
+        + beta[..., None, None, None, None] * _SS
+    )
+    return A, dA, d2A
+
+
+def log_expansion(
+    R: np.ndarray, p: np.ndarray, theta: np.ndarray, second_order: bool = True
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """J_log (..., 6, 6) and E_2 (..., 6, 6, 6, symmetric in its last two indices) of e(X exp xi) at X = (R, p).
+
+    Parameters
+    ----------
+    R : (..., 3, 3) rotations, p : (..., 3) translations [m] of X.
+    theta : (..., 3) log3(R) [rad].
+    second_order : bool
+        Compute E_2 (else it is returned as None).
+
+    Returns
+    -------
+    J : (..., 6, 6) ndarray
+        de/dxi at xi = 0 (Pinocchio's ``Jlog6(X)``).
+    E2 : (..., 6, 6, 6) ndarray
+        E2[m, i, j] = d^2 e_m / dxi_i dxi_j at xi = 0.
+    """
+    A, dA, d2A = _jr_inv_derivatives(theta, second_order)
+    dW = np.swapaxes(dA, -3, -2)  # W = A^T
+    dW_A = np.einsum("...abc,...cj->...abj", dW, A)  # DW[A e_j]
+    J = np.zeros(A.shape[:-2] + (6, 6))
+    J[..., :3, :3] = A
+    J[..., 3:, 3:] = A
+    J[..., :3, 3:] = np.einsum("...abj,...b->...aj", dW_A, p)
+    if not second_order:
+        return J, None
+    d2W = np.swapaxes(d2A, -4, -3)
+    dA_A = np.einsum("...abc,...cj->...abj", dA, A)  # DA[A e_j]
+    half_A_eps = 0.5 * np.einsum("...mk,ijk->...mij", A, _EPS)  # (1/2) A (e_i x e_j)
+    H3 = dA_A + half_A_eps  # rotation rows: DA[A e_j] e_i - (1/2) A (e_j x e_i)
+    E2 = np.zeros(A.shape[:-2] + (6, 6, 6))
+    E2[..., 3:, 3:, 3:] = H3
+    E2[..., :3, 3:, 3:] = np.einsum("...abcd,...b,...ci,...dj->...aij", d2W, p, A, A) + np.einsum(
+        "...abc,...b,...cij->...aij", dW, p, H3
+    )
+    mixed = np.einsum("...abj,...bi->...aij", dW_A, R) - half_A_eps  # [a, v_i, omega_j]
+    E2[..., :3, :3, 3:] = mixed
+    E2[..., :3, 3:, :3] = np.swapaxes(mixed, -1, -2)
+    return J, E2
+
+
+#: _AD_BASIS[i] = ad(e_i) (6 x 6 each).
+_AD_BASIS = ad_matrix(np.eye(6))
+
+
+def log_jacobian_derivative(J: np.ndarray, E2: np.ndarray) -> np.ndarray:
+    """L[..., m, i, j] = d J_log[m, i] / d eta_j for X -> X exp(eta) (..., 6, 6, 6).
+
+    From exp(eta) exp(zeta) = exp(eta + zeta + [eta, zeta]/2 + ...):
+    d(J_log e_i)/d eta = E2[:, i, :] + (1/2) J_log ad(.) e_i, i.e.
+    L[:, i, j] = E2[:, i, j] - (1/2) J_log ad(e_i) e_j.
+    """
+    return E2 - 0.5 * np.einsum("...mk,ikj->...mij", J, _AD_BASIS)
