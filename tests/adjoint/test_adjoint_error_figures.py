@@ -117,8 +117,8 @@ def test_adjugate_polynomial_and_taylor_error_bounds_from_both_sides():
         T = adjugate_taylor(sys, lam0, 2)
         with mp.workdps(DPS):
             z = mp.mpc(lam0.real, lam0.imag)
-            tc = np.array([[[complex(mp.diff(lambda x, r=r, c=c: adj_entry_mp(sys, x, r, c), z, j) / math.factorial(j))
-                             for c in range(3)] for r in range(3)] for j in range(3)])
+            tc = np.array([[[complex(mp.diff(lambda x, s=sys, r=r, c=c: adj_entry_mp(s, x, r, c), z, j)
+                                     / math.factorial(j)) for c in range(3)] for r in range(3)] for j in range(3)])
         trueT = np.linalg.norm((T.coef - tc).reshape(3, -1), axis=1)
         sizeT = np.linalg.norm(tc.reshape(3, -1), axis=1)
         assert np.all(trueT <= T.coef_error) and np.all(T.coef_error <= BOUND_FACTOR * np.maximum(trueT, EPS * sizeT))

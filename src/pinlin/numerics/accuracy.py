@@ -69,11 +69,20 @@ def eigen_weight(lam, norms: Norms):
 
 
 def column_norms(A: np.ndarray) -> np.ndarray:
-    """2-norm of each column of a real or complex (n, k) array."""
+    """2-norm of each column of a real or complex (n, k) array, without over- or underflow of the squares.
+
+    .. math::  \\|a\\| = s\\,\\|a / s\\|,\\qquad s = \\max_i |a_i|
+    """
     A = np.asarray(A)
-    if not np.iscomplexobj(A):
-        return np.sqrt(np.einsum("ij,ij->j", A, A))
-    return np.sqrt(np.einsum("ij,ij->j", A.real, A.real) + np.einsum("ij,ij->j", A.imag, A.imag))
+    s = np.max(np.abs(A), axis=0) if A.shape[0] else np.zeros(A.shape[1])
+    safe = np.where((s > 0) & np.isfinite(s), s, 1.0)
+    # real divisions: a complex one may go through 1/s, which overflows for a subnormal s
+    re = A.real / safe
+    total = np.einsum("ij,ij->j", re, re)
+    if np.iscomplexobj(A):
+        im = A.imag / safe
+        total = total + np.einsum("ij,ij->j", im, im)
+    return safe * np.sqrt(total)
 
 
 def backward_errors(lam, X, MX, CX, KX, norms: Norms) -> np.ndarray:
@@ -97,10 +106,11 @@ def condition_numbers(lam, yMx, yCx, yKx, norms: Norms) -> np.ndarray:
 
     inf where the denominator vanishes (a defective eigenvalue: y^T L'(lam) x = 0).
     """
-    norm_M, norm_C, norm_K = norms
+    big = max(norms) if max(norms) > 0 else 1.0  # the norms relative to the largest: no overflow of squares
+    norm_M, norm_C, norm_K = (x / big for x in norms)
     a, b = homogeneous(lam)
     aa, bb = np.abs(a) ** 2, np.abs(b) ** 2
-    num = np.sqrt(aa * aa * norm_M**2 + aa * bb * norm_C**2 + bb * bb * norm_K**2)
+    num = big * np.sqrt(aa * aa * norm_M**2 + aa * bb * norm_C**2 + bb * bb * norm_K**2)
     den = np.abs(2 * a * np.conj(b) * yMx + (bb - aa) * yCx - 2 * np.conj(a) * b * yKx)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(den > 0, num / np.where(den > 0, den, 1.0), np.inf)

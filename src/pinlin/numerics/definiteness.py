@@ -267,12 +267,11 @@ def cholesky_lower_bound(A: np.ndarray, factor: float = EIGENVALUE_ROUNDING) -> 
     gamma_m = m u / (1 - m u).  The singular values of R carry the same
     rounding bound as eigenvalues.  The same bound for the diagonally scaled
     matrix H = S A S, S = diag(a_ii)^(-1/2) (factor R S, Sylvester: H > 0 iff
-    A > 0), times min a_ii >= lambda_min(A) / lambda_min(H), is also taken, and
-    the larger of the two returned: it certifies matrices such as the mass
+    A > 0), times min a_ii (lambda_min(A) >= lambda_min(H) min a_ii), is also
+    taken, and the larger of the two returned: it certifies matrices such as the mass
     matrix of a chain with a near-massless link, positive definite far beyond
     rounding relative to their diagonal but not to their norm.  Barring underflow.
     """
-    n = A.shape[0]
     d = np.diag(A)
     if np.any(d <= 0):
         return None

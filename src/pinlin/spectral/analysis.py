@@ -11,8 +11,8 @@ import warnings
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..numerics.accuracy import ETA_FLOOR
+from ..errors import ComputationError, ParameterError
+from ..numerics.accuracy import ETA_FLOOR, column_norms
 from ..numerics.checks import check_tolerance, check_uncertainty
 from ..numerics.clustering import CLUSTER_TOL, find_clusters
 from ..numerics.definiteness import DEFAULT_UNCERTAINTY
@@ -21,11 +21,11 @@ from ..numerics.rank import JORDAN_RANK_TOL
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
 from .modes import Method, Modes
 from .multiplicity import Cluster, analyse_cluster
+from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
 from .problem import QuadraticProblem, as_problem
 from .qep import RawSpectrum
 from .qualitative import mode_constants, structural_facts
 from .stability import STABILITY_SAFETY, decide_stability
-from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
 from .structured import PATHS
 
 __all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL", "BIORTHOGONAL_RCOND"]
@@ -34,6 +34,9 @@ __all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL", "BIORTHOGONAL_RCOND"]
 #: only when sigma_min / sigma_max of Y^T L' X exceeds this: a thousand times the
 #: rounding level of that SVD, so that the inverse keeps three digits or more.
 BIORTHOGONAL_RCOND = 1e3 * EPS
+
+#: The smallest positive normal double.
+TINY = float(np.finfo(float).tiny)
 
 
 def _order(raw: RawSpectrum) -> RawSpectrum:
@@ -142,7 +145,8 @@ def modal_analysis(
     SingularMassError
         M of a tuple is singular.
     ComputationError
-        QZ failed, or the problem's eigenvalue scale is outside double range.
+        QZ failed, or the problem's eigenvalue scale or an eigenvalue is outside
+        the double range its error figures need.
     """
     t0 = time.perf_counter()
     problem = as_problem(sys)
@@ -160,6 +164,7 @@ def modal_analysis(
     raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
     raw = _order(raw)
     lam = raw.lam
+    _check_range(problem, lam)
     fig = pair_figures(problem, lam, raw.X, raw.Y, raw.MX, raw.CX, raw.KX)
     clusters, notes = _clusters(problem, lam, fig, tolerances)
     left, left_ok, condition, model, more = _cluster_figures(problem, lam, fig, clusters)
@@ -172,6 +177,12 @@ def modal_analysis(
         zeta = np.where(freq > 0, -lam.real / np.where(freq > 0, freq, 1.0), np.nan)
     facts = structural_facts(problem, tolerances["uncertainty"])
     bound = model.bound(0.0)
+    if np.any(np.isnan(bound)) or np.any(np.isnan(fig.backward_error)):
+        raise ComputationError(
+            "an eigenvalue error figure is not a number: the coefficients (norms "
+            f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "
+            "figures can be formed in; rescale the system (units)"
+        )
     notes += _mass_notes(facts, lam, bound)
     # a coordinate on which neither K nor C acts drifts exactly: x(t) = t e_j
     drift = bool(np.any(~np.any(problem.K, axis=0) & ~np.any(problem.C, axis=0)))
@@ -193,7 +204,7 @@ def modal_analysis(
         multiplicity=multiplicity,
         clusters=tuple(clusters),
         is_simple=all(c.semisimple for c in clusters),
-        constants=mode_constants(lam, fig.right, *fig.products) if problem.mechanical else None,
+        constants=_constants(problem, lam, fig) if problem.mechanical else None,
         structure=facts,
         stability=stability,
         method=Method(name, reason),
@@ -205,6 +216,41 @@ def modal_analysis(
         elapsed=time.perf_counter() - t0,
         notes=tuple(notes),
     )
+
+
+def _check_range(problem: QuadraticProblem, lam: np.ndarray) -> None:
+    """Every eigenvalue finite, with |lam|^2 ||M|| + |lam| ||C|| + ||K|| representable (SPEC section 4's weight).
+
+    Raises
+    ------
+    ComputationError
+        Otherwise: a heavily damped problem of extreme scales has eigenvalues
+        beyond the range in which its residuals and error figures exist.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        w = problem.weight(lam)
+    bad = ~(np.isfinite(lam) & np.isfinite(w))
+    if np.any(bad):
+        k = int(np.flatnonzero(bad)[0])
+        raise ComputationError(
+            f"the eigenvalue {complex(lam[k]):.3g} is beyond double range for its error figures "
+            f"(|lam|^2 ||M|| + |lam| ||C|| + ||K|| overflows; norms {problem.norm_M:.3g}, {problem.norm_C:.3g}, "
+            f"{problem.norm_K:.3g}); rescale the system (units)"
+        )
+
+
+def _constants(problem: QuadraticProblem, lam: np.ndarray, fig: PairFigures):
+    """The modal constants from the solver's products; where x^H M x underflows (a tiny M), from M, C, K
+    divided by ||M|| instead (the ratios are the same)."""
+    X = fig.right
+    MX, CX, KX = (P.copy() for P in fig.products)
+    m = np.einsum("ij,ij->j", X.conj(), MX).real
+    bad = ~(np.isfinite(m) & (m > TINY))
+    if np.any(bad):
+        s = problem.norm_M
+        for P, A in zip((MX, CX, KX), (problem.M, problem.C, problem.K)):
+            P[:, bad] = (A / s) @ X[:, bad]
+    return mode_constants(lam, X, MX, CX, KX)
 
 
 def _mass_notes(facts, lam, bound) -> list[str]:
@@ -284,7 +330,6 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
     eta = np.maximum(fig.backward_error, ETA_FLOOR)
     defective = []
     notes: list[str] = []
-    gamma = problem.scaling.gamma
     for c in clusters:
         ii = list(c.indices)
         if c.semisimple or c.index == 1:
@@ -300,7 +345,7 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
                 continue
             left[:, ii] = Yn
             left_ok[ii] = True
-            sens[ii] = problem.weight(lam[ii]) * np.linalg.norm(Yn, axis=0)
+            sens[ii] = problem.weight(lam[ii]) * column_norms(Yn)
         else:
             left[:, ii] = fig.left_unit[:, ii]
             left_ok[ii] = False

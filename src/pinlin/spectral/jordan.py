@@ -26,7 +26,14 @@ from ..numerics.checks import check_integer, check_tolerance, complex_scalar
 from ..numerics.clustering import CLUSTER_TOL, find_clusters
 from ..numerics.rank import JORDAN_RANK_TOL, null_basis
 from ..results import Result
-from .multiplicity import Cluster, analyse_cluster, block_scale, derivative_blocks, partial_multiplicities, toeplitz
+from .multiplicity import (
+    Cluster,
+    analyse_cluster,
+    block_scale,
+    derivative_blocks,
+    partial_multiplicities,
+    toeplitz,
+)
 from .problem import as_problem
 from .qep import solve_general
 

@@ -92,7 +92,7 @@ class Modes(Result):
         Per eigenvalue, one of :data:`MODE_KINDS`: "rigid_body" (|lam| within
         its error bound of 0), "unstable" (Re lam above its error bound),
         "underdamped" (|Im lam| above its error bound), "overdamped" (real,
-        negative; critically damped included).  Bounds times ``safety``;
+        negative; critically damped included).  Bounds at the data uncertainty, times ``safety``;
         members of a cluster are classified by the cluster's mean.
     multiplicity : (2n,) int
         Algebraic multiplicity of the (cluster of the) eigenvalue.
@@ -104,9 +104,13 @@ class Modes(Result):
         m, d, g, k, n per mode and the residual of their equation (SPEC
         section 5); None for tuple input.
     structure : StructuralFacts
-        Definiteness, inertia and determinant signs used by the verdict.
+        Definiteness, inertia and determinant signs used by the verdict, each
+        decided against the rounding bound of the data and the uncertainty
+        (``structure.definiteness_M``, ``_D``, ``_S`` carry the numbers; the
+        command-line report shows these very decisions).
     stability : Stability
-        The verdict (``.kind``, ``.reason``).
+        The verdict (``.kind``, ``.reason``, ``.margin``: how large a relative
+        perturbation of the data it survives).
     method : Method
         Solver path ("symmetric", "squared", "proportional", "general") with
         ``.reason`` (in ``to_dict()``: ``method`` and ``method_reason``).
@@ -118,7 +122,8 @@ class Modes(Result):
         Companion block each right vector was recovered from (general path; 0
         for structured paths).
     tolerances : mapping
-        cluster_tol, rank_tol, structure_tol, definiteness_tol, safety.
+        cluster_tol, rank_tol, structure_tol, uncertainty (the relative data
+        uncertainty of the decisions), safety, eigh_tol.
     system : LinearizedSystem or None
         The system analysed (None for tuple input).
     matrices : tuple of (n, n) ndarray

@@ -29,8 +29,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ComputationError
 from ..numerics.floating import EPS
 from ..numerics.rank import JORDAN_RANK_TOL, kernel_dimension
+from ..numerics.scaling import frobenius
 from ..results import Result
 from .problem import QuadraticProblem
 
@@ -127,7 +129,7 @@ def block_scale(Ms, Cs, Ks, mu0) -> float:
     Rank decisions are relative to this, not to sigma_max(T_k), which is itself
     tiny when L(mu0) and L'(mu0) both vanish.
     """
-    nM, nC, nK = (float(np.linalg.norm(a)) for a in (Ms, Cs, Ks))
+    nM, nC, nK = (frobenius(a) for a in (Ms, Cs, Ks))
     a = abs(mu0)
     return max(a * a * nM + a * nC + nK, 2 * a * nM + nC, nM)
 
@@ -152,10 +154,21 @@ def partial_multiplicities(
         Chain lengths, longest first (empty when L(lam0) is nonsingular at rank_tol).
     kernel_dims : tuple of int
         dim ker T_k for the k computed.
+
+    Raises
+    ------
+    ComputationError
+        L(lam0) or its derivatives overflow double precision.
     """
     Ms, Cs, Ks = problem.scaled()
     mu0 = complex(lam0) / problem.scaling.gamma
-    blocks = derivative_blocks(Ms, Cs, Ks, mu0)
+    with np.errstate(over="ignore", invalid="ignore"):
+        blocks = derivative_blocks(Ms, Cs, Ks, mu0)
+    if not all(np.all(np.isfinite(b)) for b in blocks):
+        raise ComputationError(
+            f"L(lam) at lam = {complex(lam0):.6g} overflows double precision ({abs(mu0):.3g} times the eigenvalue "
+            f"scale gamma = {problem.scaling.gamma:.3g}); rescale the system"
+        )
     threshold = rank_tol * block_scale(Ms, Cs, Ks, mu0)
     dims = [0]
     counts: list[int] = []  # counts[k-1] = number of chains of length >= k

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError, SingularMassError
+from ..errors import ComputationError, ParameterError, SingularMassError
 from ..linearization.system import LinearizedSystem
 from ..numerics.accuracy import eigen_weight
 from ..numerics.checks import check_tolerance
@@ -33,6 +33,9 @@ from ..numerics.scaling import Scaling, coefficient_norms, fan_lin_van_dooren
 from ..results import readonly
 
 __all__ = ["QuadraticProblem", "Scaling", "fan_lin_van_dooren", "as_problem", "SINGULAR_MASS_RCOND"]
+
+#: The smallest positive normal double: a scaled coefficient below it has lost its digits.
+TINY = float(np.finfo(float).tiny)
 
 #: Default: a tuple's M counts as singular when its reciprocal 2-norm condition
 #: number is below this (n eps is where LU loses every digit).
@@ -73,10 +76,38 @@ class QuadraticProblem:
         """True when built from a LinearizedSystem (M spd, D, S symmetric, G, N skew)."""
         return self.system is not None
 
-    def scaled(self, scaling: Scaling | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(M_s, C_s, K_s) = (gamma^2 delta M, gamma delta C, delta K)."""
+    def factors(self, scaling: Scaling | None = None) -> tuple[float, float, float] | None:
+        """(gamma^2 delta, gamma delta, delta), or None when a scaled coefficient is out of double range.
+
+        Out of range: a factor, or a factor times its coefficient's norm, over- or underflows
+        (a nonzero coefficient would become inf or 0).
+        """
         s = self.scaling if scaling is None else scaling
-        return s.gamma**2 * s.delta * self.M, s.gamma * s.delta * self.C, s.delta * self.K
+        with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # inf * 0 is out of range too
+            g, d = np.float64(s.gamma), np.float64(s.delta)
+            factors = (g * g * d, g * d, d)
+            for f, norm in zip(factors, self.norms):
+                size = f * np.float64(norm)
+                if not np.isfinite(f) or f == 0 or (norm > 0 and not (np.isfinite(size) and size > TINY)):
+                    return None
+        return tuple(float(f) for f in factors)  # type: ignore[return-value]
+
+    def scaled(self, scaling: Scaling | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(M_s, C_s, K_s) = (gamma^2 delta M, gamma delta C, delta K).
+
+        Raises
+        ------
+        ComputationError
+            A scaled coefficient is out of double range (see :meth:`factors`).
+        """
+        f = self.factors(scaling)
+        if f is None:
+            s = self.scaling if scaling is None else scaling
+            raise ComputationError(
+                f"the scaling gamma = {s.gamma:.3g}, delta = {s.delta:.3g} takes the coefficients (norms "
+                f"{self.norm_M:.3g}, {self.norm_C:.3g}, {self.norm_K:.3g}) out of double range; rescale the system"
+            )
+        return f[0] * self.M, f[1] * self.C, f[2] * self.K
 
     @property
     def norms(self) -> tuple[float, float, float]:

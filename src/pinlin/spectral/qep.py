@@ -152,11 +152,14 @@ def tropical_scalings(problem: QuadraticProblem, tau_max: float = TROPICAL_TAU) 
     small ones; delta makes the largest scaled coefficient of size one.
     """
     nM, nC, nK = problem.norm_M, problem.norm_C, problem.norm_K
-    if nK == 0 or nC == 0 or nC <= tau_max * np.sqrt(nM * nK):
+    if nK == 0 or nC == 0 or nC <= tau_max * np.sqrt(nM) * np.sqrt(nK):
         return None
     out = []
-    for gamma in (nC / nM, nK / nC):
-        out.append(Scaling(float(gamma), float(1.0 / max(gamma * gamma * nM, gamma * nC, nK))))
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        for gamma in (np.float64(nC) / nM, np.float64(nK) / nC):
+            out.append(Scaling(float(gamma), float(1.0 / max(gamma * gamma * nM, gamma * nC, np.float64(nK)))))
+    if any(problem.factors(s) is None for s in out):
+        return None  # beyond double range: solve_general says so and keeps the Fan-Lin-Van Dooren run
     return out[0], out[1]
 
 
@@ -181,7 +184,14 @@ def solve_general(problem: QuadraticProblem, *, scaling: Scaling | None = None) 
         return _solve_scaled(problem, scaling)[0]
     tropical = tropical_scalings(problem)
     if tropical is None:
-        return _solve_scaled(problem, problem.scaling)[0]
+        raw = _solve_scaled(problem, problem.scaling)[0]
+        tau = problem.norm_C / (np.sqrt(problem.norm_M) * np.sqrt(problem.norm_K)) if problem.norm_K else 0.0
+        if tau > TROPICAL_TAU:  # heavily damped, yet no tropical scaling: their scales are out of range
+            raw = replace(raw, note=(
+                f"heavily damped (tau = {tau:.1e}), but the tropical scalings take the coefficients out of "
+                f"double range: Fan-Lin-Van Dooren scaling only"
+            ))
+        return raw
     return _merge(problem, *tropical)
 
 
@@ -236,7 +246,7 @@ def _merge(problem: QuadraticProblem, plus: Scaling, minus: Scaling) -> RawSpect
                       block=np.where(take, other.block[partner], cur.block), **fields)
         cur_eta = np.where(take, other_eta[partner], cur_eta)
         source = np.where(take, k, source)
-    tau = problem.norm_C / np.sqrt(problem.norm_M * problem.norm_K)
+    tau = problem.norm_C / (np.sqrt(problem.norm_M) * np.sqrt(problem.norm_K))
     counts = [int(np.sum(source == k)) for k in range(3)]
     note = (
         f"heavily damped (tau = ||C||/sqrt(||M|| ||K||) = {tau:.1e} > {TROPICAL_TAU:g}): QZ with the "

@@ -62,6 +62,10 @@ class ModeConstants:
 def mode_constants(lam, X, MX, CX, KX) -> ModeConstants:
     """m, d, g, k, n from the right vectors and their products with M, C = D + G, K = S + N.
 
+    The ratios do not change when M, C, K are divided by one number: pass the
+    products of M / ||M||, C / ||M||, K / ||M|| when M is tiny or huge (x^H M x
+    of a unit x must not underflow).
+
     x^H C x = d + i g and x^H K x = k + i n because x^H D x, x^H S x are real
     and x^H G x, x^H N x imaginary; the rounding parts of the wrong kind are
     dropped.

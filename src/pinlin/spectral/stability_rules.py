@@ -149,9 +149,22 @@ def structure_theorems(ev: Evidence) -> Stability | None:
     else:
         i = ev.right
         reason = pure.reason
+    reason += _certificates(ev.facts)
     return replace(
         pure, reason=reason, eigenvalue=complex(lam[i]), error_bound=float(ev.r[i]), uncertainty=ev.uncertainty
     )
+
+
+def _certificates(facts) -> str:
+    """What certified the definiteness the theorems used (SPEC section 5; :func:`pinlin.numerics.definiteness`)."""
+    parts = [
+        f"{name} {d.kind.replace('_', ' ')} by {d.certificate} (margin {d.margin:.1e})"
+        for name, d in (("M", facts.definiteness_M), ("D", facts.definiteness_D), ("S", facts.definiteness_S))
+        if d is not None and d.kind != "zero"
+    ]
+    if not parts and facts.definiteness_S is None:
+        parts = [f"det M and det K of sign margins {facts.det_margin_M:.1e} and {facts.det_margin_K:.1e}"]
+    return f" [{'; '.join(parts)}]" if parts else ""
 
 
 def _non_circulatory(ev: Evidence) -> bool:

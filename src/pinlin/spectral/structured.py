@@ -28,6 +28,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..errors import ComputationError
+from ..numerics.scaling import frobenius
 from .problem import QuadraticProblem
 from .qep import RawSpectrum, _dggev, complex_columns, exact_pairs
 
@@ -143,7 +144,7 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     """
     sys = problem.system
     D, S = sys.D, sys.S
-    nd, ns = np.linalg.norm(D), np.linalg.norm(S)
+    nd, ns = frobenius(D), frobenius(S)
     if nd == 0 or ns == 0:
         return 0.0
     c = sla.cho_factor(sys.M)
@@ -151,7 +152,7 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     MiD = sla.cho_solve(c, D)
     comm = D @ MiS - S @ MiD
     inv_norm = 1.0 / np.linalg.eigvalsh(sys.M)[0]
-    return float(np.linalg.norm(comm) / (nd * ns * inv_norm))
+    return float(frobenius(comm) / nd / ns / inv_norm)
 
 
 def _gep_eta(A, M, w, Phi, AP, MP) -> np.ndarray:
@@ -190,9 +191,9 @@ def solve_proportional(
     """
     sys = problem.system
     M, D, S = sys.M, sys.D, sys.S
-    nd, ns = np.linalg.norm(D), np.linalg.norm(S)
-    t = _MIX * (ns / nd) if nd > 0 and ns > 0 else _MIX
-    A = S + t * D
+    nd, ns = frobenius(D), frobenius(S)
+    # S + t D with t = _MIX ns / nd, formed as (_MIX ns) (D / nd): t alone may overflow
+    A = S + (_MIX * ns) * (D / nd) if nd > 0 and ns > 0 else S + _MIX * D
     w, Phi = sla.eigh(A, M)
     MP = M @ Phi
     how = "eigh"
