@@ -11,13 +11,16 @@ The packages follow the data flow:
 - :mod:`pinlin.frf` -- H(s), frequency and harmonic responses, residues;
 - :mod:`pinlin.response` -- free and forced responses in time, energy budgets;
 - :mod:`pinlin.nonlinear` -- the nonlinear reference simulation;
-- :mod:`pinlin.studies` -- parameter sweeps and mode tracking;
+- :mod:`pinlin.studies` -- parameter sweeps (on any executor: threads, processes, Dask,
+  Ray) and mode tracking;
 - :mod:`pinlin.boundaries` -- eigenvalue sensitivities, exact stability boundaries;
 - :mod:`pinlin.interop` -- state-space models for python-control and scipy;
-- :mod:`pinlin.cli`, :mod:`pinlin.plot`, :mod:`pinlin.testing` -- around them.
+- :mod:`pinlin.cli`, :mod:`pinlin.plot`, :mod:`pinlin.testing` -- around them
+  (:mod:`pinlin.plot` also draws and animates mode shapes on the robot).
 
 Conventions (names, units, axis orders, what ``.error`` means per result) are in
-``docs/conventions.md``.
+``docs/conventions.md``; the user guide, the API reference and the notebooks build
+from ``docs/`` with Sphinx (``docs/index.md`` says how).
 """
 
 from . import _compat

@@ -338,38 +338,17 @@ class MissingDependencyError(PinlinError, ImportError):
 
 
 class BracketError(InputError):
-    """A parameter bracket cannot hold a stability boundary (SPEC section 12).
-
-    Its ends have the same stability verdict (both stable, both flutter, ...),
-    one end's verdict is "undecided", or the ends are not two distinct finite
-    numbers.
-
-    Attributes
-    ----------
-    bracket : tuple of float
-        The bracket as given.
-    verdicts : tuple of str
-        The stability kinds at its ends (empty when they were not computed).
-    """
+    """A bracket cannot hold a stability boundary (SPEC 12): its ends have the same verdict class, one is
+    "undecided", or they are not two distinct finite numbers; ``bracket``, ``verdicts`` (the kinds at its ends)."""
 
     def __init__(self, message: str, bracket, verdicts=()):
         super().__init__(message)
-        self.bracket = tuple(bracket)
-        self.verdicts = tuple(verdicts)
+        self.bracket, self.verdicts = tuple(bracket), tuple(verdicts)
 
 
 class BoundaryNotIsolatedError(InputError):
-    """The stability verdict changes, but not at an isolated parameter value (SPEC section 12).
-
-    For example the verdict stays "undecided" over an interval much wider than
-    the tolerance, or the critical eigenvalue sits on the imaginary axis over a
-    whole interval: no single boundary value exists to be located.
-
-    Attributes
-    ----------
-    interval : tuple of float
-        The parameter interval where the boundary could not be isolated.
-    """
+    """The verdict changes, but not at an isolated parameter value (SPEC 12): it stays "undecided" over an
+    interval far wider than rounding; ``interval``: where."""
 
     def __init__(self, message: str, interval):
         super().__init__(message)
@@ -377,17 +356,8 @@ class BoundaryNotIsolatedError(InputError):
 
 
 class SystemFunctionError(InputError):
-    """A user function ``func(p) -> LinearizedSystem`` failed (SPEC section 12).
-
-    It raised, returned something other than a LinearizedSystem, or returned
-    systems of different sizes (or coordinates) at different parameter values.
-    The original exception, if any, is chained as ``__cause__``.
-
-    Attributes
-    ----------
-    p : float
-        The parameter value at which it failed.
-    """
+    """A user's ``func(p) -> LinearizedSystem`` raised (chained as ``__cause__``), returned something else, or
+    systems of different sizes (SPEC 12); ``p``: the parameter value."""
 
     def __init__(self, message: str, p: float):
         super().__init__(message)
