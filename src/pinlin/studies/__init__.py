@@ -2,11 +2,28 @@
 
 - :mod:`.sweep` -- :func:`sweep`: evaluate a function over parameter values on any
   executor, with each point's error figure and run time taken where it ran;
+- :mod:`.sweep_result` -- :class:`SweepResult` (values in grid order) and
+  :class:`SweepFailure` (a point that raised);
+- :mod:`.scheduling` -- running the points here or on an executor, collected in
+  completion order and returned in grid order;
+- :mod:`.progress` -- progress in completion order: a text bar, tqdm when installed;
+- :mod:`.ray_executor` -- :class:`RayExecutor`: Ray tasks behind the Executor interface
+  (Dask has its own: ``Client.get_executor()``);
 - :mod:`.tracking` -- follow modes across a sweep by their shapes (MAC and assignment),
   and pick one mode of each conjugate pair for Campbell diagrams.
 """
 
+from .ray_executor import RayExecutor
 from .sweep import SweepFailure, SweepResult, sweep
 from .tracking import TrackedModes, mac, one_per_conjugate_pair, track_modes
 
-__all__ = ["sweep", "SweepResult", "SweepFailure", "TrackedModes", "track_modes", "mac", "one_per_conjugate_pair"]
+__all__ = [
+    "sweep",
+    "SweepResult",
+    "SweepFailure",
+    "RayExecutor",
+    "TrackedModes",
+    "track_modes",
+    "mac",
+    "one_per_conjugate_pair",
+]

@@ -1,0 +1,217 @@
+"""Sphinx configuration of pinlin's documentation (build: see index.md, "Building these pages").
+
+Sphinx with autodoc and numpydoc, MyST for the Markdown pages, MyST-NB for the
+notebooks (rendered from their stored outputs, never executed here). Strict:
+``sphinx-build -W`` turns every warning into an error, and numpydoc's
+validation warns when a docstring's Parameters drift from the signature
+(PR01: a parameter not documented; PR02: a documented parameter that does not exist).
+No network: no intersphinx, no remote images.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib
+import io
+import logging as std_logging
+import os
+import re
+
+from docutils import nodes
+from docutils.statemachine import StringList
+from sphinx.util import logging
+from sphinx.util.docutils import SphinxDirective
+
+import pinlin
+
+os.environ.setdefault("MPLBACKEND", "Agg")  # the examples draw figures: no display needed
+std_logging.getLogger("matplotlib.animation").setLevel(std_logging.WARNING)  # its INFO line per saved animation
+
+project = "pinlin"
+author = "pinlin developers"
+copyright = "pinlin developers"
+release = version = pinlin.__version__
+
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.mathjax", "numpydoc", "myst_nb"]
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
+root_doc = "index"
+exclude_patterns = ["_build", "notebooks/README.md", "README.md", "**/.ipynb_checkpoints"]
+html_theme = "furo"
+html_title = f"pinlin {release}"
+html_static_path: list[str] = []
+
+# --- autodoc: signatures from the code, descriptions from the docstrings
+autodoc_member_order = "bysource"
+autodoc_typehints = "signature"
+autodoc_preserve_defaults = True
+
+# --- numpydoc: the docstring format and its check against the signature
+numpydoc_show_class_members = False
+numpydoc_xref_param_type = False
+numpydoc_validation_checks = {"PR01", "PR02"}
+#: Objects left out of the signature check, each with its reason (regular expressions on the full name).
+numpydoc_validation_exclude = {
+    r"\.__init__$",  # constructors are documented in their class docstring's Parameters
+    # Docstrings to fix in their own files (then remove the line):
+    r"^pinlin\.model\.load_example$",  # model/loading.py: a paragraph inside Parameters (move it to Notes)
+    r"^pinlin\.linearization\.Evaluation$",  # linearization/workspace.py: parameter ``at_rest`` not documented
+}
+#: Checks skipped for docstrings matching a pattern (``re.search`` on the raw docstring):
+#: - a class documenting ``Attributes`` (the result dataclasses, built by pinlin and read by users) has its
+#:   fields as constructor parameters by construction: skip PR01 and PR02;
+#: - a docstring without a Parameters section (a one-line accessor, a private helper made public) has nothing
+#:   to drift: skip PR01.  Once a docstring lists parameters, it must list all of them, and only them.
+_ATTRIBUTES = r"Attributes\n\s*-{5,}"
+_NO_PARAMETERS = r"\A(?![\s\S]*Parameters\n\s*-{5,})"
+numpydoc_validation_overrides = {"PR01": [_ATTRIBUTES, _NO_PARAMETERS], "PR02": [_ATTRIBUTES]}
+
+# --- MyST and MyST-NB: the notebooks are stored with their outputs; render them as they are
+myst_enable_extensions = ["dollarmath"]
+nb_execution_mode = "off"
+nb_merge_streams = True
+suppress_warnings: list[str] = []
+
+#: The packages of the API reference, in reading order.  An object is described once, on the page of
+#: the package that defines it (the longest of these names that prefixes its ``__module__``); the
+#: other packages that export it link there.
+API_PACKAGES = [
+    "pinlin.model", "pinlin.model.elements", "pinlin.model.constraints", "pinlin.linearization",
+    "pinlin.spectral", "pinlin.adjoint", "pinlin.frf", "pinlin.response", "pinlin.nonlinear",
+    "pinlin.studies", "pinlin.boundaries", "pinlin.interop", "pinlin.plot", "pinlin.results",
+    "pinlin.errors", "pinlin.numerics", "pinlin.report", "pinlin.testing", "pinlin.cli",
+]
+
+logger = logging.getLogger(__name__)
+
+#: Inline spans where a bar is meant literally: ``literal``, :role:`text` (math included) and `interpreted`.
+_INLINE_KEEP = re.compile(r"(``.+?``|:[a-z:]+:`[^`]*`|`[^`]*`)")
+
+
+def escape_bars(app, what, name, obj, options, lines) -> None:
+    """Escape ``|`` in docstring prose: in pinlin's docstrings |lam| is an absolute value and ||A|| a norm,
+    never a reStructuredText substitution.  Math blocks, literal blocks and inline literals keep theirs."""
+    block_indent = None  # indentation of the directive or literal block being skipped
+    for i, line in enumerate(lines):
+        indent = len(line) - len(line.lstrip())
+        if block_indent is not None:
+            if not line.strip() or indent > block_indent:
+                continue
+            block_indent = None
+        stripped = line.strip()
+        if stripped.startswith(".. ") or stripped.endswith("::"):
+            block_indent = indent
+            if stripped.startswith(".. math::") and stripped != ".. math::":
+                continue  # one-line math: the formula follows the directive
+            if stripped.startswith(".. "):
+                continue
+        parts = _INLINE_KEEP.split(line)
+        lines[i] = "".join(p if k % 2 else p.replace("|", "\\|") for k, p in enumerate(parts))
+
+
+def _home(obj, exporters: list[str]) -> str:
+    """The package whose page describes ``obj``: the longest exporter prefixing its module, else the first."""
+    module = getattr(obj, "__module__", None) or ""
+    owners = [p for p in exporters if module == p or module.startswith(p + ".")]
+    return max(owners, key=len) if owners else exporters[0]
+
+
+_HOMES: dict[str, str] = {}
+
+
+def canonical_homes() -> dict[str, str]:
+    """``package.name`` -> the package documenting it, for every name in an API package's ``__all__``."""
+    if _HOMES:
+        return _HOMES
+    exporters: dict[int, list[str]] = {}
+    names: dict[str, object] = {}
+    for package in API_PACKAGES:
+        module = importlib.import_module(package)
+        for name in module.__all__:
+            obj = getattr(module, name)
+            names[f"{package}.{name}"] = obj
+            exporters.setdefault(id(obj), []).append(package)
+    _HOMES.update({full: _home(obj, exporters[id(obj)]) for full, obj in names.items()})
+    return _HOMES
+
+
+class PackageDirective(SphinxDirective):
+    """``.. pinlin-package:: pinlin.spectral``: the package's docstring and the members it is the home of.
+
+    Names it re-exports from another package are listed with a link to where they are described.
+    """
+
+    required_arguments = 1
+
+    def run(self):
+        package = self.arguments[0]
+        module = importlib.import_module(package)
+        homes = canonical_homes()
+        own = [n for n in module.__all__ if homes[f"{package}.{n}"] == package]
+        others = [n for n in module.__all__ if homes[f"{package}.{n}"] != package]
+        lines = [f".. automodule:: {package}", f"   :members: {', '.join(own)}" if own else "   :no-members:", ""]
+        if others:
+            links = ", ".join(f":py:obj:`{n} <{homes[f'{package}.{n}']}.{n}>`" for n in others)
+            lines += [f"Also exported here: {links}.", ""]
+        body = nodes.container()
+        self.state.nested_parse(StringList(lines, source=package), self.content_offset, body)
+        return body.children
+
+
+class TopLevelDirective(SphinxDirective):
+    """``.. pinlin-top-level::``: every name of ``pinlin.__all__`` with a link to its description."""
+
+    def run(self):
+        homes = canonical_homes()
+        by_object: dict[int, str] = {}
+        for full, home in homes.items():
+            package, name = full.rsplit(".", 1)
+            if package == home:
+                by_object.setdefault(id(getattr(importlib.import_module(package), name)), f"{home}.{name}")
+        rows = []
+        for name in pinlin.__all__:
+            if name.startswith("__"):
+                continue
+            target = by_object.get(id(getattr(pinlin, name)))
+            if target is None:
+                logger.warning(f"pinlin.{name} is described on no API page: export it from a package of API_PACKAGES",
+                               location=self.get_location())
+                continue
+            rows.append(f"* :py:obj:`pinlin.{name} <{target}>` -- ``{target}``")
+        body = nodes.container()
+        self.state.nested_parse(StringList(rows, source="pinlin"), self.content_offset, body)
+        return body.children
+
+
+#: Pages whose ```python blocks run during the build, in order, in one namespace per page.
+EXAMPLE_PAGES = "guide/"
+
+
+def run_examples(app, doctree) -> None:
+    """Run the python code blocks of a user-guide page; an exception is a warning (an error under -W)."""
+    docname = app.env.docname
+    if not docname.startswith(EXAMPLE_PAGES):
+        return
+    import matplotlib.pyplot as plt
+
+    namespace: dict = {"__name__": f"pinlin_docs_{docname.replace('/', '_')}"}
+    try:
+        for block in doctree.findall(nodes.literal_block):
+            if block.get("language") != "python":
+                continue
+            try:
+                with contextlib.redirect_stdout(io.StringIO()):  # the examples print for their readers
+                    exec(compile(block.astext(), f"{docname}.md", "exec"), namespace)
+            except Exception as exc:  # any failure of an example is reported, with where it is
+                logger.warning(f"example in {docname} failed: {type(exc).__name__}: {exc}", location=block)
+                return
+    finally:
+        plt.close("all")
+
+
+def setup(app):
+    app.connect("doctree-read", run_examples)
+    app.connect("autodoc-process-docstring", escape_bars, priority=600)  # after numpydoc's rewrite (500)
+    app.add_directive("pinlin-package", PackageDirective)
+    app.add_directive("pinlin-top-level", TopLevelDirective)
+    return {"parallel_read_safe": True}
+

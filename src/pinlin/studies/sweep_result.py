@@ -1,0 +1,170 @@
+"""What a sweep returns: the values in grid order (:class:`SweepResult`) and its failed points (:class:`SweepFailure`).
+
+Both follow the result convention (docs/conventions.md): ``elapsed`` [s],
+``method``, ``error`` and ``to_dict()``.  A failure survives a process pool
+or a cluster: its exception is pickled with its attributes and rebuilt
+without calling its constructor again.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..errors import ParameterError, PinlinError
+from ..results import Result
+
+__all__ = ["SweepResult", "SweepFailure"]
+
+
+def _rebuild_exception(cls: type, args: tuple, state: dict) -> BaseException:
+    """An exception restored without calling its ``__init__`` (whose signature may differ from ``args``)."""
+    exc = cls.__new__(cls)
+    exc.args = args
+    exc.__dict__.update(state)
+    return exc
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class SweepFailure(Result):
+    """A point whose evaluation raised a :class:`~pinlin.PinlinError` (with ``on_error="record"``).
+
+    Attributes
+    ----------
+    point : dict
+        The parameters of the point.
+    exception : PinlinError
+        What the function raised (it survives a process pool: pickled with its
+        attributes, without calling its constructor again).
+    method : str
+        The function and the exception type, e.g. ``"pendulum(**point) raised ParameterError"``.
+    elapsed : float
+        Wall time [s] of the failed call, measured where it ran.
+    error : None
+        A failed point computed no value, so it has no error figure.
+    """
+
+    point: Mapping[str, Any]
+    exception: PinlinError
+    method: str = ""
+    elapsed: float = 0.0
+
+    error: ClassVar[None] = None
+
+    def __repr__(self) -> str:
+        return f"SweepFailure({dict(self.point)}, {type(self.exception).__name__}: {self.exception})"
+
+    def __reduce__(self):
+        exc = self.exception
+        rebuilt = (_rebuild_exception, (type(exc), exc.args, dict(exc.__dict__)))
+        return (_rebuild_failure, (dict(self.point), rebuilt, self.method, self.elapsed))
+
+    def to_dict(self) -> dict[str, Any]:
+        """The failure as JSON-serializable data; the exception as its type name and message."""
+        out = super().to_dict()
+        out["exception"] = {"type": type(self.exception).__name__, "message": str(self.exception)}
+        return out
+
+
+def _rebuild_failure(point, rebuilt, method, elapsed) -> SweepFailure:
+    function, args = rebuilt
+    return SweepFailure(point, function(*args), method, elapsed)
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class SweepResult(Result):
+    """Values of a function over a parameter grid, in grid order.
+
+    Attributes
+    ----------
+    names : tuple of str
+        Parameter names.
+    points : list of dict
+        Every point, in order (the last name varies fastest for a grid).
+    values : list
+        ``function(**point)`` for each point, or a :class:`SweepFailure`.
+    shape : tuple of int
+        Grid shape (one axis per name), or ``(len(points),)`` for an explicit list.
+    axes : dict of str to ndarray
+        The values along each axis of a grid.
+    elapsed : float
+        Wall time [s] of the whole sweep.
+    method : str
+        The function, the number of points and where they ran.
+    point_errors : tuple of float or None
+        Per point, the headline ``.error`` of its value when the value is a
+        pinlin result (:class:`pinlin.results.Result`), else None; None for a
+        failed point.
+    point_elapsed : tuple of float
+        Per point, the wall time [s] of its call, measured where it ran.
+    error : float or None
+        The largest of ``point_errors`` (each in the meaning its result type
+        documents, relative unless documented otherwise; NaN if one of them is
+        NaN); None when no value carries an error figure (the function returned
+        plain arrays or numbers, or every point failed).
+    """
+
+    names: tuple[str, ...]
+    points: list[dict[str, Any]]
+    values: list[Any]
+    shape: tuple[int, ...]
+    axes: dict[str, np.ndarray] = field(default_factory=dict)
+    elapsed: float = 0.0
+    method: str = ""
+    point_errors: tuple[float | None, ...] = ()
+    point_elapsed: tuple[float, ...] = ()
+
+    @property
+    def error(self) -> float | None:
+        figures = [e for e in self.point_errors if e is not None]
+        return float(np.max(figures)) if figures else None
+
+    @property
+    def failures(self) -> list[SweepFailure]:
+        """The failed points (``on_error="record"``), in grid order."""
+        return [v for v in self.values if isinstance(v, SweepFailure)]
+
+    def __repr__(self) -> str:
+        if self.axes:
+            grid = " x ".join(f"{name}[{len(values)}]" for name, values in self.axes.items())
+        else:
+            grid = f"list over {', '.join(self.names)}"
+        error = "none" if self.error is None else f"{self.error:.2e}"
+        return (
+            f"SweepResult({len(self.points)} points, {grid}, {len(self.failures)} failed, "
+            f"error={error}, elapsed={self.elapsed:.3g} s)"
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """The sweep as JSON-serializable data: every point's value through its own ``to_dict`` when it has one."""
+        out = super().to_dict()
+        out["failures"] = len(self.failures)
+        return out
+
+    def collect(self, extract: Callable[[Any], Any] | None = None, fill=np.nan) -> np.ndarray:
+        """Stack ``extract(value)`` over the points into an array of shape ``shape + value shape``.
+
+        Failed points are filled with ``fill``.
+
+        Raises
+        ------
+        ParameterError
+            Every point failed, or two points gave values of different shapes.
+        """
+        extract = extract or (lambda v: v)
+        items = [None if isinstance(v, SweepFailure) else np.asarray(extract(v)) for v in self.values]
+        template = next((x for x in items if x is not None), None)
+        if template is None:
+            raise ParameterError("collect", "every point of the sweep failed; nothing to collect")
+        out = np.full((len(items),) + template.shape, fill, dtype=np.result_type(template.dtype, type(fill)))
+        for i, x in enumerate(items):
+            if x is not None:
+                if x.shape != template.shape:
+                    raise ParameterError(
+                        "collect", f"point {i} gave shape {x.shape}, the first gave {template.shape}"
+                    )
+                out[i] = x
+        return out.reshape(self.shape + template.shape)
