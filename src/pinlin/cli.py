@@ -1,21 +1,29 @@
-"""The ``pinlin`` command line: ``pinlin analyze [SCENE.toml]``.
+"""The ``pinlin`` command line: ``pinlin analyze [SCENE.toml]`` and ``pinlin sweep [SCENE.toml]``.
 
-This module is the argument parsing and the exit codes; what ``analyze``
-computes, its JSON document and schema, the text and the figure are the
-report (:mod:`pinlin.report`).  The report: the scene, the equilibrium and its
-residual, the nonzero matrices and their structure, the modes with their
-errors (eta, kappa, error bound), the stability verdict with its reason, and
-timings; ``--json`` writes it all in machine-readable form, ``--plot`` draws
-the eigenvalue map and frequency responses.
+This module is the argument parsing and the exit codes; what the commands
+compute, their JSON documents and schemas, the text and the figures are the
+report (:mod:`pinlin.report`, :mod:`pinlin.report.sweep`).  ``analyze`` reports
+the scene, the equilibrium and its residual, the nonzero matrices and their
+structure, the modes with their errors (eta, kappa, error bound), the
+stability verdict with its reason, and timings; ``sweep`` the same analysis over
+the parameter values of the scene's ``[sweep]`` table, with the modes tracked,
+the verdict at each value and the exact boundaries where it changes.
 
-Exit codes: 0 success, 2 bad input (scene file, URDF, parameters), 3 a
-computation that failed (no convergence, lost accuracy).
+Options are checked before anything is computed (an unwritable ``--json``, a
+``--plot`` format matplotlib cannot write, matplotlib missing); then the text
+report is printed and ``--json`` written before the optional figures, so a
+failure there loses nothing already computed.
+
+Exit codes: 0 success, 2 bad input (scene file, URDF, parameters, options,
+an output that cannot be written), 3 a computation that failed (no
+convergence, lost accuracy).  Errors are one line on stderr, never a traceback.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
+import dataclasses
+import re
 import sys
 from collections.abc import Sequence
 
@@ -28,19 +36,31 @@ from .errors import (
     ModelTooLargeError,
     ParameterError,
     PinlinError,
+    SceneFileError,
 )
 from .model.elements import JointDamper, JointSpring
-from .model.loading import EXAMPLES, load_example
+from .model.loading import EXAMPLES, data_path, load_example
 from .model.scene import Scene
 from .model.scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
 from .report import REPORT_SCHEMA, REPORT_VERSION, analyze, render_text, write_plot
+from .report.outputs import (
+    check_animation_path,
+    check_figure_path,
+    check_json_path,
+    write_animation,
+    write_json,
+)
+from .report.sweep import render_sweep_text, run_sweep, sweep_document, sweep_plan, write_sweep_plot
+from .report.sweep.parameters import SWEEP_FORMAT
 
 __all__ = [
     "main",
     "example_spec",
+    "default_sweep_scene_path",
     "EXIT_OK",
     "EXIT_INPUT",
     "EXIT_COMPUTATION",
+    "MAX_PRECISION",
     # the report, importable from here as in pinlin 0.1
     "analyze",
     "render_text",
@@ -53,6 +73,13 @@ EXIT_OK, EXIT_INPUT, EXIT_COMPUTATION = 0, 2, 3
 
 #: Default joint stiffness of ``--example`` [N m/rad]: stiff enough that gravity only softens a 6-DOF arm a little.
 DEFAULT_EXAMPLE_STIFFNESS = 1e3
+#: Most significant digits ``--precision`` allows: a double holds 17 (more would print rounding noise).
+MAX_PRECISION = 17
+
+
+def default_sweep_scene_path():
+    """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower load."""
+    return data_path("scenes/double_pendulum_flutter.toml")
 
 
 def example_spec(name: str, stiffness: float, damping: float = 0.0) -> SceneSpec:
@@ -100,62 +127,127 @@ def example_spec(name: str, stiffness: float, damping: float = 0.0) -> SceneSpec
     return SceneSpec(scene, scene.check_configuration(q0), not floating, floating, f"example:{name}")
 
 
+def _outputs(p: argparse.ArgumentParser, what: str) -> None:
+    p.add_argument("--json", metavar="PATH", help=f"also write the machine-readable {what} to PATH")
+    p.add_argument("--plot", metavar="PATH", help="also draw the figure to PATH, format from its suffix (matplotlib)")
+    p.add_argument("--precision", type=int, default=6, help=f"significant digits in the text (1 to {MAX_PRECISION})")
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="pinlin", description="Linearized equations of motion of multibody systems from a URDF."
     )
     parser.add_argument("--version", action="version", version=f"pinlin {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    codes = "\n\nExit codes: 0 success, 2 bad input, 3 failed computation."
     a = sub.add_parser(
         "analyze",
         help="equilibrium, linearized matrices and their analysis for a scene",
         description=(
             "Find the equilibrium of a scene, linearize it into M, D, G, S, N and report them with "
             "their errors and timings.  Without a scene file, the bundled default scene (the paper's "
-            "double pendulum with follower load) is analysed.\n\nExit codes: 0 success, 2 bad input, "
-            "3 failed computation."
+            "double pendulum with follower load) is analysed." + codes
         ),
         epilog="Scene file format (TOML):\n" + SCENE_FORMAT,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     a.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum")
-    a.add_argument(
-        "--example",
-        metavar="NAME",
-        help=f"analyse an example-robot-data model with elastic joints instead ({', '.join(sorted(EXAMPLES))})",
-    )
+    a.add_argument("--example", metavar="NAME",
+                   help=f"analyse an example-robot-data model with elastic joints instead ({', '.join(sorted(EXAMPLES))})")
     a.add_argument("--stiffness", type=float, default=DEFAULT_EXAMPLE_STIFFNESS,
                    help="joint stiffness for --example [N m/rad]")
     a.add_argument("--damping", type=float, default=0.0, help="joint damping for --example [N m s/rad]")
-    a.add_argument("--json", metavar="PATH",
-                   help=f"also write the machine-readable report (schema version {REPORT_VERSION}) to PATH")
-    a.add_argument("--plot", metavar="PATH",
-                   help="also draw the eigenvalue map and frequency response to PATH (needs matplotlib)")
-    a.add_argument("--precision", type=int, default=6, help="significant digits in the text report")
+    _outputs(a, f"report (schema version {REPORT_VERSION})")
+    a.add_argument("--animate", metavar="PATH", help="also animate a mode to PATH (.gif, .html, .mp4, ...)")
+    a.add_argument("--mode", type=int, default=None, help="row of the mode table to animate (default 1)")
+    s = sub.add_parser(
+        "sweep",
+        help="a scene over the parameter values of its [sweep] table: root locus, verdicts, boundaries",
+        description=(
+            "Analyse a scene at every value of the parameter(s) of its [sweep] table (or of --parameter "
+            "and --values): the modes tracked by shape, the stability verdict at each value and the exact "
+            "parameter values where it changes.  Without a scene file, the bundled double pendulum over "
+            "its follower load." + codes
+        ),
+        epilog="The [sweep] table of a scene file (TOML):\n" + SWEEP_FORMAT,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    s.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum sweep")
+    s.add_argument("--parameter", metavar="PATH", help="the parameter to sweep instead of the file's [sweep] table")
+    s.add_argument("--values", metavar="VALUES", help="its values: START:STOP:NUM or a comma-separated list")
+    s.add_argument("--no-boundaries", action="store_true", help="skip the exact boundaries between the points")
+    _outputs(s, "sweep document")
     return parser
 
 
-def _run(args) -> tuple[dict, int]:
-    """The report of the parsed arguments, or the exit code of the failure (printed to stderr)."""
+def _check_outputs(args) -> None:
+    """Everything about the options that can be checked before computing."""
+    if not 1 <= args.precision <= MAX_PRECISION:
+        raise ParameterError("--precision", f"must be 1 to {MAX_PRECISION} significant digits, got {args.precision}")
+    if args.json is not None:
+        check_json_path(args.json)
+    if args.plot is not None:
+        check_figure_path(args.plot)
+
+
+def _analyze(args) -> int:
+    _check_outputs(args)
+    if args.mode is not None and args.animate is None:
+        raise ParameterError("--mode", "chooses the mode of --animate; give --animate PATH too")
+    row = 1 if args.mode is None else args.mode
+    if row < 1:
+        raise ParameterError("--mode", f"expected a row of the mode table (1, 2, ...), got {row}")
+    if args.animate is not None:
+        check_animation_path(args.animate)
+    if args.example and args.scene:
+        raise ParameterError("--example", "give either a scene file or --example, not both")
+    spec = example_spec(args.example, args.stiffness, args.damping) if args.example else (
+        load_scene(args.scene or default_scene_path()))
+    args.source = spec.path
+    if spec.sweep is not None:
+        sweep_plan(spec, spec.sweep)  # a [sweep] table is checked here too, not only by `pinlin sweep`
+    report, sys_, modes = analyze(spec)
+    print(render_text(report, args.precision))
+    if args.json is not None:
+        write_json(args.json, report)
+    if args.plot is not None:
+        write_plot(args.plot, sys_, modes)
+    if args.animate is not None:
+        write_animation(args.animate, spec.scene, sys_, modes, row)
+    return EXIT_OK
+
+
+def _values(text: str) -> object:
+    """``--values``: START:STOP:NUM as a { start, stop, num } table, or a comma-separated list."""
     try:
-        if args.precision < 1:
-            raise ParameterError("--precision", f"must be at least 1 significant digit, got {args.precision}")
-        if args.example and args.scene:
-            raise ParameterError("--example", "give either a scene file or --example, not both")
-        if args.example:
-            spec = example_spec(args.example, args.stiffness, args.damping)
-        else:
-            spec = load_scene(args.scene or default_scene_path())
-        report, sys_, modes = analyze(spec)
-        if args.plot:
-            write_plot(args.plot, sys_, modes)
-    except (InputError, ModelTooLargeError, MissingDependencyError) as exc:
-        print(f"pinlin: error: {exc}", file=sys.stderr)
-        return {}, EXIT_INPUT
-    except PinlinError as exc:  # ComputationError, and any other pinlin error: a failed computation
-        print(f"pinlin: computation failed: {exc}", file=sys.stderr)
-        return {}, EXIT_COMPUTATION
-    return report, EXIT_OK
+        if ":" in text:
+            start, stop, num = text.split(":")
+            return {"start": float(start), "stop": float(stop), "num": int(num)}
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        raise ParameterError("--values", f"expected START:STOP:NUM or a comma-separated list of numbers, "
+                             f"got {text!r}") from None
+
+
+def _sweep(args) -> int:
+    _check_outputs(args)
+    if (args.parameter is None) != (args.values is None):
+        raise ParameterError("--parameter", "--parameter and --values go together")
+    spec = load_scene(args.scene or default_sweep_scene_path())
+    args.source = spec.path
+    options = args.parameter is not None
+    table = {"parameter": args.parameter, "values": _values(args.values)} if options else spec.sweep
+    plan = sweep_plan(spec, table, options=options)
+    if args.no_boundaries:
+        plan = dataclasses.replace(plan, boundaries=False)
+    outcome = run_sweep(plan)
+    document = sweep_document(outcome)
+    print(render_sweep_text(document, args.precision))
+    if args.json is not None:
+        write_json(args.json, document)
+    if args.plot is not None:
+        write_sweep_plot(args.plot, outcome)
+    return EXIT_OK
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -169,9 +261,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        The exit code: :data:`EXIT_OK`, :data:`EXIT_INPUT` (bad input, also
-        an unwritable ``--json`` file) or :data:`EXIT_COMPUTATION`.  Errors are
-        printed to stderr as one line, never as a traceback.
+        The exit code: :data:`EXIT_OK`, :data:`EXIT_INPUT` (bad input or
+        options, also an output that cannot be written) or
+        :data:`EXIT_COMPUTATION`.  Errors are printed to stderr as one line,
+        never as a traceback; a computation that fails names the scene file.
 
     Raises
     ------
@@ -181,21 +274,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     """
     parser = _parser()
     args = parser.parse_args(argv)
-    if args.command != "analyze":
+    commands = {"analyze": _analyze, "sweep": _sweep}
+    if args.command not in commands:
         parser.print_help()
         return EXIT_INPUT
-    report, code = _run(args)
-    if code != EXIT_OK:
-        return code
-    print(render_text(report, args.precision))
-    if args.json:
-        try:
-            with open(args.json, "w", encoding="utf-8") as f:
-                json.dump(report, f, indent=2, allow_nan=False)  # to_jsonable spells non-finite floats
-        except OSError as exc:
-            print(f"pinlin: error: cannot write {args.json}: {exc}", file=sys.stderr)
-            return EXIT_INPUT
-    return EXIT_OK
+    args.source = None
+    try:
+        return commands[args.command](args)
+    except (InputError, ModelTooLargeError, MissingDependencyError) as exc:
+        print(f"pinlin: error: {_one_line(exc)}", file=sys.stderr)
+        return EXIT_INPUT
+    except PinlinError as exc:  # ComputationError, and any other pinlin error: a failed computation
+        where = "" if args.source is None or isinstance(exc, SceneFileError) else f"{args.source}: "
+        print(f"pinlin: computation failed: {where}{_one_line(exc)}", file=sys.stderr)
+        return EXIT_COMPUTATION
+
+
+def _one_line(exc: Exception) -> str:
+    """The message on one line (numpy wraps long arrays in a message over several)."""
+    return re.sub(r"\s*\n\s*", " ", str(exc)).strip()
 
 
 if __name__ == "__main__":  # pragma: no cover

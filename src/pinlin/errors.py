@@ -247,26 +247,13 @@ class IntegrationError(ComputationError):
 class IntegrationBudgetError(IntegrationError):
     """A time integration stopped at its budget of steps or wall time, or would clearly exceed it.
 
-    Attributes
-    ----------
-    t_reached : float
-        The time [s] up to which the solution is valid.
-    t_end : float
-        The time [s] the integration was asked to reach.
-    steps : int
-        Solver steps taken when it stopped.
-    elapsed : float
-        Wall time [s] spent when it stopped.
-    budget : str
-        The limit that stopped it: ``"max_steps"`` or ``"max_time"``.
+    Attributes: ``t_reached`` [s] (the solution is valid up to it), ``t_end`` [s] (asked for),
+    ``steps`` (taken), ``elapsed`` [s] (spent), ``budget`` (``"max_steps"`` or ``"max_time"``).
     """
 
     def __init__(self, message: str, t_reached: float, t_end: float, steps: int, elapsed: float, budget: str):
         super().__init__(message, t_reached)
-        self.t_end = float(t_end)
-        self.steps = int(steps)
-        self.elapsed = float(elapsed)
-        self.budget = budget
+        self.t_end, self.steps, self.elapsed, self.budget = float(t_end), int(steps), float(elapsed), budget
 
 
 class AccuracyWarning(UserWarning):

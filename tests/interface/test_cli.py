@@ -138,7 +138,7 @@ def test_floating_example_is_held_by_balancing(capsys):
         ("[robot]\nurdf = 'double_pendulum.urdf'\n[start]\nq = [0.0]\n", r"\[start.q\] expected 2 numbers"),
         ("[robot]\nurdf = 'double_pendulum.urdf'\n[start]\nreference = 'home'\n", r"\[start.reference\] unknown reference"),
         ("[robot]\nurdf = 'double_pendulum.urdf'\n[start]\nequilibrium = true\nbalancing = true\n", "exclude each other"),
-        ("[robot]\nurdf = 'double_pendulum.urdf'\n[prescribed]\njoint1 = 'fast'\n", r"\[prescribed.joint1\] expected a number"),
+        ("[robot]\nurdf = 'double_pendulum.urdf'\n[prescribed]\njoint1 = 'fast'\n", r"\[prescribed.joint1\] expected a finite number, got 'fast'"),
         ("[robot]\nurdf = 'double_pendulum.urdf'\n[scene]\ngravity = [0, 0]\n", r"\[scene\] gravity: expected 3 numbers"),
         ("[robot]\nurdf = 'double_pendulum.urdf'\n[rayleigh]\nalpha = -1.0\n", r"\[rayleigh\].*alpha"),
         ("[robot]\nurdf = 'double_pendulum.urdf'\nlocked = 3\n", r"\[robot.locked\] expected a list"),
@@ -276,6 +276,8 @@ def test_schema_version_is_checked(tmp_path, capsys):
         jsonschema.validate(report, REPORT_SCHEMA)
 
 
-def test_bad_precision(capsys):
-    code, _, err = run(["analyze", "--precision", "0"], capsys)
-    assert code == EXIT_INPUT and "--precision: must be at least 1" in err
+@pytest.mark.parametrize("precision", ["0", "-5", "18"])
+def test_bad_precision(capsys, precision):
+    code, out, err = run(["analyze", "--precision", precision], capsys)
+    assert code == EXIT_INPUT and f"--precision: must be 1 to 17 significant digits, got {precision}" in err
+    assert out == "" and "Traceback" not in err  # refused before computing

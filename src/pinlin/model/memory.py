@@ -7,12 +7,15 @@ first, so a model too large is refused with a clear error, never an out-of-memor
 
 from __future__ import annotations
 
+import math
+import numbers
 import os
 import warnings
 
-from ..errors import ModelTooLargeError
+from ..errors import ModelTooLargeError, ParameterError
 
-__all__ = ["pinocchio_data_bytes", "check_memory", "available_memory", "MEMORY_FRACTION"]
+__all__ = ["pinocchio_data_bytes", "check_memory", "check_memory_limit", "available_memory", "format_bytes",
+           "MEMORY_FRACTION"]
 
 #: Share of the memory available now that one ``createData`` peak may take when no
 #: ``memory_limit`` is given: the analyses' own workspaces are O(n^2), small beside it,
@@ -48,6 +51,33 @@ def available_memory() -> int | None:
         return None
 
 
+def format_bytes(size: int) -> str:
+    """``size`` bytes in the largest binary unit that keeps it at 1 or more (``3.81 MiB``, ``2.00 GiB``)."""
+    for unit, scale in (("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
+        if size >= scale:
+            return f"{size / scale:.2f} {unit}"
+    return f"{size} bytes"
+
+
+def check_memory_limit(memory_limit) -> int | None:
+    """A memory budget in bytes: a finite positive number (as int), or None for "what is available".
+
+    Raises
+    ------
+    ParameterError
+        Not a number (a bool, a string), not finite, or not positive: a budget of
+        zero or less bytes allows nothing, and would only be reported later as
+        "-0.00 GiB allowed".
+    """
+    if memory_limit is None:
+        return None
+    if isinstance(memory_limit, bool) or not isinstance(memory_limit, numbers.Real):
+        raise ParameterError("memory_limit", f"expected a number of bytes or None, got {memory_limit!r}")
+    if not (math.isfinite(memory_limit) and memory_limit >= 1):
+        raise ParameterError("memory_limit", f"expected a finite positive number of bytes, got {memory_limit!r}")
+    return int(memory_limit)
+
+
 def check_memory(nv: int, memory_limit: int | None, what: str) -> None:
     """Refuse, before allocating, a model whose ``pin.Data`` would not fit.
 
@@ -58,16 +88,20 @@ def check_memory(nv: int, memory_limit: int | None, what: str) -> None:
 
     Raises
     ------
+    ParameterError
+        ``memory_limit`` is not None and not a finite positive number of bytes
+        (:func:`check_memory_limit`).
     ModelTooLargeError
         The estimate :func:`pinocchio_data_bytes` exceeds the limit.
     """
+    memory_limit = check_memory_limit(memory_limit)
     required = pinocchio_data_bytes(nv)
     if memory_limit is None:
         available = available_memory()
         if available is None:
             warnings.warn(
                 f"{what}: the memory available cannot be read on this system, so the guard "
-                f"cannot check that Pinocchio's data (about {required / 2**30:.2f} GiB at its peak) "
+                f"cannot check that Pinocchio's data (about {format_bytes(required)} at its peak) "
                 f"fit; pass memory_limit=... to check against a known budget",
                 ResourceWarning,
                 stacklevel=3,
@@ -75,13 +109,13 @@ def check_memory(nv: int, memory_limit: int | None, what: str) -> None:
             return
         limit = int(MEMORY_FRACTION * available)
     else:
-        limit = int(memory_limit)
+        limit = memory_limit
     if required > limit:
         raise ModelTooLargeError(
-            f"{what}: nv = {nv} needs about {required / 2**30:.2f} GiB while Pinocchio builds its "
+            f"{what}: nv = {nv} needs about {format_bytes(required)} while Pinocchio builds its "
             f"data (its second-order derivative tensors keep 32 nv^3 bytes and peak near twice "
             f"that), more than the "
-            f"{limit / 2**30:.2f} GiB allowed; lock joints (locked=...) to reduce nv or "
+            f"{format_bytes(limit)} allowed; lock joints (locked=...) to reduce nv or "
             f"raise memory_limit",
             required=required,
             available=limit,

@@ -6,14 +6,14 @@ Format (every table is optional except ``[robot]``)::
     urdf = "double_pendulum.urdf"   # relative to this file, else a bundled URDF of that name
     # example = "ur5"               # or an example-robot-data model (instead of urdf)
     free_flyer = false
-    locked = ["joint3"]             # or a table: locked = { joint3 = 0.5 }
+    # locked = ["joint2"]           # joints held fixed; or a table: locked = { joint2 = 0.5 }
 
     [scene]
     gravity = [0.0, 0.0, -9.81]     # [m/s^2]
     urdf_damping = false            # take <dynamics damping> in as joint dampers
 
     [prescribed]                    # joint = constant velocity [rad/s or m/s]
-    table = 3.0
+    # table = 3.0                   # (a turntable's joint: see the bundled scenes/turntable.toml)
 
     [start]
     q = [0.0, 0.0]                  # full configuration (nq); or joints = { joint1 = 0.1 }
@@ -48,25 +48,31 @@ Format (every table is optional except ``[robot]``)::
     target = "base"                 # a frame (its origin) or a world point [x, y, z] [m]
     stiffness = 100.0               # [N/m]
     damping = 1.0                   # [N s/m], default 0
-    rest_length = 0.5               # [m], default 0
+    rest_length = 1.2               # [m], default 0
 
     [[bushing]]                     # six-axis spring and damper on the relative placement
     frame = "tip"
     target = "base"                 # a frame, or a world placement { xyz = [...], rpy = [...] } or 4x4
     stiffness = [1e4, 1e4, 1e4, 50.0, 50.0, 50.0]   # translations [N/m], rotations [N m/rad]; or 6x6
     damping = [10.0, 10.0, 10.0, 0.1, 0.1, 0.1]     # optional, same form
-    offset = { xyz = [0.0, 0.0, 0.1], rpy = [0.0, 0.0, 0.0] }  # optional unloaded placement
+    offset = { xyz = [0.0, 0.0, -1.2], rpy = [0.0, 0.0, 0.0] }  # optional unloaded placement
 
-    [[constraint]]                  # a closed loop or a contact (SPEC section 10)
-    type = "point"                  # "point" (keeps the frame's origin at target) or "frame"
-    frame = "rocker_tip"
-    target = [0.7, 0.0, 0.0]        # a frame, a world point [m], or (frame) a world placement
+    # [[constraint]]                # a closed loop or a contact (SPEC section 10)
+    # type = "point"                # "point" (keeps the frame's origin at target) or "frame"
+    # frame = "rocker_tip"          # (a frame of the bundled four_bar.urdf: see scenes/four_bar.toml)
+    # target = [0.7, 0.0, 0.0]      # a frame, a world point [m], or (frame) a world placement
     # name = "loop"                 # label in reports
     # contact = true                # point only: one-sided ground contact, checked and reported
     # friction = 0.8                # its friction coefficient
     # normal = [0.0, 0.0, 1.0]      # the ground's normal
+    # Without [[constraint]] tables a scene keeps its robot's own constraints (none for a URDF).
 
-Without ``[[constraint]]`` tables a scene keeps its robot's own constraints (none for a URDF).
+    [sweep]                         # for `pinlin sweep`: root locus, verdicts, exact boundaries
+    parameter = "follower.tip.force"  # <kind>.<joint or frame>.<field>, prescribed.<joint>, gravity, ...
+    values = { start = 0.0, stop = 30.0, num = 31 }  # or a list; a vector is value x its direction
+    # [sweep.second]                # a second parameter: a stability map
+    # parameter = "spring.joint1.stiffness"
+    # values = [1.0, 2.0, 3.0]
 
 Errors name the file and the key (``spring[2].stiffness``).
 """
@@ -80,6 +86,8 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
+from ..errors import PinlinError, SceneFileError
+from .constraints import FrameConstraint, PointConstraint
 from .elements import (
     Bushing,
     DeadWrench,
@@ -89,8 +97,6 @@ from .elements import (
     LinearSpringDamper,
     RayleighDamping,
 )
-from ..errors import PinlinError, SceneFileError
-from .constraints import FrameConstraint, PointConstraint
 from .loading import data_path, load_example, load_urdf
 from .robot import Robot
 from .scene import Scene
@@ -105,7 +111,7 @@ __all__ = ["SceneSpec", "load_scene", "default_scene_path", "SCENE_FORMAT"]
 SCENE_FORMAT = __doc__.split("Format (every table is optional except ``[robot]``)::")[1].split("Errors name")[0]
 
 _ELEMENT_TABLES = ("spring", "damper", "rayleigh", "follower", "dead", "spring_damper", "bushing")
-_TOP = {"robot", "scene", "prescribed", "start", "constraint", *_ELEMENT_TABLES}
+_TOP = {"robot", "scene", "prescribed", "start", "constraint", "sweep", *_ELEMENT_TABLES}
 _KEYS = {
     "robot": {"urdf", "example", "free_flyer", "locked"},
     "scene": {"gravity", "urdf_damping"},
@@ -136,6 +142,9 @@ class SceneSpec:
         Linearize at q0 held by constant actuator forces.
     path : str
         The file.
+    sweep : dict or None
+        The ``[sweep]`` table as read, for ``pinlin sweep`` (checked by
+        :func:`pinlin.report.sweep.sweep_plan`).
     """
 
     scene: Scene
@@ -143,6 +152,7 @@ class SceneSpec:
     equilibrium: bool
     balancing: bool
     path: str
+    sweep: dict | None = None
 
 
 def default_scene_path() -> Path:
@@ -464,4 +474,4 @@ def load_scene(path) -> SceneSpec:
         key = "prescribed" if prescribed and "prescribed" in str(exc) else "scene"
         r.fail(key, str(exc), exc)
     q0, equilibrium, balancing = _start(r, doc.get("start", {}), scene)
-    return SceneSpec(scene, q0, equilibrium, balancing, str(path))
+    return SceneSpec(scene, q0, equilibrium, balancing, str(path), doc.get("sweep"))

@@ -4,6 +4,8 @@ The state is y = (dq, v_f): the chart coordinates of the configuration
 (:class:`~pinlin.nonlinear.charts.Chart`) and the free velocities.  A terminal
 event stops the solver when dq leaves the chart; the chart is re-centred at
 the event point and the solver restarts from there, until the last output time.
+Every step of the run, across charts, counts against one
+:class:`~pinlin.nonlinear.budget.Budget`.
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from scipy.integrate import solve_ivp
 
 from ..errors import IntegrationError
 from ..model.scene import Scene
+from .budget import Budget, budgeted_solver
 from .charts import Chart, chart_groups
 from .dynamics import FreeDynamics
 
@@ -30,6 +33,8 @@ class Settings:
     atol: float
     max_step: float
     chart_radius: float
+    max_steps: int | None
+    max_time: float | None
 
 
 @dataclass
@@ -41,6 +46,7 @@ class Trajectory:
     nfev: int = 0
     njev: int = 0
     nlu: int = 0
+    steps: int = 0
     charts: int = 1
     message: str = "a single time point: nothing to integrate"
 
@@ -87,14 +93,14 @@ class _Problem:
         return leave_chart
 
 
-def _solve(problem: _Problem, t0: float, y: np.ndarray, times: np.ndarray, settings: Settings):
+def _solve(problem: _Problem, t0: float, y: np.ndarray, times: np.ndarray, settings: Settings, solver: type):
     """One ``solve_ivp`` call from (t0, y) towards ``times[-1]``, its failures as IntegrationError."""
     try:
         sol = solve_ivp(
             problem.rhs,
             (t0, times[-1]),
             y,
-            method=settings.method,
+            method=solver,
             t_eval=times,
             rtol=settings.rtol,
             atol=settings.atol,
@@ -118,15 +124,27 @@ def _solve(problem: _Problem, t0: float, y: np.ndarray, times: np.ndarray, setti
 
 
 def integrate(
-    scene: Scene, q_init: np.ndarray, v_init: np.ndarray, times: np.ndarray, settings: Settings
+    scene: Scene,
+    q_init: np.ndarray,
+    v_init: np.ndarray,
+    times: np.ndarray,
+    settings: Settings,
+    what: str = "simulate",
 ) -> Trajectory:
     """Integrate from (q_init, v_init) at ``times[0]``; outputs at every entry of ``times``.
 
+    ``what`` names the run in the messages of its errors.
+
     Raises
     ------
+    IntegrationBudgetError
+        The run used up ``settings.max_steps`` or ``settings.max_time``, or would
+        clearly exceed them (see :class:`~pinlin.nonlinear.budget.Budget`).
     IntegrationError
         The solver failed or the state became non-finite (``t_reached`` says where).
     """
+    budget = Budget(times[0], times[-1], settings.max_steps, settings.max_time, what)
+    solver = budgeted_solver(settings.method, budget)
     model, free, nv = scene.model, scene.free_dofs, scene.model.nv
     out = Trajectory(np.empty((len(times), model.nq)), np.empty((len(times), nv)))
     out.q[0], out.v[0] = q_init, v_init
@@ -140,7 +158,7 @@ def integrate(
         out.v[row, free] = v_free
 
     while done < len(times):
-        sol = _solve(problem, t_now, y, times[done:], settings)
+        sol = _solve(problem, t_now, y, times[done:], settings, solver)
         out.nfev, out.njev, out.nlu = out.nfev + sol.nfev, out.njev + sol.njev, out.nlu + sol.nlu
         out.message = sol.message
         for i in range(sol.t.size):
@@ -161,4 +179,5 @@ def integrate(
         if t_now >= times[done]:  # pragma: no cover (event exactly on an output time)
             store(done, y[:nv], y[nv:])
             done += 1
+    out.steps = budget.steps
     return out

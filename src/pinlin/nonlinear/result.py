@@ -56,6 +56,12 @@ class Simulation(ResultArray):
     nfev, njev, nlu : int
         Right-hand side evaluations, Jacobian evaluations, LU decompositions of
         the returned run (summed over all charts).
+    steps : int
+        Solver steps of the returned run (summed over all charts).
+    max_steps : int or None
+        The step budget of each run (None: none).
+    max_time : float or None
+        The wall-time budget [s] of each run (None: none).
     reference_nfev : int
         Right-hand side evaluations of the comparison run (0 without one).
     charts : int
@@ -68,7 +74,8 @@ class Simulation(ResultArray):
 
     _fields = (
         "v", "t", "scene", "method", "error", "error_q", "error_v", "integrator", "rtol", "atol", "max_step",
-        "chart_radius", "nfev", "njev", "nlu", "reference_nfev", "charts", "elapsed", "message",
+        "chart_radius", "nfev", "njev", "nlu", "steps", "max_steps", "max_time", "reference_nfev", "charts",
+        "elapsed", "message",
     )  # fmt: skip
     _dict_exclude = ("scene",)
 
@@ -94,7 +101,15 @@ class Simulation(ResultArray):
             f"integrator={self.integrator!r}",
             f"rtol={self.rtol:g}",
             f"error={self.error:.1e}",
+            f"steps={self.steps}",
             f"nfev={self.nfev}",
             f"charts={self.charts}",
             f"elapsed={self.elapsed * 1e3:.1f} ms",
         ]
+
+    def __str__(self) -> str:
+        """The summary (as the repr): ``print(sim)`` shows what was integrated and how well, not
+        len(t) x nq numbers (those are ``sim.q``)."""
+        if self.__dict__.get("_meta") is None:  # pragma: no cover (a part is a plain ndarray)
+            return super().__str__()
+        return repr(self)

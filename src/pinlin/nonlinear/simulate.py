@@ -11,13 +11,14 @@ solver loop :mod:`pinlin.nonlinear.integration`.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 import pinocchio as pin
 
-from ..errors import IntegrationError, ParameterError
+from ..errors import IntegrationBudgetError, IntegrationError, ParameterError
 from ..model.scene import Scene
-from ..numerics.checks import check_tolerance
+from ..numerics.checks import check_integer, check_tolerance
 from ..response._inputs import check_times
 from .charts import MAX_CHART_RADIUS
 from .coordinates import linear_coordinates
@@ -33,6 +34,7 @@ __all__ = [
     "IMPLICIT_METHODS",
     "ERROR_TOL_FACTOR",
     "MIN_RTOL",
+    "DEFAULT_MAX_STEPS",
 ]
 
 #: ``solve_ivp`` methods for non-stiff scenes (explicit Runge-Kutta).
@@ -47,9 +49,22 @@ IMPLICIT_METHODS = ("Radau", "BDF", "LSODA")
 ERROR_TOL_FACTOR = 10.0
 #: Smallest rtol ``solve_ivp`` honours (it raises smaller ones to this, with a warning).
 MIN_RTOL = 100 * np.finfo(float).eps
+#: Default ``max_steps`` of each integration run: at the default tolerances DOP853 takes about 40
+#: steps per period of the paper's double pendulum (SPEC 7.1), so this covers hours of its motion
+#: in about a minute of wall time, while ``simulate(scene, q0, v0, [0, 1e9])`` stops in a second.
+DEFAULT_MAX_STEPS = 100_000
 
 
-def _settings(method, rtol, atol, max_step, chart_radius, estimate_error: bool) -> Settings:
+def _budget(max_steps, max_time) -> tuple[int | None, float | None]:
+    """The checked budget of each run: (max_steps, max_time), None for no limit."""
+    if max_steps is not None:
+        max_steps = check_integer(max_steps, "max_steps", low=1)
+    if max_time is not None:
+        max_time = check_tolerance(max_time, "max_time")
+    return max_steps, max_time
+
+
+def _settings(method, rtol, atol, max_step, chart_radius, estimate_error: bool, budget) -> Settings:
     """The checked integrator options."""
     if method not in EXPLICIT_METHODS + IMPLICIT_METHODS:
         raise ParameterError(
@@ -78,7 +93,7 @@ def _settings(method, rtol, atol, max_step, chart_radius, estimate_error: bool) 
             "chart_radius",
             f"must be at most {MAX_CHART_RADIUS:g} rad (charts are singular at pi), got {chart_radius!r}",
         )
-    return Settings(method, rtol, atol, max_step, chart_radius)
+    return Settings(method, rtol, atol, max_step, chart_radius, *_budget(*budget))
 
 
 def _relative(num: float, scale: float) -> float:
@@ -125,6 +140,8 @@ def simulate(
     max_step: float = np.inf,
     chart_radius: float = 1.0,
     estimate_error: bool = True,
+    max_steps: int | None = DEFAULT_MAX_STEPS,
+    max_time: float | None = None,
 ) -> Simulation:
     """Integrate the nonlinear equations of motion of a scene (issue 5 part 4; SPEC sections 1-2).
 
@@ -180,6 +197,16 @@ def simulate(
     estimate_error : bool
         Run the comparison integration behind ``.error`` (about 1.3 to 2 times
         the cost of the run itself); without it ``.error`` is NaN.
+    max_steps : int or None
+        Most solver steps of each run (the comparison run has its own budget),
+        default :data:`DEFAULT_MAX_STEPS`; None: no limit.
+    max_time : float or None
+        Most wall time [s] of each run; default None (no limit, so that whether
+        a run succeeds does not depend on the machine's speed).  Both limits are
+        also projected: after :data:`~pinlin.nonlinear.budget.PROJECTION_MIN_STEPS`
+        steps a run whose rate so far would need more than
+        :data:`~pinlin.nonlinear.budget.PROJECTION_FACTOR` times its budget to
+        reach ``t[-1]`` stops at once.
 
     Returns
     -------
@@ -194,7 +221,11 @@ def simulate(
     ParameterError
         Not a scene; bad time grid (not 1-D, non-finite, not strictly increasing);
         unknown method; non-positive tolerances, rtol too small for solve_ivp (or
-        for the comparison run); chart_radius outside (0, 3].
+        for the comparison run); chart_radius outside (0, 3]; max_steps not a
+        positive integer, max_time not a positive number (or None).
+    IntegrationBudgetError
+        A run used up ``max_steps`` or ``max_time`` or would clearly exceed them;
+        ``t_reached``, ``steps`` and ``elapsed`` say how far it got.
     IntegrationError
         The solver failed or the state became non-finite, in the run or in the
         comparison run (``t_reached`` says where).
@@ -207,20 +238,20 @@ def simulate(
     times = check_times(t)
     q_init = scene.check_configuration(q0, "q0")
     v_init = initial_velocity(scene, v0)
-    settings = _settings(method, rtol, atol, max_step, chart_radius, bool(estimate_error))
+    settings = _settings(method, rtol, atol, max_step, chart_radius, bool(estimate_error), (max_steps, max_time))
     run = integrate(scene, q_init, v_init, times, settings)
     error_q = error_v = float("nan")
     reference_nfev = 0
     if estimate_error:
-        tight = Settings(
-            method,
-            settings.rtol / ERROR_TOL_FACTOR,
-            settings.atol / ERROR_TOL_FACTOR,
-            settings.max_step,
-            settings.chart_radius,
+        tight = replace(settings, rtol=settings.rtol / ERROR_TOL_FACTOR, atol=settings.atol / ERROR_TOL_FACTOR)
+        what = (
+            f"simulate, in the comparison run for the error estimate at rtol = {tight.rtol:g} "
+            f"(estimate_error=False skips it)"
         )
         try:
-            reference = integrate(scene, q_init, v_init, times, tight)
+            reference = integrate(scene, q_init, v_init, times, tight, what)
+        except IntegrationBudgetError:
+            raise
         except IntegrationError as exc:
             raise IntegrationError(
                 f"{exc} (in the comparison run for the error estimate, at rtol = {tight.rtol:g}; "
@@ -246,6 +277,9 @@ def simulate(
         nfev=run.nfev,
         njev=run.njev,
         nlu=run.nlu,
+        steps=run.steps,
+        max_steps=settings.max_steps,
+        max_time=settings.max_time,
         reference_nfev=reference_nfev,
         charts=run.charts,
         elapsed=time.perf_counter() - t_start,

@@ -6,8 +6,12 @@ One concept per module, in the order the report is made:
   of a scene spec, and the JSON document built from the results' ``to_dict()``;
 - :mod:`.schema` -- :data:`REPORT_SCHEMA`, the JSON Schema of that document (the
   published contract, versioned by :data:`REPORT_VERSION`);
+- :mod:`.units` -- the units of coordinates and matrix entries that the report prints;
 - :mod:`.text` -- :func:`render_text`, the human-readable report;
-- :mod:`.figure` -- :func:`write_plot`, the eigenvalue map and frequency responses.
+- :mod:`.figure` -- :func:`write_plot`, the eigenvalue map and frequency responses;
+- :mod:`.outputs` -- the optional outputs (``--json``, ``--plot``, ``--animate``): checked
+  before computing, written after the text;
+- :mod:`.sweep` -- ``pinlin sweep``: the ``[sweep]`` table, the sweep, its document, text and figure.
 
 The command line itself (argparse, exit codes) is :mod:`pinlin.cli`.
 """

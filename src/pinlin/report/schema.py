@@ -11,7 +11,10 @@ convention's ``type``, ``method``, ``error`` and ``elapsed``:
   ``modes.structure`` holds, made by :func:`pinlin.numerics.definiteness`);
 - ``modes`` is :class:`~pinlin.Modes`' (eigenvalues as ``{"re": [...], "im": [...]}``)
   plus ``method_reason`` and the text ``table``;
-- ``stability`` is :class:`~pinlin.Stability`'s.
+- ``stability`` is :class:`~pinlin.Stability`'s;
+- ``scene.dof_units`` (added in pinlin 0.2, optional in the schema) gives the unit
+  of each coordinate, "rad" or "m" ("?" for a joint kind pinlin does not know);
+  ``scene.source`` and ``scene.urdf`` are normalized absolute paths when they name files.
 
 Numbers follow :func:`pinlin.results.to_jsonable`: non-finite floats are the
 strings ``"nan"``, ``"inf"``, ``"-inf"`` (version 1 wrote ``null``).
@@ -84,6 +87,7 @@ REPORT_SCHEMA = {
                 "nv": {"type": "integer", "minimum": 1},
                 "n": {"type": "integer", "minimum": 1},
                 "dof_names": {"type": "array", "items": {"type": "string"}},
+                "dof_units": {"type": "array", "items": {"enum": ["rad", "m", "?"]}},
                 "gravity": {**_NUMBERS, "minItems": 3, "maxItems": 3},
                 "prescribed": {"type": "object", "additionalProperties": {"type": "number"}},
                 "elements": {"type": "array", "items": {"type": "object", "required": ["kind"]}},

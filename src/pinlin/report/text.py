@@ -1,4 +1,16 @@
-"""The human-readable report of ``pinlin analyze`` (from its JSON document)."""
+"""The human-readable report of ``pinlin analyze`` (from its JSON document; issue 17 part 6).
+
+What the text promises, each checked by a test:
+
+- no "-0": a negative zero prints as 0;
+- a matrix entry below the matrix's rounding scale prints as 0: the scale is
+  the rounding bound c n eps ||A||_2 of :func:`pinlin.numerics.definiteness.rounding_bound`,
+  the same below which an eigenvalue of A is not told from zero;
+- every printed matrix carries its unit (:func:`pinlin.report.units.matrix_unit`);
+- a mode whose Re lam lies within its error bound of zero and that oscillates
+  is labelled "undamped" (its damping is not distinguished from none);
+- the stability verdict is printed once, in its own section.
+"""
 
 from __future__ import annotations
 
@@ -7,8 +19,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..linearization.system import MATRIX_NAMES
+from ..numerics.definiteness import rounding_bound
+from .units import matrix_unit
 
-__all__ = ["render_text", "MAX_PRINTED_SIZE", "BALANCING_PRECISION"]
+__all__ = ["render_text", "mode_table", "matrix_text", "number", "MAX_PRINTED_SIZE", "BALANCING_PRECISION"]
 
 #: Matrices with more coordinates than this are summarized by their Frobenius norm (a row must fit a screen).
 MAX_PRINTED_SIZE = 12
@@ -16,25 +30,55 @@ MAX_PRINTED_SIZE = 12
 BALANCING_PRECISION = 4
 #: Extra characters per printed matrix entry beyond its significant digits (sign, point, exponent).
 _CELL_PADDING = 7
+#: Significant digits of the figures of merit (eta, kappa, error bound): their order of magnitude is the message.
+_FIGURE_DIGITS = 1
 
 
-def _matrix_text(name: str, a: np.ndarray, names: Sequence[str], precision: int) -> str:
+def _float(value) -> float:
+    """A number of the JSON document (non-finite ones are the strings "nan", "inf", "-inf") as float."""
+    return float(value)
+
+
+def number(x: float, precision: int, *, zero_below: float = 0.0) -> str:
+    """``x`` to ``precision`` significant digits; 0 (never "-0") when ``|x| <= zero_below``."""
+    x = _float(x)
+    if abs(x) <= zero_below:  # also turns -0.0 into 0
+        return "0"
+    return f"{x:.{precision}g}"
+
+
+def matrix_text(name: str, a: np.ndarray, names: Sequence[str], units: Sequence[str], precision: int) -> str:
+    """The matrix ``name`` with its unit, entries at rounding level printed as 0.
+
+    Entries with ``|a_ij| <= rounding_bound(n, ||A||_2)`` (c n eps ||A||_2) are
+    below what rounding in forming A can tell from zero.
+    """
+    unit = matrix_unit(name, units)
     if a.shape[0] > MAX_PRINTED_SIZE:
-        return f"  {name}: {a.shape[0]}x{a.shape[0]}, ||{name}||_F = {np.linalg.norm(a):.6g}"
+        return f"  {name} [{unit}]: {a.shape[0]}x{a.shape[0]}, ||{name}||_F = {np.linalg.norm(a):.6g}"
+    scale = rounding_bound(a.shape[0], float(np.linalg.norm(a, 2)))
     width = max(len(n) for n in names)
-    rows = [f"  {name} ="]
+    rows = [f"  {name} [{unit}] ="]
     for label, row in zip(names, a):
-        cells = " ".join(f"{x: .{precision}g}".rjust(precision + _CELL_PADDING) for x in row)
+        cells = " ".join(number(x, precision, zero_below=scale).rjust(precision + _CELL_PADDING) for x in row)
         rows.append(f"    {label.rjust(width)}  {cells}")
     return "\n".join(rows)
 
 
+def _vector_text(values, precision: int) -> str:
+    return "[" + ", ".join(number(x, precision) for x in values) + "]"
+
+
 def _scene_lines(s: dict) -> list[str]:
+    units = s.get("dof_units") or ["?"] * len(s["dof_names"])
+    coordinates = ", ".join(f"{name} [{unit}]" for name, unit in zip(s["dof_names"], units))
+    prescribed = f", prescribed velocities {s['prescribed']}" if s["prescribed"] else ""
+    elements = ", ".join(f"{e['kind']}({e.get('joint', e.get('frame', ''))})" for e in s["elements"]) or "none"
     return [
         f"  scene file: {s['source']}",
-        f"  nq = {s['nq']}, nv = {s['nv']}, free coordinates n = {s['n']}: {', '.join(s['dof_names'])}",
-        f"  gravity = {s['gravity']} m/s^2" + (f", prescribed velocities {s['prescribed']}" if s["prescribed"] else ""),
-        "  elements: " + (", ".join(f"{e['kind']}({e.get('joint', e.get('frame', ''))})" for e in s["elements"]) or "none"),
+        f"  nq = {s['nq']}, nv = {s['nv']}, free coordinates n = {s['n']}: {coordinates}",
+        f"  gravity = {_vector_text(s['gravity'], 6)} m/s^2{prescribed}",
+        f"  elements: {elements}",
         "",
     ]
 
@@ -42,12 +86,21 @@ def _scene_lines(s: dict) -> list[str]:
 def _equilibrium_lines(eq: dict, precision: int) -> list[str]:
     return [
         f"Equilibrium: {eq['method']}",
-        f"  q = {np.array2string(np.array(eq['q']), precision=precision)}",
-        f"  residual = {eq['residual']:.3e} (relative {eq['relative_residual']:.2e}), "
+        f"  q = {_vector_text(eq['q'], precision)}",
+        f"  residual = {_float(eq['residual']):.3e} (relative {_float(eq['relative_residual']):.2e}), "
         f"{eq['iterations']} iterations, {eq['elapsed'] * 1e3:.2f} ms",
         *(f"  note: {note}" for note in eq["notes"]),
         "",
     ]
+
+
+def _force_unit(units: Sequence[str]) -> str:
+    """The unit of generalized forces on coordinates of ``units``: N m on angles, N on lengths."""
+    force = {"rad": "N m", "m": "N"}
+    kinds = set(units)
+    if len(kinds) == 1 and units[0] in force:
+        return force[units[0]]
+    return "N m on rad, N on m coordinates"
 
 
 def _structure_text(structure: dict) -> str:
@@ -57,27 +110,74 @@ def _structure_text(structure: dict) -> str:
     )
 
 
-def _linearization_lines(lin: dict, names: Sequence[str], precision: int) -> list[str]:
+def _linearization_lines(lin: dict, names: Sequence[str], units: Sequence[str], precision: int) -> list[str]:
     out = []
     if lin["balancing"] is not None:
         out += [
             "Operating point held by constant actuator forces (balancing, asked for explicitly)",
-            f"  balancing forces = {np.array2string(np.array(lin['balancing']), precision=BALANCING_PRECISION)}",
+            f"  balancing forces = {_vector_text(lin['balancing'], BALANCING_PRECISION)} [{_force_unit(units)}]",
             "",
         ]
     zero = ", ".join(n for n in MATRIX_NAMES if n not in lin["nonzero"]) or "none"
     out.append("Linearized equations  M x'' + (D + G) x' + (S + N) x = f")
     out.append(f"  nonzero: {', '.join(lin['nonzero'])}; zero: {zero}")
     for name in lin["nonzero"]:
-        out.append(_matrix_text(name, np.array(lin[name]), names, precision))
+        out.append(matrix_text(name, np.array(lin[name], dtype=float), names, units, precision))
     out.append(_structure_text(lin["structure"]))
     out.append(f"  Pinocchio calls: {', '.join(lin['calls']) or 'none'}")
     if lin["dropped"]:
         out.append("  set to zero as rounding: " + ", ".join(f"{k} ({v:.1e} relative)" for k, v in lin["dropped"].items()))
     out += [f"  note: {note}" for note in lin["notes"]]
-    out.append(f"  equilibrium residual (relative) = {lin['residual']:.2e}; linearize {lin['elapsed'] * 1e3:.2f} ms")
+    out.append(f"  equilibrium residual (relative) = {_float(lin['residual']):.2e}; linearize {lin['elapsed'] * 1e3:.2f} ms")
     out.append("")
     return out
+
+
+def _mode_kind(kind: str, re: float, bound: float) -> str:
+    """"undamped" for an oscillating mode whose Re lam is within its error bound of zero."""
+    return "undamped" if kind == "underdamped" and abs(re) <= bound else kind
+
+
+def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> str:
+    """The mode table of a report's ``modes`` section: lam, |lam|, zeta, eta, kappa, bound, multiplicity, kind.
+
+    The verdict is not part of it (the report prints it once, in its own section).
+
+    Parameters
+    ----------
+    modes : dict
+        ``Modes.to_dict()`` (the report's ``modes`` section).
+    precision : int
+        Significant digits of lam and |lam|.
+    max_rows : int, optional
+        Show at most this many eigenvalues (the lowest frequencies); None for all.
+    """
+    re = [_float(x) for x in modes["eigenvalues"]["re"]]
+    k = len(re)
+    rows = range(k) if max_rows is None else range(min(k, max_rows))
+    w = max(precision + _CELL_PADDING, len("Im lam [rad/s]"))
+    head = (
+        f"{'#':>4}  {'Re lam [1/s]':>{w}} {'Im lam [rad/s]':>{w}} {'|lam| [rad/s]':>{w}} "
+        f"{'zeta':>9} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  kind"
+    )
+    method = f"{modes['method']}: {modes['method_reason']}" if modes.get("method_reason") else modes["method"]
+    lines = [f"Modal analysis: {k} eigenvalues, method {method}", head, "-" * len(head)]
+    for i in rows:
+        bound = _float(modes["error_bound"][i])
+        cells = [number(x, precision).rjust(w) for x in
+                 (re[i], modes["eigenvalues"]["im"][i], modes["natural_frequency"][i])]
+        figures = [number(modes["damping_ratio"][i], 4).rjust(9)] + [
+            f"{_float(modes[key][i]):>8.{_FIGURE_DIGITS}e}" for key in ("backward_error", "condition")
+        ]
+        lines.append(
+            f"{i + 1:>4}  {' '.join(cells)} {' '.join(figures)} {bound:>8.{_FIGURE_DIGITS}e} "
+            f"{modes['multiplicity'][i]:>4}  {_mode_kind(modes['kind'][i], re[i], bound)}"
+        )
+    if len(rows) < k:
+        lines.append(f"... {k - len(rows)} more (higher frequencies)")
+    lines.append(f"max eta {_float(modes['error']):.2e}; dynamic stiffness simple: {modes['is_simple']}")
+    lines += [f"note: {note}" for note in modes.get("notes", ())]
+    return "\n".join(lines)
 
 
 def render_text(report: dict, precision: int = 6) -> str:
@@ -88,15 +188,16 @@ def render_text(report: dict, precision: int = 6) -> str:
     report : dict
         The JSON document (version :data:`pinlin.report.REPORT_VERSION`).
     precision : int
-        Significant digits of the printed matrices and configuration.
+        Significant digits of the printed matrices, configuration and eigenvalues.
     """
     s = report["scene"]
+    units = s.get("dof_units") or ["?"] * len(s["dof_names"])
     out = [f"pinlin {report['pinlin_version']}: {s['robot']} from {s['urdf']}", *_scene_lines(s)]
     if "equilibrium" in report:
         out += _equilibrium_lines(report["equilibrium"], precision)
-    out += _linearization_lines(report["linearization"], s["dof_names"], precision)
+    out += _linearization_lines(report["linearization"], s["dof_names"], units, precision)
     modes = report["modes"]
-    out += [modes["table"], f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms", ""]
+    out += [mode_table(modes, precision), f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms", ""]
     st = report["stability"]
     out += [f"Stability: {st['kind'].replace('_', ' ').upper()}", f"  {st['reason']}", ""]
     out.append(f"Total {report['elapsed'] * 1e3:.1f} ms")
