@@ -30,6 +30,10 @@ SUITE = (
     ("adjoint", "bench_adjoint", "frequency responses (modal vs direct) and the characteristic polynomial"),
     ("response", "bench_response", "free response: modal formula against expm and time integration"),
     ("scaling", "bench_scaling", "time and memory per stage for chains of n = 10 ... 300; the memory guard"),
+    ("constraints", "bench_constraints", "constrained systems: linearize overhead, KKT equilibrium, accuracy"),
+    ("frame_elements", "bench_frame_elements",
+     "elements between frames: cost per element against a joint spring's, and against central differences"),
+    ("boundaries", "bench_boundaries", "stability boundaries: critical_parameter against bisection on the verdict"),
 )
 
 HERE = Path(__file__).parent

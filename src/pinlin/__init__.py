@@ -23,8 +23,10 @@ Conventions (names, units, axis orders, what ``.error`` means per result) are in
 from ``docs/`` with Sphinx (``docs/index.md`` says how).
 """
 
-from . import _compat
-from . import testing  # noqa: F401 -- pinlin.testing.check_element (SPEC section 9) after a plain `import pinlin`
+from . import (
+    _compat,
+    testing,  # noqa: F401 -- pinlin.testing.check_element (SPEC section 9) after a plain `import pinlin`
+)
 from .adjoint import (
     AdjugateMatrix,
     CharacteristicPolynomial,
@@ -32,6 +34,74 @@ from .adjoint import (
     adjugate_eigenvectors,
     characteristic_polynomial,
     check_free_response,
+)
+from .boundaries import (
+    BoundaryFailure,
+    CriticalParameter,
+    EigenvalueSensitivity,
+    StabilityBoundary,
+    critical_parameter,
+    eigenvalue_sensitivity,
+    stability_boundary,
+)
+from .errors import (
+    AccuracyWarning,
+    AssemblyError,
+    BoundaryNotIsolatedError,
+    BracketError,
+    ComputationError,
+    ConfigurationError,
+    ConstraintError,
+    ConstraintViolationError,
+    ConvergenceError,
+    EigenvalueNotIsolatedError,
+    FrameNotFoundError,
+    InputError,
+    IntegrationBudgetError,
+    IntegrationError,
+    JointNotFoundError,
+    MissingDependencyError,
+    MjcfError,
+    ModelTooLargeError,
+    NameNotFoundError,
+    NotAnEigenvalueError,
+    NotAnEquilibriumError,
+    NotSimpleError,
+    OverconstrainedError,
+    ParameterError,
+    PinlinError,
+    PrescribedJointError,
+    SceneFileError,
+    SingularConstraintError,
+    SingularMassError,
+    SystemFunctionError,
+    TimePeriodicError,
+    UrdfError,
+)
+from .frf import (
+    FlexibilityArray,
+    FrequencyResponse,
+    HarmonicResponse,
+    Residues,
+    flexibility,
+    frequency_response,
+    harmonic_response,
+    residues,
+)
+from .interop import StateSpaceModel, state_space
+from .linearization.closure import ClosureResult, close_loops
+from .linearization.constrained import constraint_stiffness
+from .linearization.equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
+from .linearization.linearize import generalized_force, linearize
+from .linearization.system import LinearizedSystem
+from .model import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
+from .model.constraints import (
+    Constraint,
+    ConstraintForce,
+    ContactStatus,
+    FrameConstraint,
+    PointConstraint,
+    ground_contacts,
 )
 from .model.elements import (
     Bushing,
@@ -43,78 +113,20 @@ from .model.elements import (
     LinearSpringDamper,
     RayleighDamping,
 )
-from .linearization.equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
-from .errors import (
-    AccuracyWarning,
-    ComputationError,
-    ConfigurationError,
-    ConvergenceError,
-    EigenvalueNotIsolatedError,
-    FrameNotFoundError,
-    InputError,
-    IntegrationError,
-    JointNotFoundError,
-    ModelTooLargeError,
-    NotAnEigenvalueError,
-    NotAnEquilibriumError,
-    NotSimpleError,
-    ParameterError,
-    PinlinError,
-    PrescribedJointError,
-    SceneFileError,
-    SingularMassError,
-    TimePeriodicError,
-    UrdfError,
-)
-from .linearization.linearize import generalized_force, linearize
 from .model.generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
-from .frf import (
-    FlexibilityArray,
-    FrequencyResponse,
-    HarmonicResponse,
-    Residues,
-    flexibility,
-    frequency_response,
-    harmonic_response,
-    residues,
-)
-from .nonlinear import Simulation, linear_coordinates, simulate
-from .response import EnergyBudget, ForcedResponse, FreeResponse, energy_budget, forced_response, free_response
-from .model import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
-from .model.scene import Scene
-from .model.constraints import (
-    Constraint,
-    ConstraintForce,
-    ContactStatus,
-    FrameConstraint,
-    PointConstraint,
-    ground_contacts,
-)
 from .model.mjcf import load_mjcf
-from .linearization.closure import ClosureResult, close_loops
-from .linearization.constrained import constraint_stiffness
-from .errors import (
-    AssemblyError,
-    ConstraintError,
-    ConstraintViolationError,
-    MjcfError,
-    OverconstrainedError,
-    SingularConstraintError,
+from .model.scene import Scene
+from .nonlinear import Simulation, linear_coordinates, simulate
+from .response import (
+    EnergyBudget,
+    ForcedResponse,
+    FreeResponse,
+    energy_budget,
+    forced_response,
+    free_response,
 )
 from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
 from .studies.sweep import SweepFailure, SweepResult, sweep
-from .boundaries import (
-    BoundaryFailure,
-    CriticalParameter,
-    EigenvalueSensitivity,
-    StabilityBoundary,
-    critical_parameter,
-    eigenvalue_sensitivity,
-    stability_boundary,
-)
-from .errors import BoundaryNotIsolatedError, BracketError, SystemFunctionError
-from .interop import StateSpaceModel, state_space
-from .linearization.system import LinearizedSystem
 
 __version__ = "0.2.0"
 
@@ -202,6 +214,9 @@ __all__ = [
     "ConvergenceError",
     "ModelTooLargeError",
     "IntegrationError",
+    "IntegrationBudgetError",
+    "MissingDependencyError",
+    "NameNotFoundError",
     "AccuracyWarning",
     # responses (SPEC section 6)
     "free_response",

@@ -84,7 +84,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import pinocchio as pin
 
 from ..errors import PinlinError, SceneFileError
 from .constraints import FrameConstraint, PointConstraint
@@ -100,6 +99,7 @@ from .elements import (
 from .loading import data_path, load_example, load_urdf
 from .robot import Robot
 from .scene import Scene
+from .scene_reader import Reader, read_placement, read_target
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -160,63 +160,7 @@ def default_scene_path() -> Path:
     return data_path("scenes/double_pendulum.toml")
 
 
-class _Reader:
-    def __init__(self, path: str):
-        self.path = path
-
-    def fail(self, key: str | None, message: str, exc: BaseException | None = None):
-        raise SceneFileError(message, self.path, key) from exc
-
-    def check_keys(self, table: dict, allowed: set, where: str | None) -> None:
-        if not isinstance(table, dict):
-            self.fail(where, f"expected a table, got {type(table).__name__}")
-        unknown = sorted(set(table) - allowed)
-        if unknown:
-            key = f"{where}.{unknown[0]}" if where else unknown[0]
-            self.fail(key, f"unknown key; expected one of {sorted(allowed)}")
-
-    def get(self, table: dict, key: str, where: str, kind, default=None, required=False):
-        full = f"{where}.{key}" if where else key
-        if key not in table:
-            if required:
-                self.fail(full, "missing required key")
-            return default
-        value = table[key]
-        if kind is float:
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not abs(value) <= sys.float_info.max:
-                self.fail(full, f"expected a finite number, got {value!r:.80}")
-            return float(value)
-        if kind is bool:
-            if not isinstance(value, bool):
-                self.fail(full, f"expected true or false, got {value!r}")
-            return value
-        if kind is str:
-            if not isinstance(value, str):
-                self.fail(full, f"expected a string, got {value!r}")
-            return value
-        if kind == "numbers":  # numbers only: numpy would also read "3.0" and true as numbers
-            try:
-                if not _only_numbers(value):
-                    raise TypeError
-                return np.asarray(value, dtype=float)
-            except (TypeError, ValueError, OverflowError):
-                self.fail(full, f"expected a number or a (rectangular) list of numbers, got {value!r:.80}")
-        return value
-
-
-def _only_numbers(value) -> bool:
-    """Whether ``value`` is a number or nested lists of numbers (no strings, booleans or tables)."""
-    stack = [value]
-    while stack:
-        item = stack.pop()
-        if isinstance(item, list):
-            stack.extend(item)
-        elif isinstance(item, bool) or not isinstance(item, (int, float)):
-            return False
-    return True
-
-
-def _robot(r: _Reader, table: dict, base: Path) -> Robot:
+def _robot(r: Reader, table: dict, base: Path) -> Robot:
     r.check_keys(table, _KEYS["robot"], "robot")
     urdf = r.get(table, "urdf", "robot", str)
     example = r.get(table, "example", "robot", str)
@@ -246,37 +190,7 @@ def _robot(r: _Reader, table: dict, base: Path) -> Robot:
         r.fail("robot", str(exc), exc)
 
 
-def _placement(r: _Reader, value, key: str):
-    """A placement from a table { xyz = [m], rpy = [rad] } (URDF's origin convention) or a 4x4 matrix."""
-    if isinstance(value, dict):
-        r.check_keys(value, {"xyz", "rpy"}, key)
-        xyz = r.get(value, "xyz", key, "numbers", np.zeros(3))
-        rpy = r.get(value, "rpy", key, "numbers", np.zeros(3))
-        for name, arr in (("xyz", xyz), ("rpy", rpy)):
-            if arr.shape != (3,) or not np.all(np.isfinite(arr)):
-                r.fail(f"{key}.{name}", f"expected 3 finite numbers, got {arr.tolist()}")
-        return pin.SE3(pin.rpy.rpyToMatrix(*rpy), xyz)
-    if isinstance(value, list):
-        try:
-            return np.asarray(value, dtype=float)
-        except (TypeError, ValueError):
-            r.fail(key, f"expected a 4x4 matrix of numbers, got {value!r}")
-    r.fail(key, f"expected a table {{ xyz = [...], rpy = [...] }} or a 4x4 matrix, got {value!r}")
-
-
-def _target(r: _Reader, table: dict, where: str, placement: bool):
-    """A frame name, or a world point (3 numbers) / world placement."""
-    value = r.get(table, "target", where, None, required=True)
-    if isinstance(value, str):
-        return value
-    if placement:
-        return _placement(r, value, f"{where}.target")
-    if not isinstance(value, list):
-        r.fail(f"{where}.target", f"expected a frame name or a world point [x, y, z], got {value!r}")
-    return r.get(table, "target", where, "numbers")
-
-
-def _elements(r: _Reader, doc: dict, robot: Robot) -> list:
+def _elements(r: Reader, doc: dict, robot: Robot) -> list:
     elements = []
     makers = {
         "spring": lambda t, w: JointSpring(
@@ -299,17 +213,17 @@ def _elements(r: _Reader, doc: dict, robot: Robot) -> list:
         ),
         "spring_damper": lambda t, w: LinearSpringDamper(
             r.get(t, "frame", w, str, required=True),
-            _target(r, t, w, placement=False),
+            read_target(r, t, w, placement=False),
             stiffness=r.get(t, "stiffness", w, float, required=True),
             damping=r.get(t, "damping", w, float, 0.0),
             rest_length=r.get(t, "rest_length", w, float, 0.0),
         ),
         "bushing": lambda t, w: Bushing(
             r.get(t, "frame", w, str, required=True),
-            _target(r, t, w, placement=True),
+            read_target(r, t, w, placement=True),
             stiffness=r.get(t, "stiffness", w, "numbers", required=True),
             damping=r.get(t, "damping", w, "numbers"),
-            offset=None if "offset" not in t else _placement(r, t["offset"], f"{w}.offset"),
+            offset=None if "offset" not in t else read_placement(r, t["offset"], f"{w}.offset"),
         ),
     }
     for kind, make in makers.items():
@@ -341,7 +255,7 @@ def _elements(r: _Reader, doc: dict, robot: Robot) -> list:
     return elements
 
 
-def _start(r: _Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, bool]:
+def _start(r: Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, bool]:
     r.check_keys(table, _KEYS["start"], "start")
     robot = scene.robot
     q = robot.neutral()
@@ -386,7 +300,7 @@ def _start(r: _Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, boo
     return q, equilibrium, balancing
 
 
-def _constraints(r: _Reader, doc: dict, robot: Robot) -> list | None:
+def _constraints(r: Reader, doc: dict, robot: Robot) -> list | None:
     """The ``[[constraint]]`` tables, or None when there are none (the robot's own constraints stay)."""
     tables = doc.get("constraint")
     if tables is None:
@@ -404,14 +318,14 @@ def _constraints(r: _Reader, doc: dict, robot: Robot) -> list | None:
             r.fail(where, "contact, friction and normal apply to point constraints only")
         try:
             frame = r.get(t, "frame", where, str, required=True)
-            target = _target(r, t, where, placement=kind == "frame")
+            goal = read_target(r, t, where, placement=kind == "frame")
             name = r.get(t, "name", where, str)
             if kind == "frame":
-                constraint = FrameConstraint(frame, target, name=name)
+                constraint = FrameConstraint(frame, goal, name=name)
             else:
                 constraint = PointConstraint(
                     frame,
-                    target,
+                    goal,
                     contact=r.get(t, "contact", where, bool, False),
                     friction=r.get(t, "friction", where, float),
                     normal=r.get(t, "normal", where, "numbers", np.array([0.0, 0.0, 1.0])),
@@ -436,7 +350,7 @@ def load_scene(path) -> SceneSpec:
         or anything the robot, elements or start refuse; the message names the key.
     """
     path = Path(path)
-    r = _Reader(str(path))
+    r = Reader(str(path))
     if not path.is_file():
         r.fail(None, "scene file not found")
     try:

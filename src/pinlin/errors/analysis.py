@@ -1,0 +1,184 @@
+"""Errors of the analyses: equilibria, mass matrices, time-periodic scenes, convergence, integration,
+eigenvalues and residues, stability boundaries."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from .base import ComputationError, InputError
+
+__all__ = ["NotAnEquilibriumError", "SingularMassError", "TimePeriodicError", "ConvergenceError", "IntegrationError", "IntegrationBudgetError", "NotAnEigenvalueError", "NotSimpleError", "EigenvalueNotIsolatedError", "BracketError", "BoundaryNotIsolatedError", "SystemFunctionError"]
+
+
+class NotAnEquilibriumError(InputError):
+    """``linearize`` was asked to work at a point that is not an equilibrium.
+
+    Attributes
+    ----------
+    residual : float
+        Norm of the generalized-force residual [N or N m].
+    relative_residual : float
+        The residual divided by the size of the forces that should balance.
+    """
+
+    def __init__(self, message: str, residual: float, relative_residual: float):
+        super().__init__(message)
+        self.residual = residual
+        self.relative_residual = relative_residual
+
+
+class SingularMassError(InputError):
+    """The mass matrix is singular or indefinite.
+
+    Attributes
+    ----------
+    joints : tuple of str
+        Joints whose motion carries no inertia.
+    """
+
+    def __init__(self, message: str, joints: Sequence[str]):
+        super().__init__(message)
+        self.joints = tuple(joints)
+
+
+class TimePeriodicError(InputError):
+    """The linearized equations depend on the angle of a prescribed joint.
+
+    Then they are time-periodic, not constant-coefficient, and pinlin's analysis
+    (built on a constant dynamic stiffness) does not apply.
+
+    Attributes
+    ----------
+    joint : str
+        The prescribed joint whose angle changes the equations.
+    variation : float
+        Largest relative change of M, C, K or the residual over the tested angles.
+    """
+
+    def __init__(self, message: str, joint: str, variation: float):
+        super().__init__(message)
+        self.joint = joint
+        self.variation = variation
+
+
+class ConvergenceError(ComputationError):
+    """An iteration did not converge.
+
+    Attributes
+    ----------
+    history : tuple of float
+        The residual norm at each iteration.
+    """
+
+    def __init__(self, message: str, history: Sequence[float]):
+        super().__init__(message)
+        self.history = tuple(history)
+
+
+class IntegrationError(ComputationError):
+    """A time integration (the nonlinear reference simulation) failed.
+
+    Attributes
+    ----------
+    t_reached : float
+        The time [s] up to which the solution is valid.
+    """
+
+    def __init__(self, message: str, t_reached: float):
+        super().__init__(message)
+        self.t_reached = float(t_reached)
+
+
+class IntegrationBudgetError(IntegrationError):
+    """A time integration stopped at its budget of steps or wall time, or would clearly exceed it.
+
+    Attributes: ``t_reached`` [s] (the solution is valid up to it), ``t_end`` [s] (asked for),
+    ``steps`` (taken), ``elapsed`` [s] (spent), ``budget`` (``"max_steps"`` or ``"max_time"``).
+    """
+
+    def __init__(self, message: str, t_reached: float, t_end: float, steps: int, elapsed: float, budget: str):
+        super().__init__(message, t_reached)
+        self.t_end, self.steps, self.elapsed, self.budget = float(t_end), int(steps), float(elapsed), budget
+
+
+class NotAnEigenvalueError(InputError):
+    """A point given as an eigenvalue (a root of det L) is not one, to the stated tolerance.
+
+    Attributes
+    ----------
+    lam : complex
+        The point [1/s].
+    distance : float
+        How far it is from being a root, in the measure the message names
+        (relative smallest singular value of L, or relative distance to the
+        nearest eigenvalue).
+    """
+
+    def __init__(self, message: str, lam: complex, distance: float):
+        super().__init__(message)
+        self.lam = complex(lam)
+        self.distance = float(distance)
+
+
+class NotSimpleError(InputError):
+    """A method needs a simple root or a simple dynamic stiffness, and this one is not.
+
+    Attributes
+    ----------
+    lam : complex or None
+        The offending eigenvalue [1/s], when there is one.
+    measure : float
+        The quantity that failed the test (named in the message).
+    """
+
+    def __init__(self, message: str, lam: complex | None = None, measure: float = float("nan")):
+        super().__init__(message)
+        self.lam = None if lam is None else complex(lam)
+        self.measure = float(measure)
+
+
+class EigenvalueNotIsolatedError(ComputationError):
+    """No contour around an eigenvalue separates it from the rest of the spectrum.
+
+    Attributes
+    ----------
+    lam : complex
+        The eigenvalue [1/s].
+    inner : float
+        Radius [1/s] of the cluster taken as the eigenvalue itself.
+    outer : float
+        Radius [1/s] at which the next eigenvalue was found.
+    """
+
+    def __init__(self, message: str, lam: complex, inner: float, outer: float):
+        super().__init__(message)
+        self.lam = complex(lam)
+        self.inner = float(inner)
+        self.outer = float(outer)
+
+
+class BracketError(InputError):
+    """A bracket cannot hold a stability boundary (SPEC 12): its ends have the same verdict class, one is
+    "undecided", or they are not two distinct finite numbers; ``bracket``, ``verdicts`` (the kinds at its ends)."""
+
+    def __init__(self, message: str, bracket, verdicts=()):
+        super().__init__(message)
+        self.bracket, self.verdicts = tuple(bracket), tuple(verdicts)
+
+
+class BoundaryNotIsolatedError(InputError):
+    """The verdict changes, but not at an isolated parameter value (SPEC 12): it stays "undecided" over an
+    interval far wider than rounding; ``interval``: where."""
+
+    def __init__(self, message: str, interval):
+        super().__init__(message)
+        self.interval = tuple(float(x) for x in interval)
+
+
+class SystemFunctionError(InputError):
+    """A user's ``func(p) -> LinearizedSystem`` raised (chained as ``__cause__``), returned something else, or
+    systems of different sizes (SPEC 12); ``p``: the parameter value."""
+
+    def __init__(self, message: str, p: float):
+        super().__init__(message)
+        self.p = float(p)

@@ -1,0 +1,116 @@
+"""The roots of the hierarchy and the errors every stage can raise: bad parameters, names not found, missing
+optional dependencies, models too large for this machine; the accuracy warning."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+__all__ = ["PinlinError", "InputError", "NameNotFoundError", "JointNotFoundError", "FrameNotFoundError", "ParameterError", "ConfigurationError", "ComputationError", "ModelTooLargeError", "AccuracyWarning", "MissingDependencyError"]
+
+
+def _rebuild(cls, args, state):
+    """Unpickle an error without calling its ``__init__`` (whose signature varies by subclass)."""
+    obj = cls.__new__(cls)
+    obj.args = args
+    obj.__dict__.update(state)
+    return obj
+
+
+class PinlinError(Exception):
+    """Base class of every error raised by pinlin."""
+
+    def __reduce__(self):
+        # Subclasses take their data as constructor arguments, so Exception's default
+        # pickling (cls(*args)) would fail; rebuild from args and attributes instead, so
+        # that errors cross process pools (pinlin.sweep with a ProcessPoolExecutor, Dask).
+        return (_rebuild, (type(self), self.args, dict(self.__dict__)))
+
+
+class InputError(PinlinError, ValueError):
+    """The caller passed something pinlin cannot work with."""
+
+
+class NameNotFoundError(InputError):
+    """A joint or frame name does not exist; the message lists the valid names.
+
+    Attributes
+    ----------
+    name : str
+        The name that was asked for.
+    valid : tuple of str
+        The names that exist.
+    """
+
+    what = "name"
+
+    def __init__(self, name: str, valid: Sequence[str], context: str = ""):
+        self.name = name
+        self.valid = tuple(valid)
+        shown = ", ".join(repr(v) for v in self.valid[:40])
+        if len(self.valid) > 40:
+            shown += f", ... ({len(self.valid) - 40} more)"
+        where = f" in {context}" if context else ""
+        super().__init__(f"unknown {self.what} {name!r}{where}; valid {self.what}s: {shown}")
+
+
+class JointNotFoundError(NameNotFoundError):
+    """A joint name does not exist in the model."""
+
+    what = "joint"
+
+
+class FrameNotFoundError(NameNotFoundError):
+    """A frame name does not exist in the model."""
+
+    what = "frame"
+
+
+class ParameterError(InputError):
+    """A numeric parameter is non-finite, of the wrong shape or out of range.
+
+    Attributes
+    ----------
+    parameter : str
+        Name of the offending parameter.
+    """
+
+    def __init__(self, parameter: str, message: str):
+        super().__init__(f"{parameter}: {message}")
+        self.parameter = parameter
+
+
+class ConfigurationError(InputError):
+    """A configuration or velocity vector has the wrong size or is not finite."""
+
+
+class ComputationError(PinlinError, RuntimeError):
+    """A computation failed (did not converge, lost all accuracy)."""
+
+
+class ModelTooLargeError(PinlinError, MemoryError):
+    """The model would need more memory than this machine can give.
+
+    Attributes
+    ----------
+    required : int
+        Estimated bytes needed.
+    available : int
+        Bytes pinlin allows itself to use.
+    """
+
+    def __init__(self, message: str, required: int, available: int):
+        super().__init__(message)
+        self.required = required
+        self.available = available
+
+
+class AccuracyWarning(UserWarning):
+    """A result was computed but its own error figure exceeds the requested tolerance.
+
+    The result is still returned, with the error figure attached; the warning
+    says which figure and by how much (STYLE: never silently inaccurate).
+    """
+
+
+class MissingDependencyError(PinlinError, ImportError):
+    """An optional dependency (matplotlib for plots, ...) is not installed; the message says which extra to install."""
