@@ -78,7 +78,7 @@ API_PACKAGES = [
     "pinlin.model", "pinlin.model.elements", "pinlin.model.constraints", "pinlin.linearization",
     "pinlin.spectral", "pinlin.adjoint", "pinlin.frf", "pinlin.response", "pinlin.nonlinear",
     "pinlin.studies", "pinlin.boundaries", "pinlin.interop", "pinlin.plot", "pinlin.results",
-    "pinlin.errors", "pinlin.numerics", "pinlin.report", "pinlin.testing", "pinlin.cli",
+    "pinlin.errors", "pinlin.numerics", "pinlin.report", "pinlin.report.sweep", "pinlin.testing", "pinlin.cli",
 ]
 
 logger = logging.getLogger(__name__)
