@@ -6,13 +6,8 @@ Valid URDFs are mutated: an attribute set to a nasty value (``nan``, ``1e999``,
 expansions), or the text cut short.  Every stage must give a PinlinError or a
 result whose error figures are finite; never another exception or a hang.
 
-Known bug left out until it is fixed (reproducer in the helper's report of issue 13):
-
-- KNOWN_TWO_PARENTS: a URDF whose link is the child of two joints (a joint
-  duplicated under another name) loads into a model with repeated joint
-  names; ``Robot`` keeps one joint per name, so ``robot.joint_names`` misses
-  joints while ``nv`` counts them, and ``Scene(robot, ...)`` raises IndexError
-  (model/scene.py, building ``dof_names``).  The loader should refuse it.
+A link that is the child of two joints (a joint duplicated under another name) was
+the one bug this fuzzer found in loading; the loader now refuses it (model/loading.py).
 """
 
 from __future__ import annotations
@@ -81,8 +76,6 @@ def test_fuzzed_urdf_loads_and_analyses_or_says_why(text):
     ]
     value = None
     for name, stage in stages:
-        if name == "Scene" and len(value.joint_names) != value.model.njoints - 1:
-            return  # KNOWN_TWO_PARENTS
         value = outcome(lambda stage=stage, value=value: stage(value), name)
         if value is None:
             event(f"refused by {name}")

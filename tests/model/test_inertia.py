@@ -58,3 +58,17 @@ def test_limits_of_the_triangle_inequality_are_accepted():
 def test_bundled_and_example_models_pass_the_checks():
     for name in ["ur5", "panda", "solo12", "talos_reduced"]:
         pinlin.load_example(name)
+
+
+def test_a_link_with_two_parent_joints_is_refused():
+    """Found by the fuzzer: a duplicated joint under another name loaded with repeated joint names."""
+    joint = BASE[BASE.index('<joint name="joint1"'):BASE.index("</joint>") + len("</joint>")]
+    text = BASE.replace(joint, joint + joint.replace('name="joint1"', 'name="joint1b"'))
+    with pytest.raises(pinlin.UrdfError, match="link 'link1' is the child of two joints \\('joint1' and 'joint1b'\\)"):
+        pinlin.load_urdf_string(text)
+
+
+def test_duplicate_names_are_refused():
+    link = '<link name="tip"/>'
+    with pytest.raises(pinlin.UrdfError, match="two <link> elements are named 'tip'"):
+        pinlin.load_urdf_string(BASE.replace(link, link + link))

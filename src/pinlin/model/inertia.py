@@ -86,7 +86,7 @@ def check_inertials(root: ET.Element, source: str) -> None:
         Naming the first link whose inertial data is not a number, not finite, or not
         physically possible.
     """
-    for link in root.iter("link"):
+    for link in root.findall("link"):
         inertial = link.find("inertial")
         if inertial is not None:
             _check_link(inertial, link.get("name", "?"), source)

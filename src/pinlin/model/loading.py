@@ -150,7 +150,38 @@ def _check_xml(text: str, source: str) -> None:
         raise UrdfError(f"{source}: root element is <{root.tag}>, expected <robot>", source)
     if root.find("link") is None:
         raise UrdfError(f"{source}: the URDF has no <link>", source)
+    _check_tree(root, source)
     check_inertials(root, source)
+
+
+def _check_tree(root: ET.Element, source: str) -> None:
+    """Unique link and joint names, and at most one parent joint per link: a tree.
+
+    urdfdom accepts a link that is the child of two joints (a loop written as a
+    tree); Pinocchio then builds a model with repeated joint names, which a
+    name lookup cannot tell apart.  Closed loops are constraints
+    (:class:`~pinlin.PointConstraint`, :func:`~pinlin.load_mjcf`).
+    """
+    for tag in ("link", "joint"):
+        seen: set[str] = set()
+        for element in root.findall(tag):  # direct children: <transmission> names joints too
+            name = element.get("name")
+            if name in seen:
+                raise UrdfError(f"{source}: two <{tag}> elements are named {name!r}", source)
+            seen.add(name)
+    parents: dict[str, str] = {}
+    for joint in root.findall("joint"):
+        child = joint.find("child")
+        link = None if child is None else child.get("link")
+        if link in parents:
+            raise UrdfError(
+                f"{source}: link {link!r} is the child of two joints ({parents[link]!r} and "
+                f"{joint.get('name')!r}); a URDF is a tree: close loops with constraints "
+                f"(pinlin.PointConstraint, or an MJCF <equality>)",
+                source,
+            )
+        if link is not None:
+            parents[link] = joint.get("name")
 
 
 def _report_parser_messages(messages: list[str], source: str) -> None:
