@@ -1,6 +1,9 @@
-"""Scenes and reference solutions shared by the tests of the response module (issue 5)."""
+"""Scenes, reference solutions and result checks shared by the tests of frf and response (issues 5, 10)."""
 
 from __future__ import annotations
+
+import json
+import time
 
 import numpy as np
 import scipy.linalg
@@ -95,3 +98,20 @@ def expm_free_response(sys, x0, v0, t) -> tuple[np.ndarray, np.ndarray]:
     else:
         Z = np.array([scipy.linalg.expm(A * ti) @ z0 for ti in t])
     return Z[:, : sys.n], Z[:, sys.n :]
+
+
+def timed(func):
+    """``func()`` and the wall time around it [s] (an upper bound for the result's ``elapsed``)."""
+    t0 = time.perf_counter()
+    out = func()
+    return out, time.perf_counter() - t0
+
+
+def json_round_trip(result) -> dict:
+    """``result.to_dict()`` checked as strict JSON (led by type, method, error, elapsed) and read back."""
+    data = result.to_dict()
+    assert list(data)[:4] == ["type", "method", "error", "elapsed"]
+    assert data["type"] == type(result).__name__
+    back = json.loads(json.dumps(data, allow_nan=False))
+    assert back == data
+    return back

@@ -115,3 +115,38 @@ def eta_reference(M, C, K, lam, X):
     R = (M @ X) * lam**2 + (C @ X) * lam + K @ X
     w = np.abs(lam) ** 2 * np.linalg.norm(M) + np.abs(lam) * np.linalg.norm(C) + np.linalg.norm(K)
     return np.linalg.norm(R, axis=0) / (w * np.linalg.norm(X, axis=0))
+
+
+def nlevp_damped_beam(n=200, damping=5.0):
+    """NLEVP ``damped_beam`` (Higham, Mackey, Tisseur and Garvey, Int. J. Numer. Meth. Eng. 73, 2008).
+
+    A beam of length 1 m (width 0.05 m, height 0.005 m, E = 7e10 Pa, mass 0.674 kg),
+    simply supported at both ends, of n/2 Hermite cubic elements, with a dashpot
+    ``damping`` [N s/m] on the transverse displacement of the middle node.
+    Coordinates: (theta_0, w_1, theta_1, ..., w_{m-1}, theta_{m-1}, theta_m), m = n/2.
+    The modes antisymmetric about the middle do not move the dashpot: half of the
+    eigenvalues are purely imaginary in exact arithmetic, the undamped beam's.
+    """
+    m = n // 2
+    h = 1.0 / m
+    EI = 7e10 * 0.05 * 0.005**3 / 12
+    rho_a = 0.674 / 1.0
+    ke = EI / h**3 * np.array(
+        [[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h],
+         [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]]
+    )
+    me = rho_a * h / 420 * np.array(
+        [[156, 22 * h, 54, -13 * h], [22 * h, 4 * h * h, 13 * h, -3 * h * h],
+         [54, 13 * h, 156, -22 * h], [-13 * h, -3 * h * h, -22 * h, 4 * h * h]]
+    )
+    size = 2 * (m + 1)
+    K, M = np.zeros((size, size)), np.zeros((size, size))
+    for e in range(m):
+        idx = slice(2 * e, 2 * e + 4)
+        K[idx, idx] += ke
+        M[idx, idx] += me
+    keep = [i for i in range(size) if i not in (0, 2 * m)]  # w_0 = w_m = 0: simply supported
+    K, M = K[np.ix_(keep, keep)], M[np.ix_(keep, keep)]
+    D = np.zeros((n, n))
+    D[2 * (m // 2) - 1, 2 * (m // 2) - 1] = damping  # w at the middle node m/2
+    return pinlin.LinearizedSystem.from_matrices(M, D, K)

@@ -188,3 +188,55 @@ def test_errors():
     res = pinlin.residues(JORDAN, 1j * SQ2)
     with pytest.raises(pinlin.ParameterError, match="pole"):
         res.principal_part(res.center)
+
+
+# ------------------------------------------------------------------ the error bound from both sides (issues 14, 16)
+
+#: x'' + x = 0: H(s) = 1 / (s^2 + 1), residue 1 / (2i) at lam = i; the other pole, -i, lies at distance 2.
+OSCILLATOR = pinlin.LinearizedSystem.from_matrices(np.eye(1), None, np.eye(1))
+
+
+@pytest.mark.parametrize("N", [8, 16])
+@pytest.mark.parametrize("radius", [0.5, 1.0, 1.5])
+def test_residue_error_bound_is_the_true_error_from_both_sides(N, radius):
+    """The N-point rule's true error is |R_1 - 1/(2i)|; the reported bound is at least that and at most 1 %
+    above it plus the rounding term (closed form: the error is (1/2) q^N / (1 - q^N), q = r/2, exactly
+    q^(N/2) times the difference of the N/2- and N-point rules)."""
+    res = pinlin.residues(OSCILLATOR, 1j, n_points=N, radius=radius)
+    true = abs(res[0][0, 0] - 1 / 2j)
+    # (the circle may be moved off a radius where the count is not yet an integer: RADIUS_FACTORS)
+    q = res.radius / 2
+    assert abs(res.radius / radius - 1) < 0.3
+    assert true == pytest.approx(0.5 * q**N / (1 - q**N), rel=1e-9, abs=1e-15)
+    rounding = np.finfo(float).eps * N**0.5 * res.radius * 10  # the rounding term's size for this tiny system
+    assert res.errors[0] >= true
+    assert res.errors[0] <= 1.01 * true + rounding
+    assert "computed eigenvalues" in res.method
+
+
+def test_eight_point_rule_of_issue_16_is_bounded():
+    """Issue 16's counterexample: with 8 points on the automatic contour the former estimate fell below the
+    true error; the bound does not."""
+    res = pinlin.residues(OSCILLATOR, 1j, n_points=8)
+    true = abs(res[0][0, 0] - 1 / 2j)
+    assert res.errors[0] >= true and res.errors[0] <= 1.01 * true + 1e-15
+
+
+def test_residue_bound_from_the_counts_when_the_eigenvalues_disagree(monkeypatch):
+    """Without usable eigenvalues the geometry comes from the contour's counts: still a bound (looser)."""
+    import importlib
+
+    import pinlin.spectral as spectral
+
+    module = importlib.import_module("pinlin.frf.residues")
+
+    class NoEigenvalues:
+        eigenvalues = np.array([5j, -5j])  # deliberately wrong: the count inside disagrees
+        error_bound = np.zeros(2)
+
+    monkeypatch.setattr(spectral, "modal_analysis", lambda sys: NoEigenvalues())
+    res = pinlin.residues(OSCILLATOR, 1j, n_points=8)
+    true = abs(res[0][0, 0] - 1 / 2j)
+    assert "argument-principle counts" in res.method and res.errors[0] >= true
+    x, how = module.aliasing_ratio(OSCILLATOR, 1j, res.radius, 8, 1, res.inner, res.radius * 2)
+    assert "counts" in how and 0 < x <= 1

@@ -2,9 +2,15 @@
 
 One concept per module:
 
-- :mod:`.engine` -- the one engine for X(s) = H(s) B: "direct" (LU of L(s) per
-  point, the default) or "modal" (eigenpairs and Jordan blocks), the relative
-  defect per point, one behaviour at a pole;
+- :mod:`.engine` -- the one engine for X(s) = H(s) B: "direct" (the default: LU
+  of L(s) per point, or for many points one Schur form and triangular solves) or
+  "modal" (eigenpairs and Jordan blocks), the relative defect per point, one
+  behaviour at a pole;
+- :mod:`.schur` -- the direct method for many points: generalized real Schur form
+  of the scaled companion pencil, quasi-triangular solves (Laub 1981 in pencil form);
+- :mod:`.modal` -- the modal method's evaluation and its check (exact at sampled
+  points, a closed-form bound at the others);
+- :mod:`.measures` -- ||L(s)|| without forming L(s), and the residual ||L(s) X - B||;
 - :mod:`.expansion` -- the modal expansion (eigenvectors and Jordan chains in
   first-order form) that the modal method and the free response evaluate;
 - :mod:`.flexibility` -- :func:`flexibility`: H(s) on any points; the spectral

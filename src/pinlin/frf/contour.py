@@ -91,7 +91,7 @@ def eigenvalue_count(sys, center, r, N, strict: bool = True):
 
 
 def fixed_contour(sys, lam0, radius, N, scale):
-    """The contour of a radius given by the caller: (m, count, r, inner, outer, samples).
+    """The contour of a radius given by the caller: (m, count, r, inner, free, outer, samples) (all radii r).
 
     Raises
     ------
@@ -110,11 +110,14 @@ def fixed_contour(sys, lam0, radius, N, scale):
             lam=lam0,
             distance=r / scale,
         )
-    return m, count, r, r, r, samples
+    return m, count, r, r, r, r, samples
 
 
 def automatic_contour(sys, lam0, cluster_tol, N, scale):
-    """Cluster radius, growth until the count changes, contour radius: (m, count, r, inner, outer, samples).
+    """Cluster radius, growth until the count changes, contour radius: (m, count, r, inner, free, outer, samples).
+
+    ``free`` is the largest radius found with the root's count (no other eigenvalue
+    inside it), ``outer`` the first with another count.
 
     Raises
     ------
@@ -163,4 +166,4 @@ def automatic_contour(sys, lam0, cluster_tol, N, scale):
             inner=inner,
             outer=outer,
         )
-    return m, count, r, inner, float(outer), samples
+    return m, count, r, inner, float(last), float(outer), samples

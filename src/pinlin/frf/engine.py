@@ -6,11 +6,14 @@ right-hand sides: identity columns for :func:`pinlin.flexibility` and
 :func:`pinlin.harmonic_response`, and the contour samples of
 :func:`pinlin.residues`.  :func:`solve` evaluates it by one of two methods:
 
-- ``"direct"`` (the default everywhere): an LU factorization of
-  ``L(s) = s^2 M + s C + K`` per point (batched LAPACK gesv), O(n^3) per point.
-  It is backward stable at every point whatever the spectrum (defective,
-  clustered, or with ill-conditioned eigenvectors) and needs no eigensolution:
-  that is why it is the default.
+- ``"direct"`` (the default everywhere): backward stable at every point whatever
+  the spectrum (defective, clustered, or with ill-conditioned eigenvectors), no
+  eigensolution needed: that is why it is the default.  Few points: an LU
+  factorization of ``L(s) = s^2 M + s C + K`` per point (batched LAPACK gesv),
+  O(n^3) per point.  Many points (when :func:`pinlin.frf.schur.schur_pays`): one
+  generalized real Schur form of the scaled companion pencil, then a
+  quasi-triangular solve per point, O(n^2) per point and right-hand side
+  (:mod:`pinlin.frf.schur`; Laub 1981 in pencil form).
 - ``"modal"``: the modal expansion (:mod:`pinlin.frf.expansion`) of one modal
   analysis, Jordan blocks included,
 
@@ -22,7 +25,12 @@ right-hand sides: identity columns for :func:`pinlin.flexibility` and
   chains (for a simple L, ``c_k = y_k^T B``: the SPEC's sum
   ``sum_k x_k y_k^T / (s - lam_k)``).  O(n) per point, output and input once
   the eigen-data are known: faster for many points; its accuracy follows the
-  conditioning of the eigenvectors, which the error figure shows.
+  conditioning of the eigenvectors, which the error figure shows.  Its check
+  costs O(n) per point too: the exact relative defect at
+  :data:`pinlin.frf.modal.CHECK_SAMPLES` points spread over those given (all of
+  them when there are no more), an upper bound of it at the others, from the
+  eigen-residuals and the samples (:mod:`pinlin.frf.modal`); ``error``, their
+  maximum, bounds the defect at every point.
 
 The error figure of every evaluation (one name, ``defects``, one value per point)
 is the relative defect, the normwise backward error of the linear system
@@ -49,14 +57,20 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.linalg
 
-from ..errors import AccuracyWarning, ComputationError, ParameterError
+from ..errors import AccuracyWarning, ParameterError
 from ..linearization.system import LinearizedSystem
-from ..numerics import CHUNK_BYTES, EPS, chunks
-from .expansion import ModalExpansion, check_modes, complex_matmul, modal_expansion
+from ..numerics import EPS, chunks, system_scaling
+from .expansion import check_modes
+from .measures import residuals, stiffness_norms, stiffness_stack
+from .modal import RESIDUAL_ROUNDING, linear_part_bound, modal_solution, near_eigenvalue
+from .schur import schur_pays, schur_pencil, schur_solve
+
+if TYPE_CHECKING:
+    from .expansion import ModalExpansion
 
 __all__ = [
     "METHODS",
@@ -87,13 +101,6 @@ DEFAULT_TOL = 1e-8
 #: would be guaranteed.  Relative to the eigenvalue scale, the same tolerance marks a point within
 #: rounding of a computed eigenvalue (100 eps covers the rounding of the eigenvalues and of L(s)).
 POLE_TOL = 1e2 * EPS
-#: ||L(s)||_F^2 from its expansion in |s| and the six inner products of M, C, K is exact up to
-#: about 10 eps W^2 (W = |s|^2 ||M|| + |s| ||C|| + ||K||); where ||L||^2 < NORM_CANCEL eps W^2 the
-#: terms cancel (near a resonance of a proportional system) and the norm is recomputed from L(s)
-#: itself, so that every norm used is accurate to 1e-3 relative or better.
-NORM_CANCEL = 1e4
-#: Copies of an (n, m) block alive at once in :func:`residuals` (X, M X, C X, K X and L X - B).
-_BLOCK_COPIES = 5
 
 
 class SingularPoint(Exception):
@@ -119,6 +126,9 @@ class Solution:
         The modal expansion used (modal method).
     projection_residual : float or None
         How well the modal coefficients reproduce the state (0, M^-1 B) (modal method).
+    exact : (len(s),) bool ndarray or None
+        Where ``defects`` holds the exact relative defect (elsewhere an upper bound of it:
+        the modal method on more than CHECK_SAMPLES points); None when all are exact.
     """
 
     X: np.ndarray
@@ -126,6 +136,7 @@ class Solution:
     distance: np.ndarray | None
     expansion: ModalExpansion | None
     projection_residual: float | None
+    exact: np.ndarray | None = None
 
     @property
     def error(self) -> float | None:
@@ -141,71 +152,6 @@ def pole_error(label: str, values: np.ndarray, k: int, why: str) -> ParameterErr
         f"L is singular there and a steady state does not exist (an undamped resonance for s = i omega); "
         f"pinlin.residues gives the principal part of H at an eigenvalue",
     )
-
-
-def stiffness_stack(sys: LinearizedSystem, s: np.ndarray) -> np.ndarray:
-    """L(s_k) = s_k^2 M + s_k C + K for a 1-D array of points: (len(s), n, n) complex."""
-    z = np.asarray(s, dtype=complex)[:, None, None]
-    with np.errstate(over="ignore", invalid="ignore"):  # (callers check ||L|| for overflow and raise)
-        L = z * sys.M  # Horner, in place: (s M + C) s + K
-        L += sys.C
-        L *= z
-        L += sys.K
-    return L
-
-
-def stiffness_norms(sys: LinearizedSystem, s: np.ndarray, values=None, label: str = "s") -> np.ndarray:
-    """||L(s)||_F per point without forming L(s), except where its terms cancel (see NORM_CANCEL).
-
-    .. math::
-        \\|L(s)\\|_F^2 = |s|^4 \\langle M,M\\rangle + |s|^2 \\langle C,C\\rangle + \\langle K,K\\rangle
-        + 2\\,\\mathrm{Re}(s^2 \\bar s) \\langle M,C\\rangle + 2\\,\\mathrm{Re}(s^2) \\langle M,K\\rangle
-        + 2\\,\\mathrm{Re}(s) \\langle C,K\\rangle
-
-    Raises
-    ------
-    ComputationError
-        L(s) overflows double precision at some point.
-    """
-    values = s if values is None else values
-    M, C, K = (np.asarray(A, dtype=float) for A in (sys.M, sys.C, sys.K))
-    MM, CC, KK, MC, MK, CK = (float(np.vdot(A, B)) for A, B in ((M, M), (C, C), (K, K), (M, C), (M, K), (C, K)))
-    a = np.abs(s)
-    with np.errstate(over="ignore", invalid="ignore"):
-        W = a * a * np.sqrt(MM) + a * np.sqrt(CC) + np.sqrt(KK)
-        sq = (a**4 * MM + a * a * CC + KK + 2 * np.real(s * s * np.conj(s)) * MC + 2 * np.real(s * s) * MK
-              + 2 * np.real(s) * CK)
-    bad = ~(np.isfinite(W) & np.isfinite(sq))
-    if np.any(bad):
-        k = int(np.flatnonzero(bad)[0])
-        raise ComputationError(
-            f"L(s) overflows double precision at {label}[{k}] = {values[k]:.6g}: rescale the system "
-            f"(units, or time in other units) or leave out such points"
-        )
-    out = np.sqrt(np.maximum(sq, 0.0))
-    cancel = np.flatnonzero(sq < NORM_CANCEL * EPS * W * W)
-    for sl in chunks(cancel.size, sys.n):
-        idx = cancel[sl]
-        out[idx] = np.linalg.norm(stiffness_stack(sys, s[idx]), axis=(1, 2))
-    return out
-
-
-def residuals(sys: LinearizedSystem, s: np.ndarray, X: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """||L(s) X(s) - B||_F per point for X (len(s), n, m): three real matrix products per block of points."""
-    F, n, m = X.shape
-    per = max(1, CHUNK_BYTES // (_BLOCK_COPIES * np.dtype(complex).itemsize * n * m))
-    M, C, K = (np.asarray(A, dtype=float) for A in (sys.M, sys.C, sys.K))
-    out = np.empty(F)
-    for start in range(0, F, per):
-        sl = slice(start, min(F, start + per))
-        f = sl.stop - sl.start
-        # columns ordered (point, input); complex numbers as pairs of reals for one real product each
-        flat = np.ascontiguousarray(np.moveaxis(X[sl], 0, 1)).reshape(n, f * m).view(float)
-        MX, CX, KX = ((A @ flat).view(complex) for A in (M, C, K))
-        z = np.repeat(s[sl], m)
-        R = (z * z) * MX + z * CX + KX - np.tile(B, (1, f))
-        out[sl] = np.linalg.norm(R.reshape(n, f, m), axis=(0, 2))
-    return out
 
 
 def lu_solve(sys: LinearizedSystem, s: np.ndarray, B: np.ndarray) -> np.ndarray:
@@ -230,51 +176,6 @@ def lu_solve(sys: LinearizedSystem, s: np.ndarray, B: np.ndarray) -> np.ndarray:
             bad = [i for i in range(L.shape[0]) if np.linalg.matrix_rank(L[i]) < n]
             raise SingularPoint(sl.start + (bad[0] if bad else 0)) from None
     return X
-
-
-def _modal(expansion: ModalExpansion, s: np.ndarray, B: np.ndarray, rows: np.ndarray):
-    """Rows ``rows`` of H(s) B from the modal expansion: (F, len(rows), m), and the projection residual."""
-    sys = expansion.system
-    m = B.shape[1]
-    rhs = scipy.linalg.cho_solve(scipy.linalg.cho_factor(sys.M), B.astype(complex))
-    c, d, projection = expansion.coefficients(np.zeros_like(rhs), rhs)
-    R = expansion.right[rows]  # (r, k)
-    W = 1.0 / (s[:, None] - expansion.lam[None, :])  # (F, k)
-    # (F, k) x (k, r m): the Khatri-Rao product of the right vectors and the coefficients
-    KR = (c[:, None, :] * R.T[:, :, None]).reshape(expansion.lam.size, len(rows) * m)
-    X = complex_matmul(W, KR).reshape(s.size, len(rows), m)
-    for block, coef in zip(expansion.blocks, d):
-        # (sI - J)^-1 coef for J = lam0 I + (superdiagonal ones): back substitution from the chain's end
-        r = block.length
-        shift = (s - block.lam0)[:, None]
-        D = np.empty((s.size, r, m), dtype=complex)
-        D[:, r - 1] = coef[r - 1][None, :] / shift
-        for i in range(r - 2, -1, -1):
-            D[:, i] = (coef[i][None, :] + D[:, i + 1]) / shift
-        X += np.einsum("fim,ri->frm", D, block.vectors[rows])
-    return X, projection
-
-
-def _near_eigenvalue(s: np.ndarray, lam: np.ndarray) -> np.ndarray:
-    """Distance [1/s] of each point to the nearest of ``lam`` (inf when there is none)."""
-    if lam.size == 0:
-        return np.full(s.size, np.inf)
-    return np.min(np.abs(s[:, None] - lam[None, :]), axis=1)
-
-
-def _modal_solution(sys, s, B, modes, rows, check, values, label):
-    """The modal method: expansion, X (all rows when checked or asked), ||L||, ||L X - B||, projection."""
-    expansion = modal_expansion(sys, modes)
-    lam = expansion.eigenvalues
-    scale = max(float(np.max(np.abs(lam), initial=0.0)), expansion.gamma)
-    hit = _near_eigenvalue(s, lam) <= POLE_TOL * scale
-    if np.any(hit):
-        raise pole_error(label, values, int(np.flatnonzero(hit)[0]), "within rounding of a computed eigenvalue")
-    full = check or len(rows) == sys.n
-    X, projection = _modal(expansion, s, B, np.arange(sys.n) if full else rows)
-    nL = stiffness_norms(sys, s, values, label) if full else None
-    res = residuals(sys, s, X, B) if check else None
-    return expansion, X, nL, res, projection
 
 
 def _defects(X, B, nL, res, values, label) -> np.ndarray | None:
@@ -350,31 +251,79 @@ def solve(
     expansion = projection = distance = None
     if modes is not None or method == "modal":
         modes = check_modes(sys, modes)
-        distance = _near_eigenvalue(s, np.asarray(modes.eigenvalues))
+        distance = near_eigenvalue(s, np.asarray(modes.eigenvalues))
+    exact = None
     if method == "direct":
         nL = stiffness_norms(sys, s, values, label)
-        try:
-            X = lu_solve(sys, s, B)
-        except SingularPoint as exc:
-            raise pole_error(label, values, exc.index, "L(s) is exactly singular") from None
-        res = residuals(sys, s, X, B) if check else None
+        if schur_pays(sys.n, s.size, B.shape[1]):
+            X = schur_solve(schur_pencil(sys), s, B)
+        else:
+            try:
+                X = lu_solve(sys, s, B)
+            except SingularPoint as exc:
+                raise pole_error(label, values, exc.index, "L(s) is exactly singular") from None
+        defects = _defects(X, B, nL, residuals(sys, s, X, B) if check else None, values, label)
     else:
-        expansion, X, nL, res, projection = _modal_solution(sys, s, B, modes, rows, check, values, label)
-    defects = _defects(X, B, nL, res, values, label)
+        X, defects, expansion, projection, exact = _modal_method(sys, s, B, modes, rows, check, distance, values, label)
     if X.shape[1] == sys.n and not np.array_equal(rows, np.arange(sys.n)):
         X = X[:, rows]  # (the modal method without a check computed only these rows)
-    return Solution(X=X, defects=defects, distance=distance, expansion=expansion, projection_residual=projection)
+    return Solution(X=X, defects=defects, distance=distance, expansion=expansion, projection_residual=projection,
+                    exact=exact)
 
 
-def warn_inaccurate(function: str, method: str, defects: np.ndarray | None, tol: float, label: str, values) -> None:
-    """An AccuracyWarning when the largest relative defect exceeds ``tol`` (the same text from every function)."""
+def _modal_method(sys, s, B, modes, rows, check, distance, values, label):
+    """X, defects (the bound of :mod:`pinlin.frf.modal`, or exact with Jordan blocks), expansion, projection."""
+    lam = np.asarray(modes.eigenvalues)
+    scale = max(float(np.max(np.abs(lam), initial=0.0)), system_scaling(sys.M, sys.C, sys.K).gamma)
+    hit = distance <= POLE_TOL * scale
+    if np.any(hit):
+        raise pole_error(label, values, int(np.flatnonzero(hit)[0]), "within rounding of a computed eigenvalue")
+    out = modal_solution(sys, s, B, modes, rows, check, lambda pts: stiffness_norms(sys, pts, values, label))
+    X = out.X
+    if out.bound is None:  # no check, or Jordan blocks: exact defects where every row was evaluated
+        nL = stiffness_norms(sys, s, values, label) if out.rows_all else None
+        res = residuals(sys, s, X, B) if check else None
+        return X, _defects(X, B, nL, res, values, label), out.expansion, out.projection, None
+    nL = stiffness_norms(sys, s, values, label)
+    # the pole test and the denominator with the rows evaluated (a lower bound of ||X||: the bound stays a bound)
+    _defects(X, B, nL, None, values, label)
+    nB = float(np.linalg.norm(B))
+    k = out.samples
+    res = residuals(sys, s[k], out.exact, B)
+    den_k = nL[k] * np.linalg.norm(out.exact.reshape(k.size, -1), axis=1) + nB
+    rounding = (3 * sys.n + RESIDUAL_ROUNDING) * EPS * den_k
+    bound = out.bound + linear_part_bound(s, k, res + out.bound[k] + rounding)
+    nX = np.linalg.norm(X.reshape(s.size, -1), axis=1)
+    if not out.rows_all:  # a lower bound of ||X|| over all rows keeps the bound a bound
+        nX = np.maximum(nX, out.lower)
+    den = nL * nX + nB
+    defects = np.where(den > 0, bound / np.where(den > 0, den, 1.0), 0.0)
+    defects[k] = res / den_k  # the exact relative defect where it was computed (the bound is at least that)
+    exact = np.zeros(s.size, dtype=bool)
+    exact[k] = True
+    return X, defects, out.expansion, out.projection, None if exact.all() else exact
+
+
+def warn_inaccurate(
+    function: str, method: str, defects: np.ndarray | None, tol: float, label: str, values, exact=None
+) -> None:
+    """An AccuracyWarning when the largest relative defect exceeds ``tol`` (the same text from every function).
+
+    ``exact`` (a mask, see :class:`Solution`) marks where ``defects`` are exact; the
+    message says when the largest is an upper bound instead.
+    """
     if defects is None or not np.max(defects) > tol:
         return
     k = int(np.argmax(defects))
     hint = "; method='direct' is backward stable" if method != "direct" else ""
+    what = f"relative defect {defects[k]:.1e}"
+    if exact is not None and not exact[k]:
+        what = (
+            f"relative defect at most {defects[k]:.1e} (an upper bound from the eigen-residuals; the exact "
+            f"defect at the {int(np.sum(exact))} sampled points is at most {np.max(defects[exact]):.1e})"
+        )
     warnings.warn(
-        f"{function} ({method}): relative defect {defects[k]:.1e} > tol {tol:g} at {label}[{k}] = "
-        f"{values[k]:.6g}{hint}",
+        f"{function} ({method}): {what} > tol {tol:g} at {label}[{k}] = {values[k]:.6g}{hint}",
         AccuracyWarning,
         stacklevel=3,
     )

@@ -146,6 +146,18 @@ class ModalExpansion(Result):
     def partner(self) -> np.ndarray | None:
         return conjugate_partners(self.lam)
 
+    @functools.cached_property
+    def state_sigma_min(self) -> float:
+        """sigma_min of the scaled state basis [x_k; lam_k x_k / gamma] of the semisimple modes (formed once).
+
+        ||z|| >= sigma_min ||coefficients|| for a state z = V c: a lower bound of a
+        response's norm from its modal coefficients (:mod:`pinlin.frf.modal`).
+        """
+        X = self.right
+        if X.shape[1] == 0:
+            return 0.0
+        return float(np.linalg.svd(np.vstack([X, X * (self.lam / self.gamma)]), compute_uv=False)[-1])
+
     @property
     def eigenvalues(self) -> np.ndarray:
         """Every eigenvalue that appears in a denominator: ``lam`` and each block's lam0 [1/s]."""
@@ -309,6 +321,10 @@ def _chain_blocks(sys: LinearizedSystem, cluster) -> tuple[list[JordanBlock], fl
 def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
     """Build the expansion from ``pinlin.modal_analysis(sys)`` (or given ``modes``) and Jordan chains.
 
+    Given ``modes`` (an immutable result), the expansion is kept with them and
+    returned again by later calls with the same modes (their M, C, K are checked
+    equal to ``sys``'s each time); its ``elapsed`` is that of the first build.
+
     Semisimple eigenvalues (single, or clusters whose left vectors were
     normalized) enter with their vectors; every other cluster enters through
     its Jordan chains (:func:`pinlin.jordan_chains`, SPEC section 4).
@@ -332,7 +348,11 @@ def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
         cluster whose Jordan chains account for its multiplicity.
     """
     t0 = time.perf_counter()
+    given = modes is not None
     modes = check_modes(sys, modes)
+    cached = modes.__dict__.get("_expansion") if given and hasattr(modes, "__dict__") else None
+    if cached is not None:  # the same modes (immutable) of the same M, C, K: the same expansion
+        return cached
     lam = np.array(modes.eigenvalues, dtype=complex)
     normalized = np.asarray(modes.left_normalized)
     in_cluster = np.zeros(lam.size, dtype=bool)
@@ -357,7 +377,7 @@ def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
             f"cluster; the modal expansion does not apply (use method='direct' or forced_response)"
         )
     keep_idx = np.sort(np.concatenate([lone, np.array(keep, dtype=int)])).astype(int)
-    return ModalExpansion(
+    expansion = ModalExpansion(
         system=sys,
         modes=modes,
         lam=lam[keep_idx],
@@ -369,3 +389,6 @@ def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
         elapsed=time.perf_counter() - t0,
         method="modal" if not blocks else "modal + Jordan chains",
     )
+    if given and hasattr(modes, "__dict__"):  # kept with the (immutable) modes for the next call
+        modes.__dict__.setdefault("_expansion", expansion)
+    return expansion

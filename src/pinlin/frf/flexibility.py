@@ -21,7 +21,15 @@ import numpy as np
 
 from ..adjoint.adjugate import AdjugateMatrix, adjugate_residual
 from ..errors import NotSimpleError
-from ..numerics import LOG_MAX, LOG_TINY, check_system, check_tolerance, checked_exp, complex_points, complex_scalar
+from ..numerics import (
+    LOG_MAX,
+    LOG_TINY,
+    check_system,
+    check_tolerance,
+    checked_exp,
+    complex_points,
+    complex_scalar,
+)
 from ..results import ResultArray
 from .engine import DEFAULT_METHOD, DEFAULT_TOL, per_point, solve, warn_inaccurate
 from .expansion import check_modes
@@ -41,7 +49,9 @@ class FlexibilityArray(ResultArray):
         Evaluation points [1/s] (a scalar for a scalar input).
     defects : float or (len(s),) ndarray
         Relative defect ``||L(s) H - I|| / (||L(s)|| ||H|| + ||I||)`` per point
-        (Frobenius norms; the normwise backward error, :mod:`pinlin.frf.engine`).
+        (Frobenius norms; the normwise backward error, :mod:`pinlin.frf.engine`;
+        the modal method on many points gives it exactly at sampled ones and an
+        upper bound elsewhere).
     distance : float, (len(s),) ndarray or None
         Distance [1/s] of each point to the nearest computed eigenvalue; None
         without a modal analysis.
@@ -125,7 +135,7 @@ def flexibility(sys, s, *, method: str = DEFAULT_METHOD, modes=None, tol: float 
     pts, scalar = complex_points(s, "s")
     tol = check_tolerance(tol, "tol")
     out = solve(sys, pts, np.eye(sys.n), method=method, modes=modes)
-    warn_inaccurate("flexibility", method, out.defects, tol, "s", pts)
+    warn_inaccurate("flexibility", method, out.defects, tol, "s", pts, exact=out.exact)
     return FlexibilityArray(
         out.X[0] if scalar else out.X,
         s=per_point(pts, scalar),

@@ -46,7 +46,11 @@ class FrequencyResponse(Result):
         Per frequency, the relative defect ``||L(i w) H_c - I_c|| / (||L(i w)||
         ||H_c|| + ||I_c||)`` over the input columns c (all n rows): the
         normwise backward error (SPEC section 8, :mod:`pinlin.frf.engine`).
-        None when the check was skipped.
+        The modal method on more frequencies than
+        :data:`pinlin.frf.modal.CHECK_SAMPLES` computes it exactly at that many
+        sampled frequencies and gives an upper bound of it at the others
+        (``notes`` says which); ``error`` then bounds the defect at every
+        frequency.  None when the check was skipped.
     distance : (n_frequencies,) ndarray or None
         Distance [1/s] of i omega to the nearest computed eigenvalue; None
         without a modal analysis.
@@ -179,10 +183,16 @@ def frequency_response(
     out = solve(sys, 1j * w, np.eye(sys.n)[:, ins], method=method, modes=modes, rows=outs, check=check,
                 label="omega", values=w)
     name = method if out.expansion is None else out.expansion.method
-    warn_inaccurate("frequency_response", name, out.defects, tol, "omega", w)
+    warn_inaccurate("frequency_response", name, out.defects, tol, "omega", w, exact=out.exact)
     notes = []
     if out.expansion is not None:
         notes.append(f"modes from {getattr(out.expansion.modes, 'method', 'modal_analysis')!s}")
+    if out.exact is not None:
+        notes.append(
+            f"check: the exact relative defect at {int(out.exact.sum())} of {w.size} frequencies (at most "
+            f"{np.max(out.defects[out.exact]):.1e}), an upper bound from the eigen-residuals at the others (at "
+            f"most {np.max(out.defects[~out.exact]):.1e})"
+        )
     return FrequencyResponse(
         response=np.moveaxis(out.X, 0, -1),
         omega=w,

@@ -29,7 +29,8 @@ class HarmonicResponse(ResultArray):
     defects : float or (len(omega),) ndarray
         Relative defect ``||L(i omega) X - F|| / (||L(i omega)|| ||X|| + ||F||)``
         per frequency (Frobenius norm of L): the normwise backward error of the
-        amplitude (:mod:`pinlin.frf.engine`).
+        amplitude (:mod:`pinlin.frf.engine`; the modal method on many frequencies
+        gives it exactly at sampled ones and an upper bound elsewhere).
     distance : float, (len(omega),) ndarray or None
         min_k |i omega - lam_k| [1/s]: how close the forcing is to resonance
         (near a root with a Jordan chain of length m the amplitude grows like
@@ -118,7 +119,7 @@ def harmonic_response(
     tol = check_tolerance(tol, "tol")
     out = solve(sys, 1j * w, F[:, None], method=method, modes=modes, label="omega", values=w)
     name = method if out.expansion is None else out.expansion.method
-    warn_inaccurate("harmonic_response", name, out.defects, tol, "omega", w)
+    warn_inaccurate("harmonic_response", name, out.defects, tol, "omega", w, exact=out.exact)
     X = out.X[:, :, 0]
 
     used = out.expansion.modes if out.expansion is not None else modes

@@ -14,7 +14,11 @@ contour integrals over a circle that encloses lam0 and no other eigenvalue,
 
 evaluated by the trapezoidal rule (exponentially convergent: the error decays
 like ``(r_in / r)^N + (r / r_out)^N`` for a cluster inside ``r_in`` and the next
-eigenvalue beyond ``r_out``; both ratios are kept at most 1/2).  A computed multiple root is a cluster of nearby
+eigenvalue beyond ``r_out``; both ratios are kept at most 1/2).  For one pole
+outside at q r the N-point rule's error is exactly q^(N/2) times the difference
+between the N/2- and N-point rules: the error bounds use that difference times
+x >= |q|^(N/2) from the geometry (issue 16: an estimate from the difference alone
+is not a bound).  A computed multiple root is a cluster of nearby
 eigenvalues (a double root splits by about sqrt(eps)); the contour integral sees
 the whole cluster and is insensitive to the splitting, which is why it is
 robust where residues of the individual computed poles are not.
@@ -31,11 +35,19 @@ import time
 import numpy as np
 
 from ..errors import ParameterError
-from ..numerics import CLUSTER_TOL, EPS, check_integer, check_system, check_tolerance, complex_scalar, natural_scale
+from ..numerics import (
+    CLUSTER_TOL,
+    EPS,
+    check_integer,
+    check_system,
+    check_tolerance,
+    complex_scalar,
+    natural_scale,
+)
 from ..results import Result, to_jsonable
 from .contour import automatic_contour, fixed_contour
 
-__all__ = ["Residues", "residues", "principal_part_residual"]
+__all__ = ["Residues", "residues", "principal_part_residual", "aliasing_ratio", "GEOMETRY_SAFETY"]
 
 # Default cluster_tol: eigenvalues within CLUSTER_TOL * max(|lam0|, scale) of lam0 are the root lam0
 # (pinlin.numerics.CLUSTER_TOL, the spectral module's default too).
@@ -47,6 +59,10 @@ SHIFT_ROUNDING = 10.0
 #: Trailing residues smaller than this multiple of their error bound are zero: the pole order
 #: is the longest Jordan chain.
 ZERO_RESIDUE_FACTOR = 2.0
+#: The distances of the other eigenvalues from lam0 are taken GEOMETRY_SAFETY error bounds
+#: closer (and those inside farther): the bounds are first-order estimates, and the
+#: stability verdict trusts them with the same factor (pinlin.spectral.STABILITY_SAFETY).
+GEOMETRY_SAFETY = 10.0
 
 
 class Residues(list, Result):
@@ -78,8 +94,13 @@ class Residues(list, Result):
     n_points : int
     errors : (m,) ndarray
         A-posteriori absolute error bounds of ``R_1 ... R_m`` (Frobenius):
-        difference between N- and N/2-point rules plus the rounding of the
-        solves.
+        ``x ||R_j(N/2) - R_j(N)|| + rounding r^j``, with the aliasing ratio
+        x = max((r / R)^(N/2), (rho / r)^(N/2)) from the geometry (R a lower bound
+        of the distance of the nearest eigenvalue outside the circle, rho an upper
+        bound of those inside; :func:`aliasing_ratio`) and the rounding of the
+        solves.  For one simple pole outside at q r, the N-point rule's error is
+        exactly q^(N/2) (R(N/2) - R(N)), so this is the error itself when R is exact
+        and one pole is nearest, and a bound with x an upper bound of |q|^(N/2).
     error : float
         ``max_j errors_j / r^j`` relative to ``max_j ||R_j|| / r^j`` (relative
         error of the principal part on the contour).
@@ -187,7 +208,33 @@ def principal_part_residual(sys, center, R) -> float:
     return worst
 
 
-def _principal_part(lam0, m, r, N, samples):
+def aliasing_ratio(sys, lam0: complex, r: float, N: int, m: int, inner: float, free: float) -> tuple[float, str]:
+    """x = max((r / R)^(N/2), (rho / r)^(N/2)) from the contour's geometry, and how R and rho were found.
+
+    R is a lower bound of the distance from lam0 to the nearest eigenvalue outside
+    the circle, rho an upper bound of the distance of those inside: from the
+    eigenvalues of :func:`pinlin.modal_analysis` with :data:`GEOMETRY_SAFETY` times
+    their error bounds when they agree with the contour's count m, else from the
+    contour's own counts (``free``, the largest radius with count m, and ``inner``,
+    the cluster radius).
+    """
+    from ..spectral import modal_analysis  # the spectral package builds on frf: imported at use
+
+    modes = modal_analysis(sys)
+    dist = np.abs(np.asarray(modes.eigenvalues) - lam0)
+    slack = GEOMETRY_SAFETY * np.asarray(modes.error_bound)
+    inside = dist < r
+    R, rho, how = free, inner, "the contour's argument-principle counts"
+    if int(np.sum(inside)) == m and np.all(dist[~inside] - slack[~inside] > r) and np.all(dist[inside] + slack[inside] < r):
+        R = float(np.min(dist[~inside] - slack[~inside], initial=np.inf))
+        rho = float(np.max(dist[inside] + slack[inside], initial=0.0))
+        how = f"the computed eigenvalues with {GEOMETRY_SAFETY:g} times their error bounds"
+    x_out = 0.0 if not np.isfinite(R) else min(1.0, (r / R) ** (N / 2)) if R > 0 else 1.0
+    x_in = min(1.0, (rho / r) ** (N / 2))
+    return max(x_out, x_in), how
+
+
+def _principal_part(lam0, m, r, N, samples, x):
     """Center, residues R_1..R_m (N-point rule), their error bounds, the pole order and the relative error."""
     s, H, trace, nL, nH = samples
     w = s - lam0  # ds / (2 pi i) = (s - lam0) dtheta / (2 pi) on this circle
@@ -204,18 +251,15 @@ def _principal_part(lam0, m, r, N, samples):
     norms = np.array([np.linalg.norm(R) for R in R_full])
     powers = r ** np.arange(1, m + 1, dtype=float)
     size = float(np.max(norms / powers))
-    # the trapezoidal error decays geometrically in N: from the N/2-point difference d, the
-    # N-point error is about d^2 / (size of the integrand's contribution)
+    # the N-point rule's error e_N = q^(N/2) (R_{N/2} - R_N) for a pole outside at q r (inside at r / q),
+    # |q|^(N/2) <= x from the geometry: exact for one nearest pole, a bound with x an upper bound
     diff = np.array([np.linalg.norm(a - b) for a, b in zip(R_full, R_half)])
-    ref = np.maximum(size * powers, diff)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        quad = np.where(ref > 0, diff * diff / ref, 0.0)
-    errors = quad + rounding * powers
+    errors = x * diff + rounding * powers
     order = m
     while order > 1 and norms[order - 1] <= ZERO_RESIDUE_FACTOR * errors[order - 1]:
         order -= 1
     error = float(np.max(errors / powers) / size) if size > 0 else float("inf")
-    return center, [np.asarray(x) for x in R_full[:order]], errors, order, error
+    return center, [np.asarray(v) for v in R_full[:order]], errors, order, error
 
 
 def residues(
@@ -285,10 +329,11 @@ def residues(
         raise ParameterError("n_points", f"expected an even integer >= 8, got {n_points!r}")
     scale = max(abs(lam0), natural_scale(sys))
     if radius is not None:
-        m, count, r, inner, outer, samples = fixed_contour(sys, lam0, radius, N, scale)
+        m, count, r, inner, free, outer, samples = fixed_contour(sys, lam0, radius, N, scale)
     else:
-        m, count, r, inner, outer, samples = automatic_contour(sys, lam0, cluster_tol, N, scale)
-    center, R, errors, order, error = _principal_part(lam0, m, r, N, samples)
+        m, count, r, inner, free, outer, samples = automatic_contour(sys, lam0, cluster_tol, N, scale)
+    x, geometry = aliasing_ratio(sys, lam0, r, N, m, inner, free)
+    center, R, errors, order, error = _principal_part(lam0, m, r, N, samples, x)
     return Residues(
         R,
         lam0=lam0,
@@ -303,6 +348,9 @@ def residues(
         errors=errors,
         error=error,
         residual=principal_part_residual(sys, center, R),
-        method=f"contour integral: trapezoidal rule, {N} points on a circle of radius {r:.3g}, H by LU",
+        method=(
+            f"contour integral: trapezoidal rule, {N} points on a circle of radius {r:.3g}, H by LU; error bounds "
+            f"with aliasing ratio {x:.2e} from {geometry}"
+        ),
         elapsed=time.perf_counter() - t0,
     )

@@ -14,6 +14,14 @@ One concept per module:
 - :mod:`.mjcf` -- MJCF (MuJoCo) models with their ``<connect>`` and ``<weld>`` loops.
 """
 
+from .constraints import (
+    Constraint,
+    ConstraintForce,
+    ContactStatus,
+    FrameConstraint,
+    PointConstraint,
+    ground_contacts,
+)
 from .elements import (
     Bushing,
     DeadWrench,
@@ -27,11 +35,10 @@ from .elements import (
 )
 from .generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
 from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
+from .mjcf import load_mjcf
 from .robot import Robot
 from .scene import Scene
 from .scenefile import SceneSpec, load_scene
-from .constraints import Constraint, ConstraintForce, ContactStatus, FrameConstraint, PointConstraint, ground_contacts
-from .mjcf import load_mjcf
 
 __all__ = [
     "Robot",

@@ -68,35 +68,64 @@ def eigen_weight(lam, norms: Norms):
     return a * a * norm_M + a * norm_C + norm_K
 
 
-def column_norms(A: np.ndarray) -> np.ndarray:
-    """2-norm of each column of a real or complex (n, k) array, without over- or underflow of the squares.
+#: Window of a plain sum of squares in which no square over- or underflowed enough to matter:
+#: an entry above 1e140 would square beyond 1e280, and squares that underflow (below 1e-308)
+#: change a sum above 1e-280 by less than n 1e-28 relative.  Outside it the scaled form is used.
+_SQUARES_WINDOW = (1e-280, 1e280)
 
-    .. math::  \\|a\\| = s\\,\\|a / s\\|,\\qquad s = \\max_i |a_i|
+
+def column_norms(A: np.ndarray) -> np.ndarray:
+    r"""2-norm of each column (axis -2) of a real or complex (..., n, k) array, without over- or underflow.
+
+    .. math::  \|a\| = s\,\|a / s\|,\qquad s = \max_i |a_i|
+
+    The plain sum of squares is used where it is safely in range (see
+    ``_SQUARES_WINDOW``), the scaled form above for the other columns.
     """
     A = np.asarray(A)
-    s = np.max(np.abs(A), axis=0) if A.shape[0] else np.zeros(A.shape[1])
+    if A.shape[-2] == 0:
+        return np.zeros(A.shape[:-2] + A.shape[-1:])
+    if np.iscomplexobj(A):
+        if A.dtype == np.complex128 and A.flags.c_contiguous:  # (re, im) pairs as one real array
+            pairs = np.einsum("...ij,...ij->...j", A.view(float), A.view(float))
+            total = pairs[..., 0::2] + pairs[..., 1::2]
+        else:
+            total = np.einsum("...ij,...ij->...j", A.real, A.real) + np.einsum("...ij,...ij->...j", A.imag, A.imag)
+    else:
+        total = np.einsum("...ij,...ij->...j", A, A)
+    lo, hi = _SQUARES_WINDOW
+    ok = (total > lo) & (total < hi)
+    if ok.all():
+        return np.sqrt(total)
+    s = np.max(np.abs(A), axis=-2)
     safe = np.where((s > 0) & np.isfinite(s), s, 1.0)
     # real divisions: a complex one may go through 1/s, which overflows for a subnormal s
-    re = A.real / safe
-    total = np.einsum("ij,ij->j", re, re)
+    re = A.real / safe[..., None, :]
+    scaled = np.einsum("...ij,...ij->...j", re, re)
     if np.iscomplexobj(A):
-        im = A.imag / safe
-        total = total + np.einsum("ij,ij->j", im, im)
-    return safe * np.sqrt(total)
+        im = A.imag / safe[..., None, :]
+        scaled = scaled + np.einsum("...ij,...ij->...j", im, im)
+    return np.where(ok, np.sqrt(np.where(ok, total, 0.0)), safe * np.sqrt(scaled))
 
 
 def backward_errors(lam, X, MX, CX, KX, norms: Norms) -> np.ndarray:
     """eta for each column of X (any scaling), given the products M X, C X, K X.
 
+    The arrays may carry leading batch axes (..., n, k), with ``lam`` of shape (k,).
     An exactly zero residual gives 0 (also where the weight vanishes: lam = 0
     with K = 0); a zero column x gives inf (it is no eigenvector).
     """
     lam = np.asarray(lam, dtype=complex)
-    R = MX * (lam * lam) + CX * lam + KX
+    R = MX * (lam * lam)
+    R += CX * lam
+    R += KX
     num = column_norms(R)
     nx = column_norms(X)
+    den = eigen_weight(lam, norms) * nx
+    if den.all() and num.all() and np.isfinite(den).all() and np.isfinite(num).all():  # no zero, no overflow
+        return num / den
     with np.errstate(divide="ignore", invalid="ignore"):
-        eta = num / (eigen_weight(lam, norms) * nx)
+        eta = num / den
     eta = np.where(num == 0, 0.0, np.where(np.isfinite(eta), eta, np.inf))
     return np.where(nx == 0, np.inf, eta)
 

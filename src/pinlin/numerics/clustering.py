@@ -59,19 +59,32 @@ def find_clusters(
     lam = np.asarray(lam, dtype=complex)
     k = lam.shape[0]
     a = np.abs(lam)
-    dist = np.abs(lam[:, None] - lam[None, :])
-    ref = np.maximum(np.maximum(a[:, None], a[None, :]), scale)
-    adj = dist <= cluster_tol * ref
+    # candidates only: |lam_i - lam_j| >= ||lam_i| - |lam_j||, so linked eigenvalues have moduli within
+    # cluster_tol max(|lam_j|, scale) of each other; sorted by modulus, each is compared with those in that window
+    order = np.argsort(a, kind="stable")
+    sa = a[order]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        reach = sa + cluster_tol * np.maximum(sa, scale) / (1.0 - cluster_tol)
+    hi = np.searchsorted(sa, reach, side="right")
+    counts = np.maximum(hi - np.arange(k) - 1, 0)
+    total = int(counts.sum())
+    if total == 0:
+        return [(i,) for i in range(k)] if singletons else []
+    first = np.repeat(np.arange(k), counts)
+    step = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    i, j = order[first], order[first + 1 + step]
+    dist = np.abs(lam[i] - lam[j])
+    linked = dist <= cluster_tol * np.maximum(np.maximum(a[i], a[j]), scale)
     if bound is not None:
         r = np.asarray(bound, dtype=float)
         with np.errstate(invalid="ignore"):
-            adj &= dist <= factor * (r[:, None] + r[None, :])
-    np.fill_diagonal(adj, False)
-    if not adj.any():
+            linked &= dist <= factor * (r[i] + r[j])
+    if not linked.any():
         return [(i,) for i in range(k)] if singletons else []
-    _, labels = connected_components(csr_matrix(adj), directed=False)
+    adj = csr_matrix((np.ones(int(linked.sum())), (i[linked], j[linked])), shape=(k, k))
+    _, labels = connected_components(adj, directed=False)
     groups: dict[int, list[int]] = {}
-    for i in range(k):
-        groups.setdefault(int(labels[i]), []).append(i)
+    for idx in range(k):
+        groups.setdefault(int(labels[idx]), []).append(idx)
     least = 1 if singletons else 2
     return sorted((tuple(g) for g in groups.values() if len(g) >= least), key=lambda g: g[0])

@@ -34,6 +34,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.linalg.lapack import dsyevd as _dsyevd
 
 from ..errors import ParameterError
 from ..results import to_jsonable
@@ -47,6 +48,7 @@ __all__ = [
     "DEFINITENESS_KINDS",
     "Definiteness",
     "definiteness",
+    "symmetric_definiteness",
     "rounding_bound",
     "cholesky_lower_bound",
     "square_matrix",
@@ -205,20 +207,21 @@ def _decide(w: np.ndarray, norm: float, rounding: float, u: float, chol: float |
     n = w.shape[0]
     rho = rounding * norm
     thr = rho + u * norm
-    neg = int(np.sum(w < -thr))
-    pos = int(np.sum(w > thr))
+    lo, hi = float(w[0]), float(w[-1])
+    neg = int(np.count_nonzero(w < -thr)) if lo < -thr else 0
+    pos = int(np.count_nonzero(w > thr)) if hi > thr else 0
     zero = n - neg - pos
     certificate = "eigenvalues"
     # certified lower bound on min |lambda| when the inertia is decided, from the eigenvalues
-    gap = float(np.min(np.abs(w))) - rho
-    if chol is not None and neg == 0 and chol > w[0] - rho:
+    smallest = lo if lo >= 0 else (-hi if hi <= 0 else float(np.abs(w).min()))
+    gap = smallest - rho
+    if chol is not None and neg == 0 and chol > lo - rho:
         gap = chol
         if zero and chol > u * norm:
             pos, zero, certificate = n, 0, "Cholesky"
     margin = max(gap / norm, 0.0) if zero == 0 else 0.0
     out = Definiteness(
-        _kind(neg, zero, pos), neg, zero, pos, float(w[0]), float(w[-1]), rounding + u, thr, norm, rounding, u,
-        margin, certificate,
+        _kind(neg, zero, pos), neg, zero, pos, lo, hi, rounding + u, thr, norm, rounding, u, margin, certificate,
     )
     object.__setattr__(out, "_eigenvalues", w)
     object.__setattr__(out, "_cholesky_lower", chol)
@@ -326,15 +329,24 @@ def definiteness(
     ParameterError
         A not a finite real square matrix; ``uncertainty`` not in [0, 1).
     """
-    A = square_matrix(A)
-    u = check_uncertainty(uncertainty)
+    return symmetric_definiteness(square_matrix(A), check_uncertainty(uncertainty), rounding_factor)
+
+
+def symmetric_definiteness(A: np.ndarray, u: float, rounding_factor: float = EIGENVALUE_ROUNDING) -> Definiteness:
+    """:func:`definiteness` of a matrix known to be a finite real (n, n) float array, ``u`` known valid.
+
+    For callers whose matrices are validated already (a LinearizedSystem's M, D, S):
+    no input checks, one LAPACK call (``dsyevd``, eigenvalues only, lower triangle).
+    """
     n = A.shape[0]
     rounding = float(rounding_factor * n * EPS)
-    if not np.any(A):
-        return Definiteness(
-            "zero", 0, n, 0, 0.0, 0.0, rounding + u, 0.0, 0.0, rounding, u, 0.0, "exactly zero", True
+    if not A.any():
+        return _with_block(
+            Definiteness("zero", 0, n, 0, 0.0, 0.0, rounding + u, 0.0, 0.0, rounding, u, 0.0, "exactly zero"), None
         )
-    w = np.linalg.eigvalsh(A)
+    w, _, info = _dsyevd(A, compute_v=0, lower=1)
+    if info != 0:  # LAPACK's divide and conquer did not converge: numpy's driver instead (it raises if that fails too)
+        w = np.linalg.eigvalsh(A)
     norm = float(max(abs(w[0]), abs(w[-1])))
     chol = None
     rho = rounding * norm
@@ -345,13 +357,13 @@ def definiteness(
     if out.kind == "positive_semidefinite":
         live = np.flatnonzero(np.any(A != 0, axis=0))
         if live.size < n:  # exact zero rows and columns: is the rest positive definite?
-            block = definiteness(A[np.ix_(live, live)], u, rounding_factor=rounding_factor)
+            block = symmetric_definiteness(A[np.ix_(live, live)], u, rounding_factor)
     return _with_block(out, block)
 
 
 def _with_block(out: Definiteness, block: Definiteness | None) -> Definiteness:
     """``out`` with ``certainly_psd`` set (from the nonzero block when given)."""
-    sure = out.kind == "positive_definite" or (
+    sure = out.kind in ("zero", "positive_definite") or (
         out.kind == "positive_semidefinite" and block is not None and block.kind == "positive_definite"
     )
     object.__setattr__(out, "certainly_psd", sure)  # set once, right after construction

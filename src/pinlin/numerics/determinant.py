@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.linalg.lapack import dgesdd as _dgesdd
+from scipy.linalg.lapack import dgetrf as _dgetrf
 
 from .checks import check_uncertainty
 from .definiteness import DEFAULT_UNCERTAINTY, EIGENVALUE_ROUNDING, det_sign, square_matrix
@@ -74,9 +76,18 @@ def nonsingularity(
     A = square_matrix(A)
     u = check_uncertainty(uncertainty)
     n = A.shape[0]
-    if not np.any(A):
+    if not A.any():
         return Nonsingularity(0, 0.0, u, 0)
-    U, s, Vh = np.linalg.svd(A)
+    U, s, Vh, info = _dgesdd(A)
+    if info != 0:  # LAPACK's divide and conquer did not converge: numpy's driver (it raises if that fails too)
+        U, s, Vh = np.linalg.svd(A)
     margin = max(float((s[-1] - rounding_factor * n * EPS * s[0]) / s[0]), 0.0)
-    sign = int(np.sign(np.linalg.det(U)) * np.sign(np.linalg.det(Vh)))
+    sign = _orthogonal_sign(U) * _orthogonal_sign(Vh)
     return Nonsingularity(sign if margin > u else 0, margin, u, sign)
+
+
+def _orthogonal_sign(Q: np.ndarray) -> int:
+    """det Q (+1 or -1) of an orthogonal Q from its LU factorization: the signs of U's diagonal and the swaps."""
+    lu, piv, _ = _dgetrf(Q)
+    negative = int(np.count_nonzero(np.diagonal(lu) < 0)) + int(np.count_nonzero(piv != np.arange(piv.size)))
+    return -1 if negative % 2 else 1

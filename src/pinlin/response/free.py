@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import AccuracyWarning, ParameterError
 from ..frf.engine import DEFAULT_TOL
-from ..frf.expansion import CHUNK_ROWS, ModalExpansion, complex_matmul, modal_expansion
+from ..frf.expansion import ModalExpansion, complex_matmul, modal_expansion
 from ..linearization.system import LinearizedSystem
 from ..numerics import check_system, check_tolerance
 from ..results import ResultArray
@@ -81,16 +81,6 @@ class FreeResponse(ResultArray):
     _dict_exclude = ("modes",)
 
 
-def _real_part_matmul(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """Re(A @ B) for complex A (p, k), B (k, m), as one real product per block of rows."""
-    Bb = np.vstack([B.real, -B.imag])
-    out = np.empty((A.shape[0], B.shape[1]))
-    for start in range(0, A.shape[0], CHUNK_ROWS):
-        a = A[start : start + CHUNK_ROWS]
-        out[start : start + CHUNK_ROWS] = np.hstack([a.real, a.imag]) @ Bb
-    return out
-
-
 def modal_free_motion(expansion: ModalExpansion, x0: np.ndarray, v0: np.ndarray, tau: np.ndarray):
     """x, x', x'' (each (len(tau), n) real) of the free motion from (x0, v0) at tau = t - t0.
 
@@ -148,9 +138,14 @@ def _evaluate(expansion: ModalExpansion, c, d, half, weight, tau):
     imag = 0.0
     if half is not None:
         lam_h = lam[half]
-        W = np.exp(np.multiply.outer(tau, lam_h)) * (c[half] * weight)
-        stacked = _real_part_matmul(np.vstack([W, W * lam_h, W * (lam_h * lam_h)]), X[:, half].T)
-        x, xd, xdd = stacked[:T], stacked[T : 2 * T], stacked[2 * T :]
+        W = np.exp(np.multiply.outer(tau, lam_h))
+        # the three derivatives from one real product: Re(W G) = W.re G.re - W.im G.im,
+        # G = [c x^T, lam c x^T, lam^2 c x^T] (one block of columns per derivative)
+        G = (c[half] * weight)[:, None] * X[:, half].T
+        G = np.concatenate([G, lam_h[:, None] * G, (lam_h * lam_h)[:, None] * G], axis=1)
+        stacked = W.real @ G.real - W.imag @ G.imag
+        n = X.shape[0]
+        x, xd, xdd = stacked[:, :n], stacked[:, n : 2 * n], stacked[:, 2 * n :]
         im = None
     else:
         W = np.exp(np.multiply.outer(tau, lam)) * c

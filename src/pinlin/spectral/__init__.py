@@ -5,8 +5,12 @@ One concept per module, in the order of :func:`modal_analysis`:
 - :mod:`.problem` -- the coefficients and their norms (Fan-Lin-Van Dooren
   scaling from :mod:`pinlin.numerics.scaling`);
 - :mod:`.paths` -- which solver path applies, and why (:func:`choose_path`);
+- :mod:`.raw` -- :class:`~pinlin.spectral.raw.RawSpectrum`, what a solver path returns;
 - :mod:`.qep` -- the general solver (scaled companion form, QZ, vector recovery);
 - :mod:`.structured` -- cheaper exact paths for structured mechanical systems;
+- :mod:`.refine` -- eigh with Newton refinement for the symmetric-definite pencils
+  of those paths (backward errors at rounding level whatever cond(M));
+- :mod:`.ordering` -- the order of the spectrum and the per-eigenvalue kinds (vectorized);
 - :mod:`.accuracy` -- eta, kappa, sensitivities and the error model (bounds as
   functions of the data uncertainty) of the computed pairs (formulas in
   :mod:`pinlin.numerics.accuracy`);
@@ -16,8 +20,11 @@ One concept per module, in the order of :func:`modal_analysis`:
 - :mod:`.qualitative` -- modal constants m, d, g, k, n and structural facts;
 - :mod:`.verdict` -- the :class:`Stability` verdict and the theorems on structure alone;
 - :mod:`.stability_rules` -- the rules of the verdict, tried in order;
-- :mod:`.stability` -- :func:`decide_stability`, :func:`stability_from_structure`;
-- :mod:`.modes` -- the result object :class:`Modes`;
+- :mod:`.stability` -- :func:`decide_stability`, :func:`stability_from_structure` (the
+  verdict's margin computed on first access);
+- :mod:`.modes` -- the result object :class:`Modes` (condition numbers, modal
+  constants and participation formed on first access);
+- :mod:`.participation` -- each coordinate's share of a mode's kinetic plus potential energy;
 - :mod:`.analysis` -- :func:`modal_analysis`, which ties them together.
 """
 
@@ -25,6 +32,7 @@ from .analysis import EIGH_TOL, STRUCTURE_TOL, modal_analysis
 from .jordan import CLUSTER_TOL, RANK_TOL, JordanChains, jordan_chains
 from .modes import MODE_KINDS, Method, Modes
 from .multiplicity import Cluster
+from .participation import DOMINANT_COUNT, DOMINANT_SHARE
 from .problem import QuadraticProblem, Scaling, as_problem, fan_lin_van_dooren
 from .qualitative import DEFAULT_UNCERTAINTY, DEFINITENESS_TOL, ModeConstants, StructuralFacts
 from .stability import KINDS, MARGIN_CAP, STABILITY_SAFETY, Stability, stability_from_structure
@@ -54,4 +62,6 @@ __all__ = [
     "DEFAULT_UNCERTAINTY",
     "STABILITY_SAFETY",
     "MARGIN_CAP",
+    "DOMINANT_SHARE",
+    "DOMINANT_COUNT",
 ]

@@ -33,8 +33,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.accuracy import ETA_FLOOR, backward_errors, column_norms, condition_numbers, homogeneous
+from ..numerics.accuracy import ETA_FLOOR, backward_errors, column_norms, homogeneous
 from .problem import QuadraticProblem
+from .qualitative import quadratic_forms
 
 __all__ = [
     "PairFigures",
@@ -62,15 +63,19 @@ class PairFigures:
     left_normalized : (k,) bool
     derivative : (k,) complex
         y^T L'(lam) x for the unit-norm x and y (0 for a defective eigenvalue).
-    backward_error, condition, error_bound : (k,) float
+    backward_error, error_bound : (k,) float
     sensitivity : (k,) float
         w(lam) ||x|| ||y|| / |y^T L'(lam) x| [rad/s]: the first-order change of lam per
         unit relative (normwise) perturbation of the coefficients; inf when
         y^T L' x = 0.  ``error_bound = max(eta, ETA_FLOOR) * sensitivity``.
     left_unit : (n, k) complex
         The left vectors with unit 2-norm.
-    products : tuple of three (n, k) complex
-        M x, C x, K x for the unit-norm right vectors.
+    products : (3, k) complex
+        y^T M x, y^T C x, y^T K x of the unit vectors (the condition number
+        kappa follows from them, :func:`pinlin.numerics.condition_numbers`).
+    quadratic : (3, k) complex
+        x^H M x, x^H C x, x^H K x of the unit right vectors (the modal constants
+        follow from them, :func:`pinlin.spectral.qualitative.constants_of`).
     """
 
     right: np.ndarray
@@ -78,40 +83,51 @@ class PairFigures:
     left_normalized: np.ndarray
     derivative: np.ndarray
     backward_error: np.ndarray
-    condition: np.ndarray
     error_bound: np.ndarray
     sensitivity: np.ndarray
     left_unit: np.ndarray
-    products: tuple[np.ndarray, np.ndarray, np.ndarray]
+    products: np.ndarray
+    quadratic: np.ndarray
 
 
-def pair_figures(problem: QuadraticProblem, lam, X, Y, MX, CX, KX) -> PairFigures:
-    """Normalize X and Y and compute eta, kappa and the first-order bound for each pair.
+def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None) -> PairFigures:
+    """Normalize the vectors and compute eta, kappa and the first-order bound for each pair.
 
     Parameters
     ----------
     problem : QuadraticProblem
     lam : (k,) complex
-    X, Y : (n, k) complex
-        Right and left (plain transpose) eigenvectors, any nonzero scaling.
-    MX, CX, KX : (n, k) complex
-        The products M X, C X, K X (computed once by the solver path, which
-        often can do it cheaper than here).
+    P : (4, n, k) complex
+        Right eigenvectors X (any nonzero scaling) and the products M X, C X,
+        K X (computed once by the solver path, which often can do it cheaper
+        than here), stacked.
+    Y : (n, k) complex, optional
+        Left (plain transpose) eigenvectors, any nonzero scaling; None when L is
+        symmetric (the left vectors are the right ones).
+    eta : (k,) float, optional
+        The backward errors when the solver path measured them already (they do
+        not depend on the scaling of X); computed here otherwise.
     """
     lam = np.asarray(lam, dtype=complex)
-    nx = column_norms(X)
-    X, MX, CX, KX = X / nx, MX / nx, CX / nx, KX / nx
-    Y = Y / column_norms(Y)
-    eta = backward_errors(lam, X, MX, CX, KX, problem.norms)
-    yMx, yCx, yKx = (np.einsum("ij,ij->j", Y, P) for P in (MX, CX, KX))
-    deriv = 2 * lam * yMx + yCx
-    kappa = condition_numbers(lam, yMx, yCx, yKx, problem.norms)
-    ok = np.abs(deriv) > 0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        sens = np.where(ok, problem.weight(lam) / np.where(ok, np.abs(deriv), 1.0), np.inf)
+    P = P / column_norms(P[0])
+    X = P[0]
+    Y = X if Y is None else Y / column_norms(Y)
+    if eta is None:
+        eta = backward_errors(lam, X, P[1], P[2], P[3], problem.norms)
+    yP = np.einsum("ij,kij->kj", Y, P[1:])
+    quad = quadratic_forms(X, P[1:])
+    deriv = 2 * lam * yP[0] + yP[1]
+    size = np.abs(deriv)
+    ok = size > 0
+    if ok.all():  # the common case: every derivative nonzero
+        sens = problem.weight(lam) / size
+        left = Y / deriv
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            sens = np.where(ok, problem.weight(lam) / np.where(ok, size, 1.0), np.inf)
+        left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
     bound = np.maximum(eta, ETA_FLOOR) * sens
-    left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
-    return PairFigures(X, left, ok, deriv, eta, kappa, bound, sens, Y, (MX, CX, KX))
+    return PairFigures(X, left, ok, deriv, eta, bound, sens, Y, yP, quad)
 
 
 @dataclass(frozen=True)

@@ -19,12 +19,12 @@ from ..numerics.definiteness import DEFAULT_UNCERTAINTY
 from ..numerics.floating import EPS
 from ..numerics.rank import JORDAN_RANK_TOL
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
-from .modes import Method, Modes
+from .modes import DeferredFigures, Method, Modes
 from .multiplicity import Cluster, analyse_cluster
+from .ordering import mirrored_figures, mode_kinds, order_spectrum
 from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
 from .problem import QuadraticProblem, as_problem
-from .qep import RawSpectrum
-from .qualitative import mode_constants, structural_facts
+from .qualitative import structural_facts
 from .stability import STABILITY_SAFETY, decide_stability
 from .structured import PATHS
 
@@ -37,36 +37,6 @@ BIORTHOGONAL_RCOND = 1e3 * EPS
 
 #: The smallest positive normal double.
 TINY = float(np.finfo(float).tiny)
-
-
-def _order(raw: RawSpectrum) -> RawSpectrum:
-    """Sort by |lam|, conjugate pairs adjacent (Im > 0 first), and make pair vectors exact conjugates."""
-    lam = raw.lam
-    neg: dict[complex, list[int]] = {}
-    for i in np.flatnonzero(lam.imag < 0):
-        neg.setdefault(complex(lam[i]), []).append(int(i))
-    groups = []
-    for i in np.flatnonzero(lam.imag > 0):
-        partners = neg.get(complex(np.conj(lam[i])))
-        if partners:
-            groups.append((int(i), partners.pop()))
-        else:
-            groups.append((int(i),))
-    groups += [(int(i),) for i in np.flatnonzero(lam.imag == 0)]
-    groups += [(i,) for rest in neg.values() for i in rest]
-    first = np.array([g[0] for g in groups])
-    keys = np.lexsort((-np.abs(lam[first].imag), lam[first].real, np.abs(lam[first])))
-    perm = np.array([i for g in keys for i in groups[g]], dtype=int)
-    arrays = [a[:, perm] for a in (raw.X, raw.Y, raw.MX, raw.CX, raw.KX)]
-    block = raw.block[perm].copy()
-    pos = 0
-    for g in keys:
-        if len(groups[g]) == 2:
-            for a in arrays:
-                a[:, pos + 1] = np.conj(a[:, pos])
-            block[pos + 1] = block[pos]
-        pos += len(groups[g])
-    return RawSpectrum(lam[perm], *arrays, block)
 
 
 def modal_analysis(
@@ -160,24 +130,32 @@ def modal_analysis(
         method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
         uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
     )
-    name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
-    raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
-    raw = _order(raw)
-    lam = raw.lam
-    _check_range(problem, lam)
-    fig = pair_figures(problem, lam, raw.X, raw.Y, raw.MX, raw.CX, raw.KX)
+    facts = structural_facts(problem, tolerances["uncertainty"])
+    cond_M = _mass_condition(facts)
+    name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"], cond_M)
+    raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"], cond_M)
+    if raw.second is not None:  # pairs sharing a real vector: figures on one member of each
+        lam, block, fig = mirrored_figures(problem, raw)
+        _check_range(problem, lam)
+    else:
+        raw = order_spectrum(raw)
+        lam, block = raw.lam, raw.block
+        _check_range(problem, lam)
+        fig = pair_figures(problem, lam, raw.P, raw.Y, raw.eta)
     clusters, notes = _clusters(problem, lam, fig, tolerances)
-    left, left_ok, condition, model, more = _cluster_figures(problem, lam, fig, clusters)
+    left, left_ok, model, more = _cluster_figures(problem, lam, fig, clusters)
     notes += more
     multiplicity = np.ones(lam.shape[0], dtype=int)
     for c in clusters:
         multiplicity[list(c.indices)] = c.algebraic
     freq = np.abs(lam)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        zeta = np.where(freq > 0, -lam.real / np.where(freq > 0, freq, 1.0), np.nan)
-    facts = structural_facts(problem, tolerances["uncertainty"])
+    if freq.all():
+        zeta = -lam.real / freq
+    else:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            zeta = -lam.real / freq  # NaN exactly where lam = 0 (undefined)
     bound = model.bound(0.0)
-    if np.any(np.isnan(bound)) or np.any(np.isnan(fig.backward_error)):
+    if np.isnan(bound).any() or np.isnan(fig.backward_error).any():
         raise ComputationError(
             "an eigenvalue error figure is not a number: the coefficients (norms "
             f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "
@@ -190,32 +168,52 @@ def modal_analysis(
         facts, lam, model, clusters, K_is_zero=not np.any(problem.K), exact_drift=drift,
         safety=tolerances["safety"], uncertainty=tolerances["uncertainty"],
     )
+    r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
     return Modes(
-        eigenvalues=lam,
-        right=fig.right,
-        left=left,
-        left_normalized=left_ok,
-        backward_error=fig.backward_error,
-        condition=condition,
-        error_bound=bound,
-        natural_frequency=freq,
-        damping_ratio=zeta,
-        kind=_mode_kinds(lam, tolerances["safety"] * model.bound(tolerances["uncertainty"]), clusters),
-        multiplicity=multiplicity,
+        eigenvalues=_owned(lam),
+        right=_owned(fig.right),
+        left=_owned(left),
+        left_normalized=_owned(left_ok),
+        backward_error=_owned(fig.backward_error),
+        error_bound=_owned(bound),
+        natural_frequency=_owned(freq),
+        damping_ratio=_owned(zeta),
+        kind=mode_kinds(lam, tolerances["safety"] * r, clusters),
+        multiplicity=_owned(multiplicity),
         clusters=tuple(clusters),
         is_simple=all(c.semisimple for c in clusters),
-        constants=_constants(problem, lam, fig) if problem.mechanical else None,
         structure=facts,
         stability=stability,
         method=Method(name, reason),
         scaling=used_scaling,
-        block=raw.block,
+        block=_owned(block),
         tolerances=tolerances,
         system=problem.system,
         matrices=(problem.M, problem.C, problem.K),
         elapsed=time.perf_counter() - t0,
         notes=tuple(notes),
+        deferred=DeferredFigures(
+            fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
+        ),
     )
+
+
+def _owned(a: np.ndarray) -> np.ndarray:
+    """``a`` (a fresh array of this call) made read-only in place: Modes keeps it without a copy."""
+    if not (a.flags.owndata or a.base is None):
+        a = a.copy()
+    a.flags.writeable = False
+    return a
+
+
+def _mass_condition(facts) -> float:
+    """cond_2(M) from the definiteness decision of M (1 for tuple input, inf when M is not proven definite)."""
+    on_M = facts.definiteness_M
+    if on_M is None:
+        return 1.0
+    if on_M.min_eigenvalue <= 0:
+        return float("inf")
+    return float(on_M.max_eigenvalue / on_M.min_eigenvalue)
 
 
 def _check_range(problem: QuadraticProblem, lam: np.ndarray) -> None:
@@ -237,20 +235,6 @@ def _check_range(problem: QuadraticProblem, lam: np.ndarray) -> None:
             f"(|lam|^2 ||M|| + |lam| ||C|| + ||K|| overflows; norms {problem.norm_M:.3g}, {problem.norm_C:.3g}, "
             f"{problem.norm_K:.3g}); rescale the system (units)"
         )
-
-
-def _constants(problem: QuadraticProblem, lam: np.ndarray, fig: PairFigures):
-    """The modal constants from the solver's products; where x^H M x underflows (a tiny M), from M, C, K
-    divided by ||M|| instead (the ratios are the same)."""
-    X = fig.right
-    MX, CX, KX = (P.copy() for P in fig.products)
-    m = np.einsum("ij,ij->j", X.conj(), MX).real
-    bad = ~(np.isfinite(m) & (m > TINY))
-    if np.any(bad):
-        s = problem.norm_M
-        for P, A in zip((MX, CX, KX), (problem.M, problem.C, problem.K)):
-            P[:, bad] = (A / s) @ X[:, bad]
-    return mode_constants(lam, X, MX, CX, KX)
 
 
 def _mass_notes(facts, lam, bound) -> list[str]:
@@ -316,7 +300,7 @@ def _clusters(problem: QuadraticProblem, lam, fig: PairFigures, tolerances) -> t
 
 
 def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
-    """Left vectors, condition numbers and the error model corrected for the clusters.
+    """Left vectors and the error model corrected for the clusters (defective members: kappa = inf, see Modes).
 
     A semisimple cluster gets left vectors biorthogonalized at its mean
     (Y^T L'(lam_c) X = I) and sensitivities w(lam) ||y||; a defective one unit
@@ -325,7 +309,6 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
     """
     left = fig.left.copy()
     left_ok = fig.left_normalized.copy()
-    condition = fig.condition.copy()
     sens = fig.sensitivity.copy()
     eta = np.maximum(fig.backward_error, ETA_FLOOR)
     defective = []
@@ -349,29 +332,12 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
         else:
             left[:, ii] = fig.left_unit[:, ii]
             left_ok[ii] = False
-            condition[ii] = np.inf
             sens[ii] = np.inf
             spread = float(np.max(np.abs(lam[ii] - c.center)))
             defective.append(
                 DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
                                c.index)
             )
-    return left, left_ok, condition, ErrorModel(eta, sens, tuple(defective)), notes
+    return left, left_ok, ErrorModel(eta, sens, tuple(defective)), notes
 
 
-def _mode_kinds(lam, r, clusters) -> tuple[str, ...]:
-    """Per eigenvalue one of MODE_KINDS against its bound r; cluster members by the cluster's mean."""
-    typical = lam.copy()
-    for c in clusters:
-        typical[list(c.indices)] = c.center
-    kinds = []
-    for i in range(lam.shape[0]):
-        if abs(typical[i]) <= r[i]:
-            kinds.append("rigid_body")
-        elif typical[i].real > r[i]:
-            kinds.append("unstable")
-        elif abs(typical[i].imag) > r[i]:
-            kinds.append("underdamped")
-        else:
-            kinds.append("overdamped")
-    return tuple(kinds)

@@ -2,22 +2,47 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..linearization.system import LinearizedSystem
+from ..numerics.accuracy import condition_numbers
 from ..numerics.scaling import Scaling
-from ..results import Result, readonly
+from ..results import Result, readonly, to_jsonable
 from .multiplicity import Cluster
-from .qualitative import ModeConstants, StructuralFacts
+from .participation import DOMINANT_COUNT, DOMINANT_SHARE, participation
+from .qualitative import ModeConstants, StructuralFacts, constants_of
 from .stability import Stability
 
-__all__ = ["Modes", "Method", "MODE_KINDS"]
+__all__ = ["Modes", "Method", "MODE_KINDS", "DeferredFigures"]
 
 #: Per-eigenvalue kinds, see :attr:`Modes.kind`.
 MODE_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable")
+
+@dataclass(frozen=True, eq=False)
+class DeferredFigures:
+    """What :class:`Modes` keeps to form its condition numbers on first access (picklable).
+
+    Attributes
+    ----------
+    products : (3, 2n) complex
+        y^T M x, y^T C x, y^T K x of the unit right and left vectors.
+    quadratic : (3, 2n) complex
+        x^H M x, x^H C x, x^H K x of the unit right vectors (from the solver's products).
+    norms : tuple of float
+        (||M||, ||C||, ||K||), Frobenius.
+    defective : tuple of int
+        Members of defective clusters (condition inf).
+    """
+
+    products: np.ndarray
+    quadratic: np.ndarray
+    norms: tuple[float, float, float]
+    defective: tuple[int, ...] = ()
 
 
 class Method(str):
@@ -75,7 +100,8 @@ class Modes(Result):
         eta of (lam_k, x_k), Frobenius norms (SPEC section 4).
     condition : (2n,) float
         kappa of lam_k in the homogeneous form (SPEC section 4); inf for a
-        defective eigenvalue.
+        defective eigenvalue.  Formed on first access from products kept by the
+        analysis (the verdict does not need it).
     error_bound : (2n,) float
         First-order absolute error estimate of lam_k [rad/s]: eta times
         Tisseur's absolute condition number (SPEC section 5's kappa eta |lam|),
@@ -102,7 +128,13 @@ class Modes(Result):
         True when every eigenvalue is semisimple (the dynamic stiffness is simple).
     constants : ModeConstants or None
         m, d, g, k, n per mode and the residual of their equation (SPEC
-        section 5); None for tuple input.
+        section 5); None for tuple input.  Formed on first access.
+    participation : (n, 2n) float
+        Each coordinate's share of each mode's kinetic plus potential energy
+        (columns sum to 1; :func:`pinlin.spectral.participation.participation`);
+        :meth:`dominant` lists the coordinates above
+        :data:`~pinlin.spectral.DOMINANT_SHARE`, as the last column of
+        :meth:`table` does.  Formed on first access.
     structure : StructuralFacts
         Definiteness, inertia and determinant signs used by the verdict, each
         decided against the rounding bound of the data and the uncertainty
@@ -136,17 +168,17 @@ class Modes(Result):
         (relative, SPEC section 4); the per-pair figures are ``backward_error``,
         ``condition`` and ``error_bound``.
 
-    ``to_dict()`` leaves out ``system`` and ``matrices`` (the input).
+    ``to_dict()`` leaves out ``system`` and ``matrices`` (the input); it
+    includes ``condition`` and ``constants``.
     """
 
-    _dict_exclude = ("system", "matrices")
+    _dict_exclude = ("system", "matrices", "deferred")
 
     eigenvalues: np.ndarray
     right: np.ndarray
     left: np.ndarray
     left_normalized: np.ndarray
     backward_error: np.ndarray
-    condition: np.ndarray
     error_bound: np.ndarray
     natural_frequency: np.ndarray
     damping_ratio: np.ndarray
@@ -154,7 +186,6 @@ class Modes(Result):
     multiplicity: np.ndarray
     clusters: tuple[Cluster, ...]
     is_simple: bool
-    constants: ModeConstants | None
     structure: StructuralFacts
     stability: Stability
     method: Method
@@ -165,6 +196,7 @@ class Modes(Result):
     matrices: tuple[np.ndarray, np.ndarray, np.ndarray]
     elapsed: float
     notes: tuple[str, ...] = field(default=())
+    deferred: DeferredFigures | None = field(default=None, repr=False)
 
     def __post_init__(self):
         for name in (
@@ -173,14 +205,83 @@ class Modes(Result):
             "left",
             "left_normalized",
             "backward_error",
-            "condition",
             "error_bound",
             "natural_frequency",
             "damping_ratio",
             "multiplicity",
             "block",
         ):
-            object.__setattr__(self, name, readonly(getattr(self, name)))
+            value = getattr(self, name)
+            if not (isinstance(value, np.ndarray) and value.flags.owndata and not value.flags.writeable):
+                object.__setattr__(self, name, readonly(value))  # an array nobody else can write is kept
+
+    # ------------------------------------------------------------------ figures formed on first access
+
+    @functools.cached_property
+    def condition(self) -> np.ndarray:
+        """(2n,) kappa per eigenvalue (see the class docstring)."""
+        d = self.deferred
+        out = condition_numbers(self.eigenvalues, *d.products, d.norms)
+        out[list(d.defective)] = np.inf
+        out.flags.writeable = False
+        return out
+
+    @functools.cached_property
+    def constants(self) -> ModeConstants | None:
+        """m, d, g, k, n per mode (see the class docstring); None for tuple input."""
+        if self.system is None:
+            return None
+        M, C, K = self.matrices
+        d = self.deferred
+        return constants_of(self.eigenvalues, np.asarray(self.right), d.quadratic, M, C, K, d.norms[0])
+
+    @functools.cached_property
+    def participation(self) -> np.ndarray:
+        """(n, 2n) share of each coordinate in each mode's kinetic plus potential energy (columns sum to 1).
+
+        See :func:`participation` (issue 17 part 3); for tuple input M and K enter
+        by their symmetric parts.
+        """
+        M, _, K = self.matrices
+        S = self.system.S if self.system is not None else 0.5 * (K + K.T)
+        M = self.system.M if self.system is not None else 0.5 * (M + M.T)
+        out = participation(self.eigenvalues, self.right, M, S)
+        out.flags.writeable = False
+        return out
+
+    @property
+    def dof_names(self) -> tuple[str, ...]:
+        """The coordinates' names (the system's, or x1 ... xn for tuple input)."""
+        if self.system is not None:
+            return tuple(self.system.dof_names)
+        return tuple(f"x{i + 1}" for i in range(self.n))
+
+    def dominant(self, share: float = DOMINANT_SHARE, count: int | None = DOMINANT_COUNT) -> list:
+        """Per mode, the coordinates with at least ``share`` of its energy: [(name, share), ...], largest first.
+
+        Parameters
+        ----------
+        share : float
+            Smallest participation listed, in (0, 1] (default :data:`DOMINANT_SHARE`).
+        count : int or None
+            At most this many per mode (None: all).
+
+        Raises
+        ------
+        ParameterError
+            ``share`` not in (0, 1], or ``count`` not a positive integer.
+        """
+        if not isinstance(share, (int, float, np.floating)) or isinstance(share, bool) or not 0 < share <= 1:
+            raise ParameterError("share", f"expected a share in (0, 1], got {share!r}")
+        if count is not None and (isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1):
+            raise ParameterError("count", f"expected a positive integer or None, got {count!r}")
+        names = self.dof_names
+        out = []
+        for k in range(len(self)):
+            p = self.participation[:, k]
+            order = [int(i) for i in np.argsort(-p, kind="stable") if p[i] >= share]
+            out.append([(names[i], float(p[i])) for i in order[:count]])
+        return out
 
     # ------------------------------------------------------------------ access
 
@@ -210,8 +311,14 @@ class Modes(Result):
         return self.max_backward_error
 
     def to_dict(self) -> dict:
-        """JSON-serializable data: every field but ``system`` and ``matrices``, ``method_reason`` added."""
+        """JSON-serializable data: every field but ``system`` and ``matrices``; ``condition``, ``constants``,
+        ``participation`` (n, 2n), ``dominant`` (per mode, the coordinates of :meth:`dominant` with their
+        shares) and ``method_reason`` added."""
         out = super().to_dict()
+        out["condition"] = to_jsonable(self.condition)
+        out["constants"] = to_jsonable(self.constants)
+        out["participation"] = to_jsonable(self.participation)
+        out["dominant"] = [[{"name": name, "share": p} for name, p in row] for row in self.dominant()]
         out["method_reason"] = self.method.reason
         return out
 
@@ -223,7 +330,10 @@ class Modes(Result):
     # ------------------------------------------------------------------ text
 
     def table(self, max_rows: int | None = 40) -> str:
-        """A text table of lam, |lam|, damping ratio, eta, kappa and kind, then the verdict.
+        """A text table of lam, |lam|, damping ratio, eta, kappa, kind and the dominant coordinates, then the verdict.
+
+        The last column lists each mode's dominant coordinates with their share of its
+        kinetic plus potential energy (:meth:`dominant`, :attr:`participation`).
 
         Parameters
         ----------
@@ -234,8 +344,9 @@ class Modes(Result):
         rows = range(k) if max_rows is None else range(min(k, max_rows))
         head = (
             f"{'#':>4}  {'Re lam [1/s]':>13} {'Im lam [rad/s]':>14} {'|lam| [rad/s]':>13} "
-            f"{'zeta':>10} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  kind"
+            f"{'zeta':>10} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  {'kind':<11}  dominant coordinates"
         )
+        dominant = self.dominant()
         lines = [
             f"Modal analysis: n = {self.n}, {k} eigenvalues, method {self.method.describe()}",
             head,
@@ -244,11 +355,12 @@ class Modes(Result):
         for i in rows:
             lam = self.eigenvalues[i]
             zeta = self.damping_ratio[i]
-            zs = "nan" if np.isnan(zeta) else f"{zeta:.4g}"
+            zs = "nan" if np.isnan(zeta) else f"{zeta + 0.0:.4g}"  # (+ 0.0: no "-0" for an undamped mode)
             lines.append(
-                f"{i + 1:>4}  {lam.real:>13.6g} {lam.imag:>14.6g} {self.natural_frequency[i]:>13.6g} "
+                f"{i + 1:>4}  {lam.real + 0.0:>13.6g} {lam.imag + 0.0:>14.6g} {self.natural_frequency[i]:>13.6g} "
                 f"{zs:>10} {self.backward_error[i]:>8.1e} {self.condition[i]:>8.1e} "
-                f"{self.error_bound[i]:>8.1e} {self.multiplicity[i]:>4}  {self.kind[i]}"
+                f"{self.error_bound[i]:>8.1e} {self.multiplicity[i]:>4}  {self.kind[i]:<11}  "
+                + ", ".join(f"{name} {p:.0%}" for name, p in dominant[i])
             )
         if len(rows) < k:
             lines.append(f"... {k - len(rows)} more (higher frequencies)")

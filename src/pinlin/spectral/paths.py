@@ -11,9 +11,11 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
+from ..numerics.floating import EPS
 from ..numerics.scaling import Scaling
 from .problem import QuadraticProblem
 from .qep import solve_general
+from .refine import EIGH_PREDICTION_LIMIT, eigh_predicted_ok
 from .structured import PATHS, proportionality_defect, solve_proportional, solve_squared, solve_symmetric
 
 __all__ = ["choose_path", "solve_path", "STRUCTURE_TOL", "EIGH_TOL"]
@@ -28,8 +30,11 @@ STRUCTURE_TOL = 1e-10
 EIGH_TOL = 1e-14
 
 
-def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, eigh_tol: float):
+def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, eigh_tol: float, cond_M: float = 1.0):
     """(path name, reason, raw spectrum or None) for the requested method.
+
+    ``cond_M`` (the 2-norm condition number of M) predicts whether eigh can meet
+    ``eigh_tol`` (:func:`pinlin.spectral.refine.eigh_predicted_ok`).
 
     Raises
     ------
@@ -49,7 +54,7 @@ def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, ei
             "QZ (size 2n)",
             None,
         )
-    zD, zG, zN = sys.is_zero("D"), sys.is_zero("G"), sys.is_zero("N")
+    zD, zG, zN = problem.zero["D"], problem.zero["G"], problem.zero["N"]
     if method == "general":
         return "general", "requested: scaled companion QZ (size 2n)", None
     if method == "symmetric" or (method == "auto" and zD and zG and zN):
@@ -72,13 +77,15 @@ def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, ei
         defect = np.inf
         how = ""
         if comm <= structure_tol:
-            raw, defect, how = solve_proportional(problem, structure_tol=structure_tol, eigh_tol=eigh_tol)
+            raw, defect, how = solve_proportional(
+                problem, structure_tol=structure_tol, eigh_tol=eigh_tol, eigh_ok=eigh_predicted_ok(cond_M)
+            )
         if raw is not None:
             return (
                 "proportional",
                 f"G = N = 0, D M^-1 S = S M^-1 D (relative commutator {comm:.1e} <= structure_tol "
                 f"{structure_tol:g}): modal decoupling by one {how} of size n"
-                + (" (eigh lost accuracy: M ill-conditioned)" if how == "QZ" else "")
+                + (f" (eigh cannot meet eigh_tol: M ill-conditioned, cond {cond_M:.1e})" if how == "QZ" else "")
                 + ", lam^2 + d_j lam + k_j = 0 per mode",
                 raw,
             )
@@ -92,11 +99,18 @@ def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, ei
         return "general", f"G = N = 0 but damping not proportional ({why} > structure_tol): scaled companion QZ", None
     if method != "auto":
         raise ParameterError("method", f"expected 'auto' or one of {PATHS}, got {method!r}")
-    return "general", f"nonzero {'+'.join(sys.nonzero)}: no cheaper exact path; scaled companion QZ (size 2n)", None
+    nonzero = [name for name in ("D", "G") if not problem.zero[name]]
+    nonzero = ["M", *nonzero, *(["S"] if np.any(sys.S) else []), *(["N"] if not zN else [])]
+    return "general", f"nonzero {'+'.join(nonzero)}: no cheaper exact path; scaled companion QZ (size 2n)", None
 
 
-def solve_path(problem: QuadraticProblem, name: str, reason: str, raw, scaling: bool, eigh_tol: float):
+def solve_path(problem: QuadraticProblem, name: str, reason: str, raw, scaling: bool, eigh_tol: float,
+               cond_M: float = 1.0):
     """Run the chosen path: (raw spectrum, reason completed, scaling used or None).
+
+    The symmetric path takes eigh with Newton refinement when eps cond(M) lets
+    it reach ``eigh_tol`` (:mod:`pinlin.spectral.refine`), and otherwise -- predicted
+    from ``cond_M``, or measured after refinement -- QZ of the same n-size pencil.
 
     Raises
     ------
@@ -112,13 +126,23 @@ def solve_path(problem: QuadraticProblem, name: str, reason: str, raw, scaling: 
         if raw.note:
             reason += f"; {raw.note}"
     elif name == "symmetric":
-        raw, worst = solve_symmetric(problem)
-        if worst > eigh_tol:
+        if not eigh_predicted_ok(cond_M):
             raw = solve_squared(problem)
             reason += (
-                f"; eigh's Cholesky lost accuracy (max eta {worst:.1e} > eigh_tol {eigh_tol:g}, M ill-conditioned), "
-                f"so (S - mu M) was solved by QZ (size n) instead"
+                f"; M is too ill-conditioned for eigh (eps cond(M) = {EPS * cond_M:.1e} > "
+                f"{EIGH_PREDICTION_LIMIT:g}), so (S - mu M) was solved by QZ (size n, right vectors only)"
             )
+        else:
+            raw, pencil = solve_symmetric(problem, eigh_tol)
+            worst = float(pencil.eta.max())
+            if worst > eigh_tol:
+                raw = solve_squared(problem)
+                reason += (
+                    f"; eigh with {pencil.steps} Newton step(s) stayed above eigh_tol (max eta {worst:.1e} > "
+                    f"{eigh_tol:g}), so (S - mu M) was solved by QZ (size n) instead"
+                )
+            elif pencil.steps:
+                reason += f"; eigh refined by {pencil.steps} Newton step(s) to max eta {worst:.1e}"
     elif name == "squared":
         raw = solve_squared(problem)
     return raw, reason, used_scaling

@@ -21,6 +21,7 @@ non-finite and non-square input with the same messages.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -71,6 +72,26 @@ class QuadraticProblem:
     def n(self) -> int:
         return self.M.shape[0]
 
+    @functools.cached_property
+    def zero(self) -> dict[str, bool]:
+        """Which of D, G, N (a LinearizedSystem's) are exactly zero, decided once; empty for a tuple."""
+        sys = self.system
+        if sys is None:
+            return {}
+        return {name: not np.any(getattr(sys, name)) for name in ("D", "G", "N")}
+
+    @functools.cached_property
+    def symmetric(self) -> bool:
+        """M, C and K exactly symmetric: L(lam)^T = L(lam), so left eigenvectors are right ones."""
+        if self.system is not None:  # M, D, S are symmetric by construction; G and N are exactly zero or not
+            return self.zero["G"] and self.zero["N"]
+        return all(np.array_equal(X, X.T) for X in (self.M, self.C, self.K))
+
+    @functools.cached_property
+    def stacked(self) -> np.ndarray:
+        """(3n, n) the coefficients M, C, K one above the other (one product gives M V, C V, K V)."""
+        return np.concatenate([self.M, self.C, self.K])
+
     @property
     def mechanical(self) -> bool:
         """True when built from a LinearizedSystem (M spd, D, S symmetric, G, N skew)."""
@@ -82,7 +103,16 @@ class QuadraticProblem:
         Out of range: a factor, or a factor times its coefficient's norm, over- or underflows
         (a nonzero coefficient would become inf or 0).
         """
-        s = self.scaling if scaling is None else scaling
+        if scaling is None or scaling is self.scaling:
+            return self._own_factors
+        return self._factors_of(scaling)
+
+    @functools.cached_property
+    def _own_factors(self) -> tuple[float, float, float] | None:
+        """:meth:`factors` of the problem's own scaling, formed once."""
+        return self._factors_of(self.scaling)
+
+    def _factors_of(self, s: Scaling) -> tuple[float, float, float] | None:
         with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # inf * 0 is out of range too
             g, d = np.float64(s.gamma), np.float64(s.delta)
             factors = (g * g * d, g * d, d)

@@ -30,7 +30,8 @@ smallest.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+import functools
+from dataclasses import replace
 
 import numpy as np
 from scipy.linalg import lapack
@@ -40,6 +41,7 @@ from ..errors import ComputationError
 from ..numerics.accuracy import backward_errors
 from ..numerics.scaling import Scaling
 from .problem import QuadraticProblem
+from .raw import RawSpectrum
 
 __all__ = [
     "RawSpectrum",
@@ -56,33 +58,13 @@ __all__ = [
 TROPICAL_TAU = 10.0
 
 
-@dataclass(frozen=True, eq=False)
-class RawSpectrum:
-    """What a solver path hands to the result: eigenvalues, vectors and products.
-
-    Attributes
-    ----------
-    lam : (2n,) complex
-        Eigenvalues; complex ones come in exactly conjugate pairs.
-    X, Y : (n, 2n) complex
-        Right and left (y^T L = 0) eigenvectors, any scaling.
-    MX, CX, KX : (n, 2n) complex
-        Products of the original coefficients with X.
-    block : (2n,) int
-        Companion block the right vector was recovered from (1 or 2), 0 for
-        structured paths.
-    note : str
-        How the spectrum was obtained when that needs saying (tropical scaling).
-    """
-
-    lam: np.ndarray
-    X: np.ndarray
-    Y: np.ndarray
-    MX: np.ndarray
-    CX: np.ndarray
-    KX: np.ndarray
-    block: np.ndarray
-    note: str = ""
+def products(problem: QuadraticProblem, V: np.ndarray) -> np.ndarray:
+    """(4, n, k) [V, M V, C V, K V] for real or complex V (n, k): one matrix product with the stacked coefficients."""
+    n, k = V.shape
+    out = np.empty((4, n, k), dtype=V.dtype)
+    out[0] = V
+    out[1:] = (problem.stacked @ V).reshape(3, n, k)
+    return out
 
 
 def companion_pencil(M, C, K) -> tuple[np.ndarray, np.ndarray]:
@@ -100,7 +82,7 @@ def companion_pencil(M, C, K) -> tuple[np.ndarray, np.ndarray]:
 
 
 def complex_columns(R: np.ndarray, alphai: np.ndarray, conjugate: bool = False) -> np.ndarray:
-    """LAPACK's real storage of eigenvectors -> complex columns.
+    """LAPACK's real storage of eigenvectors -> complex columns (the last axis; leading axes are batches).
 
     A conjugate pair (alphai[j] > 0) is stored as columns j (real part) and j+1
     (imaginary part): v_j = R_j + i R_{j+1}, v_{j+1} = conj(v_j).  With
@@ -108,10 +90,12 @@ def complex_columns(R: np.ndarray, alphai: np.ndarray, conjugate: bool = False) 
     """
     out = R.astype(complex)
     first = np.flatnonzero(alphai > 0)
-    re, im = R[:, first], R[:, first + 1]
-    sign = -1.0 if conjugate else 1.0
-    out[:, first] = re + sign * 1j * im
-    out[:, first + 1] = re - sign * 1j * im
+    if first.size:
+        re, im = R[..., first], R[..., first + 1]
+        if conjugate:
+            im = -im
+        out[..., first] = re + 1j * im
+        out[..., first + 1] = re - 1j * im
     return out
 
 
@@ -131,14 +115,26 @@ def exact_pairs(alphar: np.ndarray, alphai: np.ndarray, beta: np.ndarray) -> np.
 _DGGEV_MIN_WORK = 8
 
 
+@functools.lru_cache(maxsize=64)
+def _dggev_lwork(size: int, left: bool) -> int:
+    """LAPACK's optimal workspace of dggev for a pencil of this size (a pure function of the size: asked once)."""
+    lwork = _DGGEV_MIN_WORK * size
+    probe = np.eye(size)
+    *_, work, info = lapack.dggev(probe, probe, compute_vl=int(left), compute_vr=1, lwork=-1)
+    return max(lwork, int(work[0])) if info == 0 else lwork
+
+
 def _dggev(A: np.ndarray, B: np.ndarray, left: bool = True):
-    lwork = _DGGEV_MIN_WORK * A.shape[0]
-    vl = int(left)
-    *_, work, info = lapack.dggev(A, B, compute_vl=vl, compute_vr=1, lwork=-1)
-    if info == 0:
-        lwork = max(lwork, int(work[0]))
+    """QZ of the real pencil (A, B) with right (and left) vectors; A and B are overwritten.
+
+    Raises
+    ------
+    ComputationError
+        LAPACK reports a failure.
+    """
     alphar, alphai, beta, vl, vr, _, info = lapack.dggev(
-        A, B, compute_vl=vl, compute_vr=1, lwork=lwork, overwrite_a=1, overwrite_b=1
+        A, B, compute_vl=int(left), compute_vr=1, lwork=_dggev_lwork(A.shape[0], bool(left)),
+        overwrite_a=1, overwrite_b=1,
     )
     if info != 0:
         raise ComputationError(f"LAPACK dggev (QZ) failed with info = {info} on a pencil of size {A.shape[0]}")
@@ -239,12 +235,12 @@ def _merge(problem: QuadraticProblem, plus: Scaling, minus: Scaling) -> RawSpect
                 continue
             if np.max(other_eta[js]) < np.max(cur_eta[group]):
                 take[group] = True
-        pick = take[None, :]
-        fields = {name: np.where(pick, getattr(other, name)[:, partner], getattr(cur, name))
-                  for name in ("X", "Y", "MX", "CX", "KX")}
-        cur = replace(cur, lam=np.where(take, other.lam[partner], cur.lam),
-                      block=np.where(take, other.block[partner], cur.block), **fields)
+        Y = None
+        if cur.Y is not None:
+            Y = np.where(take, other.Y[:, partner], cur.Y)
         cur_eta = np.where(take, other_eta[partner], cur_eta)
+        cur = replace(cur, lam=np.where(take, other.lam[partner], cur.lam), P=np.where(take, other.P[..., partner], cur.P),
+                      Y=Y, block=np.where(take, other.block[partner], cur.block), eta=cur_eta)
         source = np.where(take, k, source)
     tau = problem.norm_C / (np.sqrt(problem.norm_M) * np.sqrt(problem.norm_K))
     counts = [int(np.sum(source == k)) for k in range(3)]
@@ -257,48 +253,85 @@ def _merge(problem: QuadraticProblem, plus: Scaling, minus: Scaling) -> RawSpect
     return replace(cur, note=note)
 
 
+def scaled_companion(problem: QuadraticProblem, s: Scaling) -> tuple[np.ndarray, np.ndarray]:
+    """(A, B) of :func:`companion_pencil` for the coefficients scaled by ``s``, formed in place.
+
+    Raises
+    ------
+    ComputationError
+        A scaled coefficient is out of double range (see :meth:`QuadraticProblem.factors`).
+    """
+    f = problem.factors(s)
+    if f is None:
+        problem.scaled(s)  # raises the range error with its message
+    n = problem.n
+    A = np.zeros((2 * n, 2 * n))
+    B = np.zeros((2 * n, 2 * n))
+    np.multiply(problem.C, -f[1], out=A[:n, :n])
+    np.multiply(problem.K, -f[2], out=A[:n, n:])
+    np.multiply(problem.M, f[0], out=B[:n, :n])
+    np.fill_diagonal(A[n:, :n], 1.0)
+    np.fill_diagonal(B[n:, n:], 1.0)
+    return A, B
+
+
 def _solve_scaled(
     problem: QuadraticProblem, s: Scaling, *, allow_infinite: bool = False
 ) -> tuple[RawSpectrum, np.ndarray]:
     """QZ on the companion form scaled by ``s``: the raw spectrum and each pair's backward error.
 
-    With ``allow_infinite`` an infinite eigenvalue (the gamma- run of tropical
+    The right vector is taken from the block of z = (mu x, x) with the smaller
+    backward error; both blocks and their products with M, C, K come from one
+    matrix product and one conversion to complex columns.  With
+    ``allow_infinite`` an infinite eigenvalue (the gamma- run of tropical
     scaling can push the large ones there) gets lam = inf and eta = inf instead
     of an error.
+
+    Raises
+    ------
+    ComputationError
+        QZ failed, or found an infinite eigenvalue (without ``allow_infinite``).
     """
     n = problem.n
-    A, B = companion_pencil(*problem.scaled(s))
+    A, B = scaled_companion(problem, s)
     # L(lam)^T = L(lam) when M, C, K are symmetric: the left vectors are the right ones
-    symmetric = all(np.array_equal(X, X.T) for X in (problem.M, problem.C, problem.K))
+    symmetric = problem.symmetric
     alphar, alphai, beta, vl, vr = _dggev(A, B, left=not symmetric)
-    finite = (beta != 0) & np.isfinite(alphar) & np.isfinite(alphai)
-    if not np.all(finite) and not allow_infinite:
-        raise ComputationError(
-            f"QZ found {int(np.sum(~finite))} infinite eigenvalue(s): M is numerically singular "
-            f"(||M|| = {problem.norm_M:.3g})"
-        )
-    with np.errstate(divide="ignore", invalid="ignore"):
-        lam = s.gamma * exact_pairs(alphar, alphai, np.where(finite, beta, 1.0))
-    lam[~finite] = np.inf
-    # right vectors: both blocks, real storage, one product per coefficient
-    V = vr
-    MV = problem.M @ V[:n]
-    CV = problem.C @ V[:n]
-    KV = problem.K @ V[:n]
-    MW = problem.M @ V[n:]
-    CW = problem.C @ V[n:]
-    KW = problem.K @ V[n:]
-    X1, MX1, CX1, KX1 = (complex_columns(R, alphai) for R in (V[:n], MV, CV, KV))
-    X2, MX2, CX2, KX2 = (complex_columns(R, alphai) for R in (V[n:], MW, CW, KW))
-    with np.errstate(invalid="ignore"):  # lam = inf (allow_infinite): eta is set to inf below
-        eta1 = backward_errors(lam, X1, MX1, CX1, KX1, problem.norms)
-        eta2 = backward_errors(lam, X2, MX2, CX2, KX2, problem.norms)
-    use1 = eta1 < eta2
-    pick = use1[None, :]
-    X = np.where(pick, X1, X2)
-    MX = np.where(pick, MX1, MX2)
-    CX = np.where(pick, CX1, CX2)
-    KX = np.where(pick, KX1, KX2)
-    Y = X.copy() if symmetric else complex_columns(vl[:n], alphai, conjugate=True)
-    block = np.where(use1, 1, 2)
-    return RawSpectrum(lam, X, Y, MX, CX, KX, block), np.where(finite, np.minimum(eta1, eta2), np.inf)
+    if beta.all():
+        lam = exact_pairs(alphar, alphai, beta)
+        lam *= s.gamma
+        finite = np.isfinite(lam)
+    else:
+        finite = beta != 0
+    all_finite = bool(finite.all())
+    if not all_finite:
+        if not allow_infinite:
+            raise ComputationError(
+                f"QZ found {int(np.sum(~finite))} infinite eigenvalue(s): M is numerically singular "
+                f"(||M|| = {problem.norm_M:.3g})"
+            )
+        finite &= np.isfinite(alphar) & np.isfinite(alphai)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lam = s.gamma * exact_pairs(alphar, alphai, np.where(finite, beta, 1.0))
+        lam[~finite] = np.inf
+    # right (both blocks of z = (mu x, x)) and left vectors to complex columns in one conversion
+    Z = complex_columns(vr if symmetric else np.concatenate((vr, vl[:n])), alphai)
+    # the two blocks side by side, (n, 4n), and their products with M, C, K from one real product
+    # (a real matrix acts on the real and imaginary parts: the complex columns viewed as pairs)
+    both = np.empty((4, n, 4 * n), dtype=complex)
+    both[0, :, : 2 * n] = Z[:n]
+    both[0, :, 2 * n :] = Z[n : 2 * n]
+    both[1:] = (problem.stacked @ both[0].view(float)).view(complex).reshape(3, n, 4 * n)
+    if all_finite:
+        eta = backward_errors(np.concatenate((lam, lam)), *both, problem.norms).reshape(2, 2 * n)
+    else:
+        with np.errstate(invalid="ignore", over="ignore"):  # lam = inf (allow_infinite): eta is set to inf below
+            eta = backward_errors(np.concatenate((lam, lam)), *both, problem.norms).reshape(2, 2 * n)
+    use1 = eta[0] < eta[1]
+    blocks = both.reshape(4, n, 2, 2 * n)  # [quantity, row, block, column]
+    P = np.where(use1, blocks[:, :, 0], blocks[:, :, 1])
+    Y = None if symmetric else Z[2 * n :].conj()
+    best = np.where(use1, eta[0], eta[1])
+    if not all_finite:
+        best = np.where(finite, best, np.inf)
+    return RawSpectrum(lam, P, Y, np.where(use1, 1, 2), best), best

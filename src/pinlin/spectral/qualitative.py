@@ -20,13 +20,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.definiteness import DEFAULT_UNCERTAINTY, DEFINITENESS_TOL, Definiteness, definiteness
+from ..numerics.checks import check_uncertainty
+from ..numerics.definiteness import (
+    DEFAULT_UNCERTAINTY,
+    DEFINITENESS_TOL,
+    Definiteness,
+    symmetric_definiteness,
+)
 from ..numerics.determinant import Nonsingularity, nonsingularity
 from .problem import QuadraticProblem
+
+#: The smallest positive normal double.
+_TINY = float(np.finfo(float).tiny)
 
 __all__ = [
     "ModeConstants",
     "mode_constants",
+    "quadratic_forms",
+    "constants_from_quadratic_forms",
+    "constants_of",
     "StructuralFacts",
     "structural_facts",
     "DEFAULT_UNCERTAINTY",
@@ -70,9 +82,20 @@ def mode_constants(lam, X, MX, CX, KX) -> ModeConstants:
     and x^H G x, x^H N x imaginary; the rounding parts of the wrong kind are
     dropped.
     """
-    m = np.einsum("ij,ij->j", X.conj(), MX).real
-    c = np.einsum("ij,ij->j", X.conj(), CX) / m
-    k = np.einsum("ij,ij->j", X.conj(), KX) / m
+    quad = np.einsum("ij,kij->kj", np.conj(X), np.stack([MX, CX, KX]))
+    return constants_from_quadratic_forms(lam, quad)
+
+
+def quadratic_forms(X, P) -> np.ndarray:
+    """(3, k) x^H M x, x^H C x, x^H K x for the columns of X, given P = (M X, C X, K X) as a (3, n, k) array."""
+    return np.einsum("ij,kij->kj", np.conj(X), P)
+
+
+def constants_from_quadratic_forms(lam, quad) -> ModeConstants:
+    """:class:`ModeConstants` from the (3, k) quadratic forms x^H M x, x^H C x, x^H K x (see mode_constants)."""
+    m = quad[0].real
+    c = quad[1] / m
+    k = quad[2] / m
     d, g = c.real, c.imag
     kk, nn = k.real, k.imag
     one = np.ones_like(m)
@@ -82,6 +105,21 @@ def mode_constants(lam, X, MX, CX, KX) -> ModeConstants:
     with np.errstate(divide="ignore", invalid="ignore"):
         res = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
     return ModeConstants(one, d, g, kk, nn, res)
+
+
+def constants_of(lam, X, quad, M, C, K, norm_M: float) -> ModeConstants:
+    """:class:`ModeConstants` of the unit right vectors X from their quadratic forms ``quad`` (3, k).
+
+    Where x^H M x underflows (a tiny M) the forms are taken again with M, C, K
+    divided by ||M|| (the ratios are the same).
+    """
+    m = quad[0].real
+    bad = ~(np.isfinite(m) & (m > _TINY))
+    if np.any(bad):
+        quad = quad.copy()
+        Xb = X[:, bad]
+        quad[:, bad] = quadratic_forms(Xb, np.stack([(A / norm_M) @ Xb for A in (M, C, K)]))
+    return constants_from_quadratic_forms(lam, quad)
 
 
 @dataclass(frozen=True)
@@ -221,9 +259,11 @@ def structural_facts(problem: QuadraticProblem, uncertainty: float = DEFAULT_UNC
     sys = problem.system
     if sys is None:
         return _general(nonsingularity(problem.M, uncertainty), nonsingularity(problem.K, uncertainty))
-    circ = not sys.is_zero("N")
-    det_K = nonsingularity(sys.K, uncertainty) if circ else None
+    u = check_uncertainty(uncertainty)
+    zero = problem.zero
+    circ = not zero["N"]
+    det_K = nonsingularity(sys.K, u) if circ else None
     return _mechanical(
-        definiteness(sys.M, uncertainty), definiteness(sys.D, uncertainty), definiteness(sys.S, uncertainty),
-        not sys.is_zero("G"), circ, not sys.is_zero("D"), det_K,
+        symmetric_definiteness(sys.M, u), symmetric_definiteness(sys.D, u), symmetric_definiteness(sys.S, u),
+        not zero["G"], circ, not zero["D"], det_K,
     )

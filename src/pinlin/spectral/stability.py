@@ -39,7 +39,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -106,14 +106,38 @@ def stability_from_structure(
     verdict = theorem_verdict(facts)
     if verdict is None:
         return None
-    margin = 0.0
-    if verdict.kind != "undecided":
-        margin = _margin(verdict.kind, lambda d: _kind_of(theorem_verdict(facts.at(d))), u)
-    return replace(verdict, elapsed=time.perf_counter() - t0, uncertainty=u, margin=margin)
+    if verdict.kind == "undecided":
+        return verdict.replace(elapsed=time.perf_counter() - t0, uncertainty=u, margin=0.0)
+    question = _MarginQuestion(verdict.kind, u, facts, None, None, (), {}, verdict.safety)
+    return verdict.replace(elapsed=time.perf_counter() - t0, uncertainty=u, margin=None, margin_of=question)
 
 
-def _kind_of(verdict: Stability | None) -> str | None:
-    return None if verdict is None else verdict.kind
+@dataclass(frozen=True, eq=False)
+class _MarginQuestion:
+    """The margin of a verdict as a function of immutable evidence (picklable; called on first access).
+
+    ``lam is None``: a verdict of the theorems alone (:func:`theorem_verdict` at
+    the facts decided against delta); otherwise the rules of
+    :data:`~pinlin.spectral.stability_rules.RULES` at the evidence against delta.
+    """
+
+    kind: str
+    uncertainty: float
+    facts: StructuralFacts
+    lam: np.ndarray | None
+    model: ErrorModel | None
+    clusters: tuple
+    flags: dict
+    safety: float
+
+    def kind_at(self, delta: float) -> str | None:
+        if self.lam is None:
+            verdict = theorem_verdict(self.facts.at(delta))
+            return None if verdict is None else verdict.kind
+        return _verdict(self.facts, self.lam, self.model, self.clusters, self.flags, self.safety, delta).kind
+
+    def __call__(self) -> float:
+        return _margin(self.kind, self.kind_at, self.uncertainty)
 
 
 def _margin(kind: str, kind_at, uncertainty: float) -> float:
@@ -168,7 +192,9 @@ def decide_stability(
     order; the first that decides gives the verdict (the last always does).
     The bounds are ``safety * model.bound(uncertainty)``.  The margin is the
     largest data uncertainty at which the same rules still give the same kind
-    (bisection, :data:`MARGIN_CAP` at most); the reason then states it.
+    (bisection, :data:`MARGIN_CAP` at most), computed on first access of
+    ``margin``, ``error``, ``reason`` (which states it) or ``to_dict()``: the
+    verdict itself costs one pass through the rules.
 
     Parameters
     ----------
@@ -194,13 +220,8 @@ def decide_stability(
     flags = {"K_is_zero": K_is_zero, "exact_drift": exact_drift}
     verdict = _verdict(facts, lam, model, clusters, flags, safety, u)
     if verdict.kind == "undecided":
-        margin = 0.0
-        reason = verdict.reason
-    else:
-        margin = _margin(verdict.kind, lambda d: _verdict(facts, lam, model, clusters, flags, safety, d).kind, u)
-        cap = "at least " if margin >= MARGIN_CAP else ""
-        reason = (
-            f"{verdict.reason}; margin {cap}{margin:.1e}: the verdict holds for every system within that "
-            f"relative perturbation of the data"
-        )
-    return replace(verdict, reason=reason, margin=margin, elapsed=time.perf_counter() - t0)
+        return verdict.replace(margin=0.0, elapsed=time.perf_counter() - t0)
+    question = _MarginQuestion(
+        verdict.kind, u, facts, np.asarray(lam), model, tuple(clusters), flags, safety
+    )
+    return verdict.replace(margin=None, margin_of=question, quote_margin=True, elapsed=time.perf_counter() - t0)

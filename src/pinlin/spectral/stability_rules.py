@@ -14,7 +14,7 @@ theorems use is certain within rounding and the uncertainty
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -141,7 +141,7 @@ def structure_theorems(ev: Evidence) -> Stability | None:
     lam, re = ev.lam, ev.re
     if pure.kind == "undecided":  # M positive definite only within rounding: the largest eigenvalue is doubtful
         i = int(np.argmax(np.abs(lam)))
-        return replace(pure, eigenvalue=complex(lam[i]), error_bound=float(ev.r[i]), uncertainty=ev.uncertainty)
+        return pure.replace(eigenvalue=complex(lam[i]), error_bound=float(ev.r[i]), uncertainty=ev.uncertainty)
     if pure.kind == "divergence":
         pos = np.flatnonzero((lam.imag == 0) & (re > 0))
         i = int(pos[np.argmax(re[pos])]) if pos.size else ev.right
@@ -150,8 +150,8 @@ def structure_theorems(ev: Evidence) -> Stability | None:
         i = ev.right
         reason = pure.reason
     reason += _certificates(ev.facts)
-    return replace(
-        pure, reason=reason, eigenvalue=complex(lam[i]), error_bound=float(ev.r[i]), uncertainty=ev.uncertainty
+    return pure.replace(
+        reason=reason, eigenvalue=complex(lam[i]), error_bound=float(ev.r[i]), uncertainty=ev.uncertainty
     )
 
 

@@ -30,7 +30,8 @@ import scipy.linalg as sla
 from ..errors import ComputationError
 from ..numerics.scaling import frobenius
 from .problem import QuadraticProblem
-from .qep import RawSpectrum, _dggev, complex_columns, exact_pairs
+from .qep import RawSpectrum, _dggev, complex_columns, exact_pairs, products
+from .refine import RefinedPencil, pencil_backward_errors, refined_eigh
 
 __all__ = ["solve_symmetric", "solve_squared", "solve_proportional", "proportionality_defect", "PATHS"]
 
@@ -42,48 +43,35 @@ PATHS = ("symmetric", "squared", "proportional", "general")
 _MIX = 0.6180339887498949
 
 
-def _duplicate(lam_a, lam_b, *cols):
-    """Interleave two eigenvalue sets sharing the same vectors: (a_0, b_0, a_1, b_1, ...)."""
-    k = lam_a.shape[0]
-    lam = np.empty(2 * k, dtype=complex)
-    lam[0::2], lam[1::2] = lam_a, lam_b
-    out = []
-    for c in cols:
-        d = np.empty((c.shape[0], 2 * k), dtype=complex)
-        d[:, 0::2] = c
-        d[:, 1::2] = c
-        out.append(d)
-    return lam, out
+def _mirrored(lam_a, lam_b, X, MX, CX, KX) -> RawSpectrum:
+    """One member of each pair with the shared real vectors, the other in ``second`` (see RawSpectrum)."""
+    return RawSpectrum(lam_a, np.stack([X, MX, CX, KX]), None, np.zeros(lam_a.shape[0], dtype=int), second=lam_b)
 
 
-def solve_symmetric(problem: QuadraticProblem) -> tuple[RawSpectrum, float]:
-    """D = G = N = 0: (S - mu M) phi = 0 by eigh, lam = +-sqrt(-mu), x = y = phi.
+def solve_symmetric(problem: QuadraticProblem, eigh_tol: float) -> tuple[RawSpectrum, RefinedPencil]:
+    """D = G = N = 0: (S - mu M) phi = 0 by eigh and Newton refinement, lam = +-sqrt(-mu), x = y = phi.
 
     mu > 0 gives the conjugate pair +-i sqrt(mu) (an undamped mode); mu < 0 the
     real pair -+sqrt(-mu) (divergence); mu = 0 a double zero (rigid-body mode).
+    L(lam) = lam^2 M + S is symmetric: the left vectors are the right ones.
 
     Returns
     -------
     raw : RawSpectrum
-    worst : float
-        Largest backward error eta of the pairs.  ``eigh`` reduces the pencil
-        with a Cholesky factor of M, so eta grows like eps cond(M); the caller
-        switches to :func:`solve_squared` (QZ, backward stable) when it is too large.
+    pencil : RefinedPencil
+        The pencil's solution with its backward errors and the Newton steps taken
+        (:func:`pinlin.spectral.refine.refined_eigh`); the caller switches to
+        :func:`solve_squared` (QZ) when they stay above ``eigh_tol``.
     """
     sys = problem.system
     M, S = sys.M, sys.S
-    mu, Phi = sla.eigh(S, M)
+    pencil = refined_eigh(S, M, problem.norm_K, problem.norm_M, eigh_tol)
+    mu = pencil.w
     root = np.sqrt(np.abs(mu))
     pos = mu > 0
     lam_a = np.where(pos, 1j * root, -root + 0j)
     lam_b = np.where(pos, -1j * root, root + 0j)
-    MP, SP = M @ Phi, S @ Phi
-    num = np.linalg.norm(SP - MP * mu, axis=0)
-    den = (np.abs(mu) * problem.norm_M + problem.norm_K) * np.linalg.norm(Phi, axis=0)
-    eta = np.where(num == 0, 0.0, num / np.where(den > 0, den, np.finfo(float).tiny))
-    lam, (X, MX, KX) = _duplicate(lam_a, lam_b, Phi, MP, SP)
-    raw = RawSpectrum(lam, X, X.copy(), MX, np.zeros_like(MX), KX, np.zeros(lam.shape[0], dtype=int))
-    return raw, float(np.max(eta))
+    return _mirrored(lam_a, lam_b, pencil.X, pencil.MX, np.zeros_like(pencil.MX), pencil.AX), pencil
 
 
 def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
@@ -92,7 +80,8 @@ def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
     L(lam) = lam^2 M + K, so each eigenvalue mu of the n-size pencil (-K, M)
     with vectors (x, y) gives the two eigenvalues +-sqrt(mu) of L with the same
     vectors.  A conjugate pair (mu, conj mu) gives the four eigenvalues
-    +-sqrt(mu), +-conj(sqrt(mu)), arranged as two conjugate pairs.
+    +-sqrt(mu), +-conj(sqrt(mu)), arranged as two conjugate pairs.  When K is
+    symmetric (N = 0) so is L, and QZ computes right vectors only.
 
     Raises
     ------
@@ -100,14 +89,13 @@ def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
         QZ failed or found an infinite eigenvalue (M numerically singular).
     """
     M, K = problem.M, problem.K
-    alphar, alphai, beta, vl, vr = _dggev(-K, M.copy())
+    symmetric = problem.symmetric
+    alphar, alphai, beta, vl, vr = _dggev(-K, M.copy(), left=not symmetric)
     if np.any(beta == 0):
         raise ComputationError("QZ of (-K, M) found an infinite eigenvalue: M is numerically singular")
     mu = exact_pairs(alphar, alphai, beta)
-    X = complex_columns(vr, alphai)
-    MX = complex_columns(M @ vr, alphai)
-    KX = complex_columns(K @ vr, alphai)
-    Y = complex_columns(vl, alphai, conjugate=True)
+    P = complex_columns(products(problem, vr), alphai)
+    Y = None if symmetric else complex_columns(vl, alphai, conjugate=True)
     # real mu: roots s and -s; complex mu (first of its pair): s and its conjugate
     # come from mu and conj(mu) -> build as pairs (s, conj s) and (-s, -conj s).
     lam_list, idx_list = [], []
@@ -131,9 +119,8 @@ def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
             j += 2
     lam = np.array(lam_list, dtype=complex)
     idx = np.array(idx_list, dtype=int)
-    return RawSpectrum(
-        lam, X[:, idx], Y[:, idx], MX[:, idx], np.zeros_like(MX[:, idx]), KX[:, idx], np.zeros(lam.shape[0], dtype=int)
-    )
+    P = P[..., idx]
+    return RawSpectrum(lam, P, None if Y is None else Y[:, idx], np.zeros(lam.shape[0], dtype=int))
 
 
 def proportionality_defect(problem: QuadraticProblem) -> float:
@@ -155,15 +142,8 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     return float(frobenius(comm) / nd / ns / inv_norm)
 
 
-def _gep_eta(A, M, w, Phi, AP, MP) -> np.ndarray:
-    """Backward errors of the pairs (w_j, phi_j) of the pencil (A, M), Frobenius norms."""
-    num = np.linalg.norm(AP - MP * w, axis=0)
-    den = (np.abs(w) * np.linalg.norm(M) + np.linalg.norm(A)) * np.linalg.norm(Phi, axis=0)
-    return np.where(num == 0, 0.0, num / np.where(den > 0, den, np.finfo(float).tiny))
-
-
 def solve_proportional(
-    problem: QuadraticProblem, *, structure_tol: float, eigh_tol: float
+    problem: QuadraticProblem, *, structure_tol: float, eigh_tol: float, eigh_ok: bool = True
 ) -> tuple[RawSpectrum | None, float, str]:
     """G = N = 0 with proportional damping: modal decoupling.
 
@@ -174,9 +154,10 @@ def solve_proportional(
                d_j = \\frac{\\phi_j^T D \\phi_j}{\\phi_j^T M \\phi_j},\\;
                k_j = \\frac{\\phi_j^T S \\phi_j}{\\phi_j^T M \\phi_j}
 
-    solved without cancellation.  The modes come from ``eigh``; when its
-    backward error exceeds ``eigh_tol`` (M ill-conditioned) from QZ of the same
-    n-size pencil instead.
+    solved without cancellation.  The modes come from ``eigh`` with Newton
+    refinement (:func:`pinlin.spectral.refine.refined_eigh`); when their backward
+    error stays above ``eigh_tol``, or ``eigh_ok`` is False (M too ill-conditioned
+    for eigh, predicted by the caller), from QZ of the same n-size pencil instead.
 
     Returns
     -------
@@ -187,17 +168,21 @@ def solve_proportional(
         Largest relative residual ||D phi - d M phi|| / ((|d| ||M|| + ||D||) ||phi||),
         and the same for S.
     how : str
-        "eigh" or "QZ".
+        "eigh", "eigh + Newton" or "QZ".
     """
     sys = problem.system
     M, D, S = sys.M, sys.D, sys.S
     nd, ns = frobenius(D), frobenius(S)
     # S + t D with t = _MIX ns / nd, formed as (_MIX ns) (D / nd): t alone may overflow
     A = S + (_MIX * ns) * (D / nd) if nd > 0 and ns > 0 else S + _MIX * D
-    w, Phi = sla.eigh(A, M)
-    MP = M @ Phi
-    how = "eigh"
-    if np.max(_gep_eta(A, M, w, Phi, A @ Phi, MP)) > eigh_tol:
+    norm_M, norm_A = frobenius(M), frobenius(A)
+    Phi = None
+    if eigh_ok:
+        pencil = refined_eigh(A, M, norm_A, norm_M, eigh_tol)
+        if pencil.eta.max() <= eigh_tol:
+            Phi, MP = pencil.X, pencil.MX
+            how = "eigh" if pencil.steps == 0 else "eigh + Newton"
+    if Phi is None:
         alphar, alphai, beta, _, vr = _dggev(A.copy(), M.copy(), left=False)
         if np.any(alphai != 0) or np.any(beta == 0):
             return None, np.inf, "QZ"
@@ -208,7 +193,8 @@ def solve_proportional(
     m = np.einsum("ij,ij->j", Phi, MP)
     d = np.einsum("ij,ij->j", Phi, DP) / m
     k = np.einsum("ij,ij->j", Phi, SP) / m
-    defect = float(max(np.max(_gep_eta(D, M, d, Phi, DP, MP)), np.max(_gep_eta(S, M, k, Phi, SP, MP))))
+    defect = float(max(np.max(pencil_backward_errors(d, Phi, MP, DP, nd, norm_M)),
+                       np.max(pencil_backward_errors(k, Phi, MP, SP, ns, norm_M))))
     if defect > structure_tol:
         return None, defect, how
     disc = d * d - 4 * k
@@ -225,5 +211,6 @@ def solve_proportional(
         other = np.where(q != 0, k[real] / np.where(q != 0, q, 1.0), 0.0)
     lam_a[real] = np.minimum(q, other)
     lam_b[real] = np.maximum(q, other)
-    lam, (X, MX, CX, KX) = _duplicate(lam_a, lam_b, Phi, MP, DP, SP)
-    return RawSpectrum(lam, X, X.copy(), MX, CX, KX, np.zeros(lam.shape[0], dtype=int)), defect, how
+    raw = _mirrored(lam_a, lam_b, Phi, MP, DP, SP)
+    # real roots of one mode differ in modulus and take different places in the order: stored in full
+    return (raw if cplx.all() else raw.expanded()), defect, how

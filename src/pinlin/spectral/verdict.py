@@ -8,7 +8,7 @@ eigenvalues are in :mod:`pinlin.spectral.stability_rules`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable
 
 from ..numerics.floating import EPS
 from ..results import Result
@@ -30,16 +30,24 @@ MARGIN_CAP = 0.5
 _SPECTRUM_METHOD = "computed eigenvalues against their first-order error bounds"
 
 
-@dataclass(frozen=True)
 class Stability(Result):
     """A stability verdict and why.
+
+    An immutable value.  The verdict (``kind``, ``theorem``, ``eigenvalue``,
+    ``error_bound``, ``bounded``) is decided when it is made; the ``margin``
+    (a bisection that re-decides the verdict about twenty times) is computed on
+    first access of ``margin``, ``error``, ``reason`` (which quotes it) or
+    ``to_dict()``, and kept: a pure function of the immutable evidence, so
+    concurrent first accesses compute the same number.
 
     Attributes
     ----------
     kind : str
         One of :data:`KINDS`.
     reason : str
-        The theorem applied, or the eigenvalue that decides and its error bound.
+        The theorem applied, or the eigenvalue that decides and its error bound;
+        for a verdict of :func:`~pinlin.spectral.stability.decide_stability`
+        that decides, followed by its margin.
     theorem : str or None
         Short name of the theorem used ("Thomson-Tait-Chetaev", ...), None when
         the computed eigenvalues alone decide.
@@ -53,7 +61,8 @@ class Stability(Result):
     safety : float
         Factor applied to the first-order bounds.
     elapsed : float
-        Seconds spent deciding [s] (the eigenvalues' own cost is in ``Modes.elapsed``).
+        Seconds spent deciding [s] (the eigenvalues' own cost is in
+        ``Modes.elapsed``; the margin's, paid on first access, is not included).
     margin : float
         The largest relative perturbation of the data (each matrix in its own
         norm, and normwise for the eigenvalue bounds) for which the verdict
@@ -72,16 +81,74 @@ class Stability(Result):
         uncertainty of the data, 1 for "undecided", whose margin is 0).
     """
 
-    kind: str
-    reason: str
-    theorem: str | None = None
-    eigenvalue: complex | None = None
-    error_bound: float | None = None
-    bounded: bool | None = None
-    safety: float = STABILITY_SAFETY
-    elapsed: float = 0.0
-    margin: float = 0.0
-    uncertainty: float = 0.0
+    _dict_fields = (
+        "kind", "reason", "theorem", "eigenvalue", "error_bound", "bounded", "safety", "elapsed", "margin",
+        "uncertainty",
+    )
+
+    def __init__(
+        self,
+        kind: str,
+        reason: str,
+        theorem: str | None = None,
+        eigenvalue: complex | None = None,
+        error_bound: float | None = None,
+        bounded: bool | None = None,
+        safety: float = STABILITY_SAFETY,
+        elapsed: float = 0.0,
+        margin: float | None = 0.0,
+        uncertainty: float = 0.0,
+        *,
+        margin_of: Callable[[], float] | None = None,
+        quote_margin: bool = False,
+    ):
+        """``margin=None`` with ``margin_of`` (a pure function of immutable data) computes it on first access;
+        ``quote_margin`` appends it to the reason."""
+        values = {
+            "kind": kind, "_basis": reason, "theorem": theorem, "eigenvalue": eigenvalue,
+            "error_bound": error_bound, "bounded": bounded, "safety": safety, "elapsed": elapsed,
+            "_margin": margin, "uncertainty": uncertainty, "_margin_of": margin_of, "_quote": bool(quote_margin),
+        }
+        if margin is None and margin_of is None:  # pragma: no cover (programming error)
+            raise TypeError("Stability needs a margin or a function that computes it")
+        self.__dict__.update(values)
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"Stability is immutable: cannot set {name!r}")
+
+    def __delattr__(self, name):
+        raise AttributeError(f"Stability is immutable: cannot delete {name!r}")
+
+    def replace(self, **changes) -> Stability:
+        """A copy with some attributes changed (as :func:`dataclasses.replace`); a lazy margin stays lazy."""
+        args = {name: changes.pop(name, getattr(self, "_basis" if name == "reason" else name))
+                for name in ("kind", "reason", "theorem", "eigenvalue", "error_bound", "bounded", "safety",
+                             "elapsed", "uncertainty")}
+        margin = changes.pop("margin", self.__dict__["_margin"])
+        margin_of = changes.pop("margin_of", self.__dict__["_margin_of"] if margin is None else None)
+        quote = changes.pop("quote_margin", self._quote)
+        if changes:
+            raise TypeError(f"unknown Stability attributes {sorted(changes)}")
+        return Stability(**args, margin=margin, margin_of=margin_of, quote_margin=quote)
+
+    @property
+    def margin(self) -> float:
+        value = self.__dict__["_margin"]
+        if value is None:
+            value = float(self.__dict__["_margin_of"]())
+            self.__dict__["_margin"] = value  # pure function of immutable data: every thread gets this number
+        return value
+
+    @property
+    def reason(self) -> str:
+        if not self._quote:
+            return self._basis
+        margin = self.margin
+        cap = "at least " if margin >= MARGIN_CAP else ""
+        return (
+            f"{self._basis}; margin {cap}{margin:.1e}: the verdict holds for every system within that "
+            f"relative perturbation of the data"
+        )
 
     @property
     def stable(self) -> bool:
@@ -99,6 +166,23 @@ class Stability(Result):
     def error(self) -> float:
         floor = max(self.uncertainty, EPS)
         return 1.0 if self.margin <= floor else float(floor / self.margin)
+
+    def _key(self) -> tuple:
+        return tuple(getattr(self, name) for name in self._dict_fields)
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, Stability):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __getstate__(self) -> dict:
+        return dict(self.__dict__)
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
 
     def __str__(self) -> str:
         return f"{self.kind.replace('_', ' ')}: {self.reason}"

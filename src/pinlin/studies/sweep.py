@@ -9,12 +9,15 @@ function from the same arguments, and the figures the sweep keeps about each
 point (its value's headline error, its run time, its failure) are taken where
 the point ran, before its value travels back (a process pool pickles values,
 which may drop figures).  Progress (a bar, a callback) follows the order in
-which points finish; the values come back in grid order.
+which points finish; the values come back in grid order.  On an executor the
+points are submitted in chunks (several points per task, :func:`chunk_size_for`),
+so that submitting and pickling cost little against the points themselves.
 """
 
 from __future__ import annotations
 
 import itertools
+import os
 import time
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import Executor
@@ -24,10 +27,18 @@ import numpy as np
 
 from ..errors import ParameterError
 from .progress import PROGRESS_MIN_POINTS, PROGRESS_WIDTH, progress_bar
-from .scheduling import function_name, run_points
+from .scheduling import call_point, function_name, run_points
 from .sweep_result import SweepFailure, SweepResult
 
-__all__ = ["sweep", "SweepResult", "SweepFailure", "PROGRESS_MIN_POINTS", "PROGRESS_WIDTH"]
+__all__ = [
+    "sweep",
+    "SweepResult",
+    "SweepFailure",
+    "chunk_size_for",
+    "CHUNKS_PER_WORKER",
+    "PROGRESS_MIN_POINTS",
+    "PROGRESS_WIDTH",
+]
 
 
 def _points(grid) -> tuple[tuple[str, ...], list[dict], tuple[int, ...], dict]:
@@ -56,6 +67,72 @@ def _points(grid) -> tuple[tuple[str, ...], list[dict], tuple[int, ...], dict]:
     return names, points, (len(points),), {}
 
 
+#: Chunks per worker of the automatic chunk size: uneven point costs leave a worker at most
+#: about one chunk (an eighth of its share) behind the others, while the cost of submitting
+#: and pickling tasks falls by the chunk size.
+CHUNKS_PER_WORKER = 8
+
+
+def _workers(executor) -> int:
+    """The number of workers an executor runs at once (its ``_max_workers``, a Dask client's threads)."""
+    for name in ("_max_workers", "max_workers"):
+        value = getattr(executor, name, None)
+        if isinstance(value, int) and value > 0:
+            return value
+    client = getattr(executor, "_client", None)  # Dask's ClientExecutor
+    nthreads = getattr(client, "nthreads", None)
+    if callable(nthreads):
+        try:
+            return max(1, int(sum(nthreads().values())))
+        except (TypeError, ValueError, AttributeError, OSError):
+            pass  # an executor that cannot say: the machine's processors below
+    return os.cpu_count() or 1
+
+
+def chunk_size_for(points: int, executor: Executor, chunk_size: int | None = None) -> int:
+    """Points per submitted task: ``chunk_size`` when given, else ceil(points / (workers * CHUNKS_PER_WORKER)).
+
+    Raises
+    ------
+    ParameterError
+        ``chunk_size`` is not a positive integer.
+    """
+    if chunk_size is not None:
+        if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
+            raise ParameterError("chunk_size", f"expected a positive integer, got {chunk_size!r}")
+        return int(chunk_size)
+    return max(1, -(-points // (_workers(executor) * CHUNKS_PER_WORKER)))
+
+
+def _call_chunk(function: Callable, points: list, stop_on_error: bool) -> list:
+    """Each point of a chunk as :func:`~pinlin.studies.scheduling.call_point` gives it, where the chunk runs.
+
+    With ``stop_on_error`` the first failure is raised (the chunk fails as one
+    task, so the scheduler cancels the chunks after it, as it does points).
+    """
+    out = []
+    for point in points:
+        item = call_point(function, point)
+        if stop_on_error and isinstance(item[0], SweepFailure):
+            raise item[0].exception
+        out.append(item)
+    return out
+
+
+def _run_chunks(function, points, executor, size, report, on_error) -> list:
+    """:func:`run_points` over chunks of ``size`` points; items and reports per point, in grid order."""
+    starts = range(0, len(points), size)
+    chunks = [{"function": function, "points": points[i : i + size], "stop_on_error": on_error == "raise"}
+              for i in starts]
+
+    def chunk_report(index: int, item) -> None:
+        for j, point_item in enumerate(item[0]):
+            report(index * size + j, point_item)
+
+    done = run_points(_call_chunk, chunks, executor, chunk_report, on_error)
+    return [point_item for chunk_items, _, _ in done for point_item in chunk_items]
+
+
 def sweep(
     function: Callable[..., Any],
     grid: Mapping[str, Sequence] | Sequence[Mapping[str, Any]],
@@ -65,6 +142,7 @@ def sweep(
     stream: TextIO | None = None,
     on_error: str = "raise",
     callback: Callable[[int, dict, Any], None] | None = None,
+    chunk_size: int | None = None,
 ) -> SweepResult:
     """Evaluate ``function(**point)`` at every point of a parameter grid.
 
@@ -100,6 +178,11 @@ def sweep(
         finishes, in completion order (``index`` into ``points``; ``value`` a
         :class:`SweepFailure` for a recorded failure).  What it raises stops the
         sweep and propagates.
+    chunk_size : int, optional
+        Points per task submitted to the executor (default: chosen from the number
+        of points and the executor's workers, :func:`chunk_size_for`, 1 for short
+        sweeps).  Fewer, larger tasks cost less submission and pickling; progress
+        and callbacks then advance a chunk at a time (its points in grid order).
 
     Returns
     -------
@@ -111,7 +194,8 @@ def sweep(
     ------
     ParameterError
         An empty or malformed grid, a ``function`` or ``callback`` that is not
-        callable, an executor without ``submit``, an unknown ``on_error`` or ``progress``.
+        callable, an executor without ``submit``, an unknown ``on_error`` or ``progress``,
+        a ``chunk_size`` that is not a positive integer.
     MissingDependencyError
         ``progress="tqdm"`` without tqdm installed.
     PinlinError
@@ -136,12 +220,18 @@ def sweep(
         if callback is not None:
             callback(index, points[index], item[0])
 
+    size = 1 if executor is None else chunk_size_for(len(points), executor, chunk_size)
     try:
-        items = run_points(function, points, executor, report, on_error)
+        if size == 1:
+            items = run_points(function, points, executor, report, on_error)
+        else:
+            items = _run_chunks(function, points, executor, size, report, on_error)
     finally:
         if bar is not None:
             bar.close()
     where = "in this process" if executor is None else f"on a {type(executor).__name__}"
+    if size > 1:
+        where += f" in chunks of {size} points"
     kind = "grid" if axes else "list"
     method = f"{function_name(function)}(**point) at {len(points)} points of a {kind} over {', '.join(names)}, {where}"
     return SweepResult(

@@ -1,0 +1,141 @@
+"""The order of a computed spectrum and the per-eigenvalue kinds (SPEC section 9, docs/conventions.md).
+
+Eigenvalues are listed by ascending |lam|; a conjugate pair is adjacent with
+Im lam > 0 first; among equal |lam| the smaller real part comes first.  Both
+functions work on whole arrays (no loop over eigenvalues).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from .accuracy import PairFigures, pair_figures
+from .multiplicity import Cluster
+from .problem import QuadraticProblem
+from .qep import RawSpectrum
+
+__all__ = ["order_spectrum", "mode_kinds", "mirrored_figures"]
+
+
+def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(leaders, mates): each real eigenvalue (mate -1) and each Im > 0 member with the index of its conjugate.
+
+    LAPACK and the structured paths store a pair adjacently (Im > 0 first); any
+    other arrangement is matched by exact conjugate value.  A member whose exact
+    conjugate is missing stands alone.
+    """
+    pos = np.flatnonzero(lam.imag > 0)
+    neg = np.flatnonzero(lam.imag < 0)
+    real = np.flatnonzero(lam.imag == 0)
+    if pos.size == neg.size and np.array_equal(neg, pos + 1) and np.array_equal(lam[neg], np.conj(lam[pos])):
+        mates = neg
+        alone = np.zeros(0, dtype=int)
+    else:
+        free: dict[complex, list[int]] = {}
+        for i in neg:
+            free.setdefault(complex(lam[i]), []).append(int(i))
+        found = []
+        for i in pos:
+            partners = free.get(complex(np.conj(lam[i])))
+            found.append(partners.pop() if partners else -1)
+        mates = np.array(found, dtype=int)
+        alone = np.array([i for rest in free.values() for i in rest], dtype=int)
+    leaders = np.concatenate([pos, real, alone]).astype(int)
+    mates = np.concatenate([mates, np.full(real.size + alone.size, -1)]).astype(int)
+    return leaders, mates
+
+
+def order_spectrum(raw: RawSpectrum) -> RawSpectrum:
+    """Sort by |lam|, conjugate pairs adjacent (Im > 0 first), and make pair vectors exact conjugates."""
+    lam = raw.lam
+    leaders, mates = _pairs(lam)
+    first = lam[leaders]
+    keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
+    leaders, mates = leaders[keys], mates[keys]
+    perm = np.column_stack([leaders, mates]).ravel()
+    perm = perm[perm >= 0]
+    sizes = 1 + (mates >= 0)
+    at = (np.cumsum(sizes) - sizes)[mates >= 0]  # new position of each pair's Im > 0 member
+    P = raw.P[..., perm]
+    P[..., at + 1] = np.conj(P[..., at])
+    Y = None
+    if raw.Y is not None:
+        Y = raw.Y[:, perm]
+        Y[:, at + 1] = np.conj(Y[:, at])
+    block = raw.block[perm]
+    block[at + 1] = block[at]
+    eta = None
+    if raw.eta is not None:
+        eta = raw.eta[perm]
+        eta[at + 1] = eta[at]
+    return replace(raw, lam=lam[perm], P=P, Y=Y, block=block, eta=eta)
+
+
+def _interleave(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Columns (last axis) a_0, b_0, a_1, b_1, ..."""
+    out = np.empty(a.shape[:-1] + (2 * a.shape[-1],), dtype=np.result_type(a, b))
+    out[..., 0::2], out[..., 1::2] = a, b
+    return out
+
+
+def mirrored_figures(problem: QuadraticProblem, raw: RawSpectrum) -> tuple[np.ndarray, np.ndarray, PairFigures]:
+    """Order a mirrored spectrum and compute its pair figures on one member of each pair (half the work).
+
+    The structured paths give pairs (a, b) sharing one real vector x with
+    |lam_b| = |lam_a| and lam_b = -lam_a (C = 0) or conj(lam_a): then L(lam_b) x
+    is L(lam_a) x or its conjugate, so both have the same backward error, and
+    |y^T L'(lam) x|, hence the sensitivity and the bound, agree; only L'(lam_b)
+    and the normalized left vector x / (x^T L'(lam_b) x) differ, and are formed
+    for b.  The pairs are sorted by the keys :func:`order_spectrum` uses, then
+    (a, b) interleaved: the same order and figures as the expanded spectrum.
+
+    Returns
+    -------
+    lam : (2n,) complex
+    block : (2n,) int
+    fig : PairFigures
+    """
+    la, lb = raw.lam, raw.second
+    keys = np.lexsort((-np.abs(la.imag), la.real, np.abs(la)))
+    la, lb, P = la[keys], lb[keys], raw.P[..., keys]
+    half = pair_figures(problem, la, P, None, None)
+    yMx, yCx = half.products[0], half.products[1]
+    deriv_b = 2 * lb * yMx + yCx
+    ok = half.left_normalized
+    left_b = half.right / np.where(ok, deriv_b, 1.0) if ok.all() else np.where(ok, half.right / np.where(
+        ok, deriv_b, 1.0), half.right)
+    right = np.repeat(half.right.astype(complex), 2, axis=-1)
+    fig = PairFigures(
+        right,
+        _interleave(half.left, left_b),
+        np.repeat(ok, 2),
+        _interleave(half.derivative, deriv_b),
+        np.repeat(half.backward_error, 2),
+        np.repeat(half.error_bound, 2),
+        np.repeat(half.sensitivity, 2),
+        right,
+        np.repeat(half.products, 2, axis=-1),
+        np.repeat(half.quadratic, 2, axis=-1),
+    )
+    return _interleave(la, lb), np.repeat(raw.block[keys], 2), fig
+
+
+def mode_kinds(lam: np.ndarray, r: np.ndarray, clusters: tuple[Cluster, ...] | list[Cluster]) -> tuple[str, ...]:
+    """Per eigenvalue one of MODE_KINDS against its bound r; cluster members by the cluster's mean.
+
+    "rigid_body": |lam| <= r; "unstable": Re lam > r; "underdamped": |Im lam| > r;
+    "overdamped" otherwise (SPEC section 5).
+    """
+    typical = lam
+    if clusters:
+        typical = lam.copy()
+        for c in clusters:
+            typical[list(c.indices)] = c.center
+    kinds = np.where(
+        np.abs(typical) <= r,
+        "rigid_body",
+        np.where(typical.real > r, "unstable", np.where(np.abs(typical.imag) > r, "underdamped", "overdamped")),
+    )
+    return tuple(kinds.tolist())
