@@ -56,12 +56,13 @@ def test_no_negative_zero_and_the_verdict_once(scene, capsys, tmp_path):
 def test_undamped_modes_are_labelled_undamped(capsys, tmp_path):
     """The paper's double pendulum below flutter (D = G = 0): every mode is undamped, |Re lam| <= its bound."""
     out, report = analyze([], capsys, tmp_path)
-    kinds = re.findall(r"^\s+\d+ .*\s(\w+)$", report["modes"]["table"], flags=re.M)
+    kinds = re.findall(r"^\s+\d+ .*?\s(\w*damped)\s", report["modes"]["table"], flags=re.M)
     assert kinds == ["undamped"] * 4
     assert report["modes"]["kind"] == ["underdamped"] * 4  # the result's own kinds are unchanged
+    assert "joint1 88%, joint2 12%" in report["modes"]["table"]  # the dominant coordinates (issue 17)
     # a damped arm's modes stay underdamped
     out, _ = analyze(["--example", "ur5", "--damping", "1"], capsys, tmp_path)
-    assert re.findall(r"\s(\w*damped)$", out, flags=re.M) == ["underdamped"] * 12
+    assert re.findall(r"^\s+\d+ .*?\s(\w*damped)\s", out, flags=re.M) == ["underdamped"] * 12
 
 
 def test_paths_are_normalized(capsys, tmp_path, monkeypatch):

@@ -83,3 +83,12 @@ def test_bad_inputs_name_the_parameter():
         pinlin.forced_response(DAMPED, lambda t: np.zeros(2), T, substeps=0)
     with pytest.raises(pinlin.ParameterError, match="input_tol"):
         pinlin.forced_response(DAMPED, None, T, input_tol=0.0)
+
+
+def test_free_response_prints_its_summary():
+    """Issue 17 part 6: print(resp) gives the one-line summary, not len(t) x n numbers."""
+    sys_ = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.eye(2))
+    resp = pinlin.free_response(sys_, [1.0, 0.0], [0.0, 0.0], np.linspace(0, 1, 500))
+    assert str(resp) == repr(resp) and "\n" not in str(resp)
+    assert "t=[0, 1] s (500 points)" in str(resp) and "error=" in str(resp)
+    assert str(resp[:2]).startswith("[[")  # a part is plain data and prints as numbers

@@ -138,8 +138,17 @@ def _mode_kind(kind: str, re: float, bound: float) -> str:
     return "undamped" if kind == "underdamped" and abs(re) <= bound else kind
 
 
+def _dominant(modes: dict, i: int) -> str:
+    """Mode i's dominant coordinates with their energy shares (``Modes.dominant``), e.g. ``joint1 71%, joint2 29%``."""
+    entries = modes.get("dominant") or []
+    if i >= len(entries):
+        return ""
+    return ", ".join(f"{e['name']} {100 * _float(e['share']):.0f}%" for e in entries[i])
+
+
 def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> str:
-    """The mode table of a report's ``modes`` section: lam, |lam|, zeta, eta, kappa, bound, multiplicity, kind.
+    """The mode table of a report's ``modes`` section: lam, |lam|, zeta, eta, kappa, bound, multiplicity, kind,
+    dominant coordinates (their share of the mode's energy, issue 17).
 
     The verdict is not part of it (the report prints it once, in its own section).
 
@@ -158,7 +167,7 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
     w = max(precision + _CELL_PADDING, len("Im lam [rad/s]"))
     head = (
         f"{'#':>4}  {'Re lam [1/s]':>{w}} {'Im lam [rad/s]':>{w}} {'|lam| [rad/s]':>{w}} "
-        f"{'zeta':>9} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  kind"
+        f"{'zeta':>9} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  {'kind':<12} dominant coordinates"
     )
     method = f"{modes['method']}: {modes['method_reason']}" if modes.get("method_reason") else modes["method"]
     lines = [f"Modal analysis: {k} eigenvalues, method {method}", head, "-" * len(head)]
@@ -171,7 +180,8 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
         ]
         lines.append(
             f"{i + 1:>4}  {' '.join(cells)} {' '.join(figures)} {bound:>8.{_FIGURE_DIGITS}e} "
-            f"{modes['multiplicity'][i]:>4}  {_mode_kind(modes['kind'][i], re[i], bound)}"
+            f"{modes['multiplicity'][i]:>4}  {_mode_kind(modes['kind'][i], re[i], bound):<12} "
+            f"{_dominant(modes, i)}".rstrip()
         )
     if len(rows) < k:
         lines.append(f"... {k - len(rows)} more (higher frequencies)")

@@ -78,6 +78,16 @@ class FreeResponse(ResultArray):
         "modes",
         "elapsed",
     )
+
+    def _summary(self) -> list[str]:
+        return [f"t=[{self.t[0]:g}, {self.t[-1]:g}] s ({len(self.t)} points)", *super()._summary()]
+
+    def __str__(self) -> str:
+        """The summary (as the repr): ``print(resp)`` shows what was computed and how well, not the
+        len(t) x n numbers (those are ``np.asarray(resp)``)."""
+        if self.__dict__.get("_meta") is None:  # a part is a plain ndarray
+            return super().__str__()
+        return repr(self)
     _dict_exclude = ("modes",)
 
 
