@@ -273,6 +273,8 @@ def check_free_response(
         xx = np.asarray(x)
     except (TypeError, ValueError):
         raise ParameterError("t, x", "expected numeric arrays") from None
+    if xx.dtype.kind not in "biufc":
+        raise ParameterError("x", f"expected numbers, got an array of {xx.dtype}")
     if tt.ndim != 1:
         raise ParameterError("t", f"expected a 1-D array of times, got shape {tt.shape}")
     if xx.ndim != 2 or xx.shape != (tt.size, n):

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ComputationError
+
 __all__ = ["SvdAdjugate", "svd_adjugate", "residual_scaled", "det_over_scale"]
 
 
@@ -37,6 +39,11 @@ def svd_adjugate(L: np.ndarray) -> SvdAdjugate:
     """Adjugates of a stack of matrices (N, n, n) by the SVD form, in logarithms."""
     L = np.asarray(L, dtype=complex)
     N, n, _ = L.shape
+    if not np.all(np.isfinite(L)):
+        raise ComputationError(
+            "L(lam) = lam^2 M + lam C + K overflows double precision at the point asked "
+            "(|lam| too large for the data): rescale time or the units"
+        )
     norm = np.linalg.norm(L.reshape(N, -1), axis=1)
     zero = norm == 0
     safe = np.where(zero, 1.0, norm)

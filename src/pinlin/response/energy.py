@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
+from ..errors import ComputationError
 from ..linearization.system import LinearizedSystem
 from ..numerics import check_system
 from ..results import Result
@@ -171,6 +172,8 @@ def energy_budget(
     ------
     ParameterError
         Wrong shapes, non-finite values, a bad time grid, an unknown interpolation.
+    ComputationError
+        The energies or powers overflow double precision.
     """
     t0 = time.perf_counter()
     check_system(sys)
@@ -219,6 +222,11 @@ def energy_budget(
     if k > 1:
         scale += float(np.sum(np.diff(times) * (absP[:-1] + absP[1:]) / 2))
     rel = float(np.max(np.abs(residual)) / scale) if scale > 0 else 0.0
+    if not (np.isfinite(rel) and np.isfinite(scale)):
+        raise ComputationError(
+            "energy_budget: the energies or powers overflow double precision (entries of x, xdot or f "
+            "near the largest double); rescale the trajectory"
+        )
     return EnergyBudget(
         t=times,
         kinetic=kinetic,

@@ -8,7 +8,7 @@ from math import factorial
 
 import numpy as np
 
-from ..errors import AccuracyWarning, ParameterError
+from ..errors import AccuracyWarning, ComputationError, ParameterError
 from ..frf.engine import DEFAULT_TOL
 from ..frf.expansion import ModalExpansion, complex_matmul, modal_expansion
 from ..linearization.system import LinearizedSystem
@@ -260,7 +260,8 @@ def free_response(
     ParameterError
         Wrong shapes, non-finite values, non-increasing t, modes of another system.
     ComputationError
-        The spectral data cannot be turned into an expansion (ambiguous Jordan structure).
+        The spectral data cannot be turned into an expansion (ambiguous Jordan structure), or the
+        motion or its error figures overflow double precision.
     """
     t_start = time.perf_counter()
     check_system(sys)
@@ -284,6 +285,11 @@ def free_response(
     x, xd, xdd, symmetry, projection = modal_free_motion(expansion, x0, v0, np.concatenate([[0.0], tau]))
     xs, xds = x[:1], xd[:1]
     x, xd, xdd = x[1:], xd[1:], xdd[1:]
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(xd)) and np.all(np.isfinite(xs)) and np.all(np.isfinite(xds))):
+        raise ComputationError(
+            "free_response: the motion overflows double precision (initial conditions near the largest "
+            "double, or times so far from t0 that exp(lam t) overflows); rescale the initial state or the time span"
+        )
     defect = _relative_defect(sys, x, xd, xdd)
     g = expansion.gamma
     rx = np.linalg.norm(x0) + np.linalg.norm(v0) / g
@@ -293,6 +299,11 @@ def free_response(
         initial = float(max(np.linalg.norm(xs[0] - x0) / rx, np.linalg.norm(xds[0] - v0) / rv))
     method = expansion.method
     worst = max(defect, initial, symmetry)
+    if not np.isfinite(worst):
+        raise ComputationError(
+            f"free_response: the error figures overflow (defect {defect}, initial defect {initial}); "
+            f"rescale the initial state"
+        )
     if worst > tol:
         warnings.warn(
             f"free_response: the {method} solution has defect {defect:.1e}, initial defect {initial:.1e}, "

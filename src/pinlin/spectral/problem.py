@@ -150,7 +150,10 @@ class QuadraticProblem:
 
 
 def _matrix(name: str, value, n: int | None) -> np.ndarray:
-    a = np.asarray(value)
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError):  # a ragged nested list
+        raise ParameterError(name, "expected a real matrix of numbers (rectangular)") from None
     if np.iscomplexobj(a):
         raise ParameterError(name, "expected a real matrix, got complex entries")
     try:
