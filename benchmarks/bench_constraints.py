@@ -3,8 +3,9 @@
 - ``linearize`` of a constrained scene against the unconstrained ``linearize`` of the
   same robot at the same configuration (held by balancing forces, since without its
   contacts a standing robot is no equilibrium), timed interleaved in one process
-  (:func:`common.interleaved_medians`): solo12 on four point contacts with springs on
-  its twelve leg joints (target: within 3x), and the bundled four-bar;
+  (:func:`common.interleaved_medians`, thread CPU time: the machine is shared):
+  solo12 on four point contacts with springs on its twelve leg joints (target:
+  within 3x), and the bundled four-bar;
 - ``find_equilibrium`` with constraints: assembly steps, Newton iterations on the
   manifold, time and residuals, for the four-bar from an open start and from its
   assembled pose, and for solo12 from its SRDF standing pose;
@@ -24,7 +25,7 @@ import numpy as np
 
 import pinlin
 
-from .common import Report, Table, interleaved_medians
+from .common import Report, Table, interleaved_medians, load_average
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from constrained_cases import BUNDLED  # noqa: E402  (the closed form lives with the tests)
@@ -67,6 +68,7 @@ def _timing(repeats: int) -> tuple[Table, dict]:
                 lambda free=free, q=q: pinlin.linearize(free, q, balancing=True),
             ],
             repeats=repeats,
+            clock=time.thread_time,
         )
         sys_c, sys_u = pinlin.linearize(scene, q), pinlin.linearize(free, q, balancing=True)
         extra = [c for c in sys_c.calls if c not in sys_u.calls]
@@ -132,7 +134,9 @@ def _accuracy(quick: bool) -> tuple[Table, dict]:
 
 
 def run(quick: bool = False) -> Report:
+    load = load_average()
     timing, summary = _timing(repeats=5 if quick else 25)
+    summary["machine load (1-minute load average, before / after the timing)"] = f"{load} / {load_average()}"
     accuracy, acc_summary = _accuracy(quick)
     summary.update(acc_summary)
     return Report(

@@ -1,20 +1,31 @@
-"""Linearization: analytic (pinlin.linearize) against finite differences, with honest references.
+"""Linearization: analytic (pinlin.linearize) against finite differences, with honest baselines (issue 14).
 
-For each scene, in one process:
+For each scene of issue 14's table (springs and dampers on every joint, a follower
+wrench; the turntable with its prescribed speed), in one process:
 
-- ``linearize``: ``pinlin.linearize(scene, q)`` (M, D, G, S, N with every check
-  pinlin makes), and its analytic core ``assemble`` (Pinocchio's derivative
-  algorithms plus the elements' analytic derivatives, no checks);
-- forward and central differences of the residual r(q, v) = tau - Q_e in q
-  (steps through ``pin.integrate``, so in the tangent space) and in v, at the
-  steps of :data:`H_SWEEP`; M from ``crba`` (as exact as the analytic one);
-- the Pinocchio floor: ``crba`` + ``computeRNEADerivatives``, the least any
-  analytic linearization must spend;
-- MuJoCo's ``mjd_inverseFD`` on the same URDF (meshes stripped, joints mapped
-  by name), when the optional ``mujoco`` package is importable.
-- ``linearize`` before and after the per-thread Pinocchio workspaces of issue 10
-  (the baseline commit in a worker process beside the current code), and a
-  fresh ``Data`` per call against the reused workspace: :mod:`.bench_workspace`.
+- ``linearize``: ``pinlin.linearize(scene, q)`` with every check pinlin makes;
+- the **floor**: the cheapest Pinocchio calls the scene needs, replayed bare:
+  exactly the algorithms ``sys.calls`` lists (``computeStaticTorqueDerivatives``
+  + ``crba`` for a loaded arm, one ``computeRNEADerivatives`` for the turntable),
+  so ``linearize / floor`` is the price of pinlin's Python around them;
+- **central differences with bare Pinocchio residuals** (:class:`BareResidual`),
+  written as a competent user would: ``computeStaticTorque`` (or
+  ``computeGeneralizedGravity``, or ``rnea`` with the prescribed velocity) with
+  the follower wrenches' constant ``fext``, the springs' and dampers' forces in
+  plain numpy (multi-DOF springs through one ``pin.difference``), steps in q
+  through ``pin.integrate``, M from ``crba``: 4n residual evaluations;
+  forward differences likewise (2n + 1);
+- central differences of pinlin's own residual (``assemble`` without derivatives),
+  the baseline of the first benchmark suite, for the record: it is 2-4x slower
+  than the bare one, which flattered ``linearize``;
+- MuJoCo's ``mjd_inverseFD`` on the same URDF (meshes stripped, joints mapped by
+  name), when the optional ``mujoco`` package is importable;
+- ``linearize`` before and after the per-thread Pinocchio workspaces of issue 10,
+  and a fresh ``Data`` per call against the reused workspace: :mod:`.bench_workspace`.
+
+Times are thread CPU times (``time.thread_time``: the machine is shared, and
+another process's load shows in wall time), medians of samples taken in turn
+(:func:`common.interleaved_medians`); the load average is reported.
 
 References (never the method under test):
 
@@ -24,12 +35,11 @@ References (never the method under test):
   mpmath at 50 digits (:func:`mp_reference`: forward kinematics from the model's
   numbers, gravity, springs and follower wrenches by virtual work, K by
   50-digit differences, M from link Jacobians; no Pinocchio algorithm);
-- elsewhere (the floating-base Talos), Richardson extrapolation (Ridders'
-  tableau, steps 0.1 / 1.4^i) of central differences: its own error estimate
-  is reported, and its error against the better references where they exist
-  (~1e-14).  The gap between the analytic result and this reference bounds the
-  analytic error from above; the difference methods' errors, 1e3 times larger
-  and more, are measured by it reliably.
+- for the floating bases (solo12, talos_reduced), Richardson extrapolation
+  (Ridders' tableau, steps 0.1 / 1.4^i) of central differences of the bare
+  residual: its own error estimate is reported.  The gap between the analytic
+  result and this reference bounds the analytic error from above; the difference
+  methods' errors, 1e3 times larger and more, are measured by it reliably.
 
 Error of a method: the largest relative Frobenius error of M, C and K; for a C
 whose reference is zero the denominator is sqrt(||M|| ||K||), the critical
@@ -38,6 +48,7 @@ damping scale (consistent units).
 
 from __future__ import annotations
 
+import os
 import re
 import time
 
@@ -54,6 +65,7 @@ from .common import (
     Report,
     Table,
     interleaved_medians,
+    load_average,
     median_time,
     result_path,
     save_figure,
@@ -68,6 +80,8 @@ QUICK_H_SWEEP = (1e-3, 1e-5, 1e-7, 1e-9)
 TIMED_H = {"forward": 1e-7, "central": 1e-5}
 #: MuJoCo finite-difference steps compared.
 MUJOCO_EPS = (1e-4, 1e-6, 1e-8)
+#: Issue 14's targets: linearize within this factor of the floor, and faster than bare central differences.
+FLOOR_TARGET = 3.0
 
 
 # ----------------------------------------------------------------------------- differences
@@ -105,6 +119,139 @@ def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str =
     M = np.triu(M) + np.triu(M, 1).T
     ix = np.ix_(f, f)
     return M[ix], C[ix], K[ix]
+
+
+class BareResidual:
+    """r(q, v) = tau(q, v, 0, fext) - Q_e(q, v) with bare Pinocchio and plain numpy, as a user writes it.
+
+    Supports what issue 14's scenes contain: joint springs (1-DOF as arrays,
+    multi-DOF through one ``pin.difference`` of the whole configuration), joint
+    dampers, follower wrenches (a constant ``fext``), gravity and prescribed
+    velocities.  Other elements raise ``ValueError`` (then no bare baseline exists).
+    """
+
+    def __init__(self, scene: pinlin.Scene):
+        model = self.model = scene.model
+        self.data = model.createData()
+        self.fext = scene.constant_fext
+        self.v0 = np.array(scene.v0)
+        self.moving = bool(np.any(self.v0))
+        nv = model.nv
+        self.zero = np.zeros(nv)
+        self.rest = pin.neutral(model)
+        self.Ks = np.zeros((nv, nv))
+        self.Cd = np.zeros((nv, nv))
+        iq, iv, k, rest = [], [], [], []
+        self.multi = False
+        for e in scene.elements:
+            if isinstance(e, pinlin.JointSpring):
+                j = scene.robot.joint(e.joint)
+                if j.nq == 1:
+                    iq.append(j.idx_q), iv.append(j.idx_v), k.append(float(np.ravel(e.stiffness)[0]))
+                    rest.append(0.0 if e.rest is None else float(np.ravel(e.rest)[0]))
+                else:
+                    self.multi = True
+                    self.rest[j.q_slice] = e.rest_configuration(scene.robot)
+                    self.Ks[j.v_slice, j.v_slice] = e.matrix(j)
+            elif isinstance(e, pinlin.JointDamper):
+                j = scene.robot.joint(e.joint)
+                self.Cd[j.v_slice, j.v_slice] += np.diag(np.broadcast_to(e.damping, (j.nv,))) if np.ndim(e.damping) < 2 else e.damping
+            elif not isinstance(e, pinlin.FollowerWrench):
+                raise ValueError(f"no bare residual for {type(e).__name__}")
+        self.iq, self.iv = np.array(iq, dtype=int), np.array(iv, dtype=int)
+        self.k, self.q_rest = np.array(k), np.array(rest)
+
+    def tau(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        model, data, fext = self.model, self.data, self.fext
+        if self.moving or v is not self.v0:
+            extra = () if fext is None else (fext,)
+            return pin.rnea(model, data, q, v, self.zero, *extra)
+        if fext is not None:
+            return pin.computeStaticTorque(model, data, q, fext)
+        return pin.computeGeneralizedGravity(model, data, q)
+
+    def __call__(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+        r = self.tau(q, v)
+        r[self.iv] += self.k * (q[self.iq] - self.q_rest)
+        if self.multi:
+            r += self.Ks @ pin.difference(self.model, self.rest, q)
+        if self.moving or v is not self.v0:  # dampers act on a velocity
+            r += self.Cd @ v
+        return r
+
+
+def bare_differences(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str = "central"):
+    """(M, C, K) on the free coordinates by differences of :class:`BareResidual`, M by ``crba``.
+
+    Returns a function computing them (the residual's setup is not timed).
+    """
+    r = BareResidual(scene)
+    model, free, v0 = scene.model, scene.free_dofs, r.v0
+    nv = model.nv
+
+    def run():
+        K = np.empty((nv, len(free)))
+        C = np.empty((nv, len(free)))
+        e = np.zeros(nv)
+        r0 = r(q, v0) if scheme == "forward" else None
+        for col, k in enumerate(free):
+            e[k] = h
+            if scheme == "central":
+                K[:, col] = (r(pin.integrate(model, q, e), v0) - r(pin.integrate(model, q, -e), v0)) / (2 * h)
+                C[:, col] = (r(q, v0 + e) - r(q, v0 - e)) / (2 * h)
+            else:
+                K[:, col] = (r(pin.integrate(model, q, e), v0) - r0) / h
+                C[:, col] = (r(q, v0 + e) - r0) / h
+            e[k] = 0.0
+        M = pin.crba(model, r.data, q)
+        return M[np.ix_(free, free)], C[free], K[free]
+
+    return run
+
+
+def pinocchio_floor(scene: pinlin.Scene, q: np.ndarray, calls) -> callable:
+    """The Pinocchio algorithms of ``calls`` (a linearization's ``sys.calls``), replayed bare on a Data of its own."""
+    model = scene.model
+    data = model.createData()
+    v0, zero, fext = np.array(scene.v0), np.zeros(model.nv), scene.constant_fext
+    extra = () if fext is None else (fext,)
+    plan = {
+        "crba": (pin.crba, (model, data, q)),
+        "computeStaticTorqueDerivatives": (pin.computeStaticTorqueDerivatives, (model, data, q, fext)),
+        "computeStaticTorque": (pin.computeStaticTorque, (model, data, q, fext)),
+        "computeGeneralizedGravityDerivatives": (pin.computeGeneralizedGravityDerivatives, (model, data, q)),
+        "computeGeneralizedGravity": (pin.computeGeneralizedGravity, (model, data, q)),
+        "computeRNEADerivatives": (pin.computeRNEADerivatives, (model, data, q, v0, zero, *extra)),
+        "rnea": (pin.rnea, (model, data, q, v0, zero, *extra)),
+        "computeJointJacobians": (pin.computeJointJacobians, (model, data, q)),
+        "updateFramePlacements": (pin.updateFramePlacements, (model, data)),
+    }
+    steps = [plan[name] for name in calls]
+
+    def run():
+        for algorithm, args in steps:
+            algorithm(*args)
+
+    return run
+
+
+def bare_richardson(scene: pinlin.Scene, q: np.ndarray):
+    """(M, C, K, error estimates): C and K by Ridders extrapolation of the bare residual, M by crba."""
+    r = BareResidual(scene)
+    model, free, v0 = scene.model, scene.free_dofs, r.v0
+    nv = model.nv
+    K = np.zeros((nv, len(free)))
+    C = np.zeros((nv, len(free)))
+    eK = eC = 0.0
+    for col, k in enumerate(free):
+        e = np.zeros(nv)
+        e[k] = 1.0
+        K[:, col], err = ridders(lambda h, e=e: (r(pin.integrate(model, q, h * e), v0) - r(pin.integrate(model, q, -h * e), v0)) / (2 * h))
+        eK = np.hypot(eK, err)
+        C[:, col], err = ridders(lambda h, e=e: (r(q, v0 + h * e) - r(q, v0 - h * e)) / (2 * h))
+        eC = np.hypot(eC, err)
+    M = pin.crba(model, r.data, q)
+    return M[np.ix_(free, free)], C[free], K[free], (eC, eK)
 
 
 def ridders(fn, h0: float = 0.1, con: float = 1.4, ntab: int = 10) -> tuple[np.ndarray, float]:
@@ -415,17 +562,27 @@ def panda_case() -> Case:
     return _arm_case("panda", q_ref, "panda_hand")
 
 
-def talos_case() -> Case:
-    robot = pinlin.load_example("talos_reduced")
-    q = robot.reference_configurations["half_sitting"]
+def _floating_case(name: str, tool: str, k: float = 100.0, c: float = 0.5) -> Case:
+    """A floating base on a 6-DOF spring mount: springs and dampers on every joint, root included, a follower wrench."""
+    robot = pinlin.load_example(name, free_flyer=True)
+    q_ref = next(iter(robot.reference_configurations.values()))
     elements = []
-    for j in robot.joint_names[1:]:
-        elements += [pinlin.JointSpring(j, 200.0, rest=float(q[robot.joint(j).idx_q])), pinlin.JointDamper(j, 0.5)]
-    elements.append(pinlin.DeadWrench("arm_left_7_link", force=(0.0, 0.0, -10.0)))
+    for j in robot.joint_names:
+        info = robot.joint(j)
+        rest = q_ref[info.q_slice] if info.nq > 1 else float(q_ref[info.idx_q])
+        elements += [pinlin.JointSpring(j, k, rest=rest), pinlin.JointDamper(j, c)]
+    elements.append(pinlin.FollowerWrench(tool, force=(0.0, 0.0, 5.0)))
     scene = pinlin.Scene(robot, elements)
-    return Case(
-        "talos_reduced: floating base, springs, dampers, dead load (balanced)", scene, q, balancing=True
-    )
+    q = pinlin.find_equilibrium(scene, q_ref).q
+    return Case(f"{name}: floating base on a spring mount, springs, dampers, follower at {tool}", scene, q)
+
+
+def solo_case() -> Case:
+    return _floating_case("solo12", "FL_FOOT")
+
+
+def talos_case() -> Case:
+    return _floating_case("talos_reduced", "gripper_left_joint")
 
 
 # ----------------------------------------------------------------------------- MuJoCo peer
@@ -538,110 +695,97 @@ def mujoco_rows(cases, quick: bool):
 # ----------------------------------------------------------------------------- run
 
 
-def _floor(scene: pinlin.Scene, q: np.ndarray):
-    model, data = scene.model, scene.model.createData()
-    v0 = np.asarray(scene.v0)
-    zero = np.zeros(model.nv)
-    fext = pin.StdVec_Force()
-    for _ in range(model.njoints):
-        fext.append(pin.Force.Zero())
+def _reference(case: Case):
+    """(reference (M, C, K), its name, its own error estimate, Richardson's error where a better reference exists)."""
+    scene, q = case.scene, case.q
+    try:
+        mp_ref = mp_reference(scene, q)
+    except ValueError:  # floating base: not modelled by the mpmath kinematics
+        mp_ref = None
+    if case.exact is None and mp_ref is None:
+        Mr, Cr, Kr, (eC, eK) = bare_richardson(scene, q)
+        est = max(eK / np.linalg.norm(Kr), eC / max(np.linalg.norm(Cr), np.sqrt(np.linalg.norm(Mr) * np.linalg.norm(Kr))))
+        return (Mr, Cr, Kr), "Richardson", est, float("nan")
+    ref, name = (case.exact, "closed form") if case.exact is not None else (mp_ref, "mpmath 50 digits")
+    rich = bare_richardson(scene, q)[:3] if len(scene.free_dofs) <= 9 else None
+    return ref, name, 0.0, (matrix_error(*rich, ref) if rich is not None else float("nan"))
 
-    def run():
-        pin.crba(model, data, q)
-        pin.computeRNEADerivatives(model, data, q, v0, zero, fext)
 
-    return run
+def _case_row(case: Case, sweep, repeats: int) -> dict:
+    """Times, errors and ratios of one scene."""
+    scene, q, bal = case.scene, case.q, case.balancing
+    sys = pinlin.linearize(scene, q, balancing=bal)
+    ref, ref_name, ref_err, rich_err = _reference(case)
+    err_lin = matrix_error(sys.M, sys.C, sys.K, ref)
+    fns = {
+        "linearize": lambda: pinlin.linearize(scene, q, balancing=bal),
+        "floor": pinocchio_floor(scene, q, sys.calls),
+        "central": bare_differences(scene, q, TIMED_H["central"], "central"),
+        "forward": bare_differences(scene, q, TIMED_H["forward"], "forward"),
+        "central (pinlin residual)": lambda: fd_linearization(scene, q, TIMED_H["central"], "central"),
+    }
+    times = dict(zip(fns, interleaved_medians(list(fns.values()), repeats=repeats, min_time=0.01, clock=time.thread_time)))
+    errs = {scheme: [matrix_error(*bare_differences(scene, q, h, scheme)(), ref) for h in sweep] for scheme in ("forward", "central")}
+    best = {scheme: (min(v), sweep[int(np.argmin(v))]) for scheme, v in errs.items()}
+    return {
+        "sys": sys, "times": times, "errs": errs, "best": best, "err_lin": err_lin, "ref": ref_name,
+        "ref_err": ref_err, "rich_err": rich_err,
+        "acc_ratio": best["central"][0] / max(err_lin, np.finfo(float).eps / 2),
+    }  # fmt: skip
 
 
-def run(quick: bool = False) -> Report:
-    t_start = time.perf_counter()
-    cases = [double_pendulum_case(), turntable_case(), ur5_case(), panda_case(), talos_case()]
-    sweep = QUICK_H_SWEEP if quick else H_SWEEP
-    repeats = 5 if quick else 9
-    time_rows, sweep_rows, summary = [], [], {}
-    plot_series: dict[str, list] = {}
-    sweep_plot: dict[str, dict[str, list]] = {}
-    headline = []
-    for case in cases:
-        scene, q, bal = case.scene, case.q, case.balancing
-        sys = pinlin.linearize(scene, q, balancing=bal)
-        Mr, Cr, Kr, (eC, eK) = richardson_reference(scene, q)
-        richardson = (Mr, Cr, Kr)
-        rich_est = max(eK / np.linalg.norm(Kr), eC / max(np.linalg.norm(Cr), np.sqrt(np.linalg.norm(Mr) * np.linalg.norm(Kr))))
-        try:
-            mp_ref = mp_reference(scene, q)
-        except ValueError:  # floating base: not modelled by the mpmath kinematics
-            mp_ref = None
-        if case.exact is not None:
-            ref, ref_name, ref_err = case.exact, "closed form", 0.0
-        elif mp_ref is not None:
-            ref, ref_name, ref_err = mp_ref, "mpmath 50 digits", 0.0
-        else:
-            ref, ref_name, ref_err = richardson, "Richardson", rich_est
-        rich_err = matrix_error(*richardson, ref) if ref_name != "Richardson" else float("nan")
-        mp_check = matrix_error(*mp_ref, case.exact) if (mp_ref is not None and case.exact is not None) else float("nan")
-        err_lin = matrix_error(sys.M, sys.C, sys.K, ref)
-
-        def lin(scene=scene, q=q, bal=bal):
-            return pinlin.linearize(scene, q, balancing=bal)
-
-        def core(scene=scene, q=q):
-            return assemble(scene, q, stiffness=True, damping=True, mass=True)
-
-        def fwd(scene=scene, q=q):
-            return fd_linearization(scene, q, TIMED_H["forward"], "forward")
-
-        def cen(scene=scene, q=q):
-            return fd_linearization(scene, q, TIMED_H["central"], "central")
-
-        t_lin, t_core, t_fwd, t_cen = interleaved_medians([lin, core, fwd, cen], repeats=repeats, min_time=0.01)
-        t_floor = median_time(_floor(scene, q), repeats=repeats)
-        errs = {"forward": [], "central": []}
+def _tables(rows: dict, sweep) -> tuple[list[Table], dict]:
+    timing, accuracy, sweep_rows, summary = [], [], [], {}
+    for label, r in rows.items():
+        t, n = r["times"], r["sys"].n
+        lin_floor, cd_lin = t["linearize"] / t["floor"], t["central"] / t["linearize"]
+        timing.append([label, n, " + ".join(r["sys"].calls), t["floor"] * 1e6, t["linearize"] * 1e6, lin_floor,
+                       "yes" if lin_floor <= FLOOR_TARGET else "no", t["central"] * 1e6, cd_lin,
+                       "yes" if cd_lin > 1 else "no", t["forward"] * 1e6, t["forward"] / t["linearize"],
+                       t["central (pinlin residual)"] * 1e6, t["central (pinlin residual)"] / t["central"]])  # fmt: skip
+        accuracy.append([label, n, r["err_lin"], r["best"]["forward"][0], r["best"]["forward"][1], r["best"]["central"][0],
+                         r["best"]["central"][1], r["acc_ratio"], r["ref"], r["ref_err"], r["rich_err"]])  # fmt: skip
         for scheme in ("forward", "central"):
-            for h in sweep:
-                e = matrix_error(*fd_linearization(scene, q, h, scheme), ref)
-                errs[scheme].append(e)
-                sweep_rows.append([case.label, scheme, h, e, e / max(err_lin, 1e-300)])
-        best = {s: (min(v), sweep[int(np.argmin(v))]) for s, v in errs.items()}
-        acc_ratio = best["central"][0] / max(err_lin, np.finfo(float).eps / 2)
-        time_rows.append(
-            [case.label, sys.n, t_lin * 1e6, t_core * 1e6, t_floor * 1e6, t_fwd * 1e6, t_cen * 1e6,
-             t_cen / t_lin, t_cen / t_core, err_lin, best["forward"][0], best["forward"][1], best["central"][0],
-             best["central"][1], acc_ratio, ref_name, ref_err, rich_err, mp_check]
-        )
-        headline.append((case.label, sys.n, t_cen / t_lin, acc_ratio, ref_name))
-        short = case.label.split(":")[0].split(" (")[0].split(" +")[0]
-        plot_series[f"{short}: linearize"] = [(t_lin, err_lin)]
-        plot_series[f"{short}: central FD (best h)"] = [(t_cen, best["central"][0])]
-        plot_series[f"{short}: forward FD (best h)"] = [(t_fwd, best["forward"][0])]
-        sweep_plot[short] = {"forward": errs["forward"], "central": errs["central"], "analytic": err_lin}
-        summary[case.label] = (
-            f"linearize {t_cen / t_lin:.1f}x faster than central differences ({t_cen / t_core:.1f}x for the analytic "
-            f"core), error {err_lin:.1e} vs best central {best['central'][0]:.1e} (h = {best['central'][1]:g}) "
-            f"and best forward {best['forward'][0]:.1e}: {acc_ratio:.1e}x more accurate (reference: {ref_name})"
+            for h, e in zip(sweep, r["errs"][scheme]):
+                sweep_rows.append([label, scheme, h, e, e / max(r["err_lin"], 1e-300)])
+        summary[label] = (
+            f"linearize {t['linearize'] * 1e6:.1f} us = {lin_floor:.1f}x the floor ({t['floor'] * 1e6:.1f} us, "
+            f"{' + '.join(r['sys'].calls)}); bare central differences {cd_lin:.1f}x linearize's time; error "
+            f"{r['err_lin']:.1e} vs best central {r['best']['central'][0]:.1e}: {r['acc_ratio']:.1e}x more accurate "
+            f"(reference: {r['ref']})"
         )
     t1 = Table(
-        "Run time and accuracy: analytic linearization against finite differences",
-        ["scene", "n", "linearize [us]", "analytic core [us]", "floor crba+RNEA derivs [us]", "forward FD [us]",
-         "central FD [us]", "central FD / linearize", "central FD / core", "linearize error", "best forward error",
-         "at h", "best central error", "at h", "best central error / linearize error", "reference",
-         "Richardson's error estimate (where it is the reference)", "Richardson's error against the reference",
-         "mpmath kinematics against the closed form"],
-        time_rows,
+        "Run time: linearize against the cheapest Pinocchio calls and bare-Pinocchio finite differences (issue 14)",
+        ["scene", "n", "floor: Pinocchio calls the scene needs", "floor [us]", "linearize [us]", "linearize / floor",
+         f"within {FLOOR_TARGET:g}x", "bare central FD [us]", "bare central FD / linearize", "linearize faster",
+         "bare forward FD [us]", "bare forward FD / linearize", "central FD of pinlin's residual [us]",
+         "pinlin residual / bare (the old baseline's flattery)"],
+        timing,
         note=(
-            "Times: medians of interleaved repeats in one process ('analytic core' = pinlin.linearization.assembly.assemble of "
-            "M, C, K without the checks linearize makes: equilibrium, mass, time invariance). Differences use the "
-            "same residual evaluation as pinlin (assemble without derivatives), 2n (forward) or 4n (central) "
-            "evaluations plus crba. Errors: max relative Frobenius error of M, C, K against the reference. With a "
-            "closed form, or the mpmath reference (an independent forward-kinematics model of the fixed-base arm in "
-            "50-digit arithmetic: gravity, springs and follower by virtual work, K by 50-digit differences, M from "
-            "the link Jacobians; no Pinocchio algorithm), the errors are exact to double precision; with "
-            "Richardson (the floating-base Talos, which the mpmath model does not cover) the linearize error is "
-            "the gap to the reference, an upper bound dominated by Richardson's own error (its estimate and, where "
-            "a better reference exists, its measured error are listed: ~1e-14). Ratios use an error floor of eps/2."
+            "Thread CPU times (time.thread_time), medians of samples taken in turn in one process (interleaved), "
+            "BLAS on one thread. Floor: exactly the Pinocchio algorithms of sys.calls, replayed bare on a Data of "
+            "their own. Bare FD: differences of the residual computed with bare Pinocchio (computeStaticTorque, "
+            "computeGeneralizedGravity or rnea with the follower wrenches' fext) and the springs' and dampers' "
+            "forces in plain numpy (benchmarks.bench_linearize.BareResidual), steps through pin.integrate, M by "
+            "crba: 4n (central) or 2n + 1 (forward) residual evaluations. The last columns time central "
+            "differences of pinlin's own residual (assemble without derivatives), the first suite's baseline."
         ),
-    )
+    )  # fmt: skip
     t2 = Table(
+        "Accuracy: analytic linearization against finite differences",
+        ["scene", "n", "linearize error", "best forward error", "at h", "best central error", "at h",
+         "best central error / linearize error", "reference", "reference's own error estimate",
+         "Richardson's error against the exact reference"],
+        accuracy,
+        note=(
+            "Max relative Frobenius error of M, C, K against the reference. With a closed form or the mpmath "
+            "reference (an independent forward-kinematics model of the fixed-base arm in 50-digit arithmetic) the "
+            "errors are exact to double precision; with Richardson (the floating bases) the linearize error is the "
+            "gap to the reference, an upper bound dominated by Richardson's own error. Ratios use an error floor of "
+            "eps/2. Differences use the bare residual of the timing table."
+        ),
+    )  # fmt: skip
+    t3 = Table(
         "Error of finite differences against the step h",
         ["scene", "scheme", "h", "error", "error / linearize error"],
         sweep_rows,
@@ -650,7 +794,31 @@ def run(quick: bool = False) -> Report:
             "the best step balances them and is problem dependent."
         ),
     )
-    tables = [t1, t2]
+    return [t1, t2, t3], summary
+
+
+def run(quick: bool = False) -> Report:
+    t_start = time.perf_counter()
+    load_before = load_average()
+    cases = [double_pendulum_case(), ur5_case(), panda_case(), solo_case(), talos_case(), turntable_case()]
+    sweep = QUICK_H_SWEEP if quick else H_SWEEP
+    rows = {case.label: _case_row(case, sweep, repeats=5 if quick else 15) for case in cases}
+    tables, summary = _tables(rows, sweep)
+    short = {label: label.split(":")[0].split(" (")[0].split(" at theta")[0].split(",")[0] for label in rows}
+    summary["headline"] = (
+        "linearize / floor (cheapest Pinocchio calls): "
+        + ", ".join(f"{short[k]} {r['times']['linearize'] / r['times']['floor']:.1f}x" for k, r in rows.items())
+        + f" (target <= {FLOOR_TARGET:g}x); bare central differences / linearize: "
+        + ", ".join(f"{short[k]} {r['times']['central'] / r['times']['linearize']:.1f}x" for k, r in rows.items())
+        + " (target > 1); accuracy ratio (best central error / linearize error): "
+        + ", ".join(f"{short[k]} {r['acc_ratio']:.1e} ({r['ref']})" for k, r in rows.items())
+    )
+    robots = [r for k, r in rows.items() if not k.startswith(("double", "turntable"))]
+    summary["robots (n >= 6)"] = (
+        f"min speed ratio against bare central differences "
+        f"{min(r['times']['central'] / r['times']['linearize'] for r in robots):.1f}x; min accuracy ratio against "
+        f"exact references {min(r['acc_ratio'] for r in rows.values() if r['ref'] != 'Richardson'):.1e}"
+    )
     mj_cases = [
         ("double pendulum (bars of radius 1 cm)", pinlin.pendulum_chain_urdf(2, [0.7, 0.5], [1.3, 0.9], radius=0.01),
          np.array([0.4, 0.5]))
@@ -668,33 +836,27 @@ def run(quick: bool = False) -> Report:
                 note=mj_note,
             )
         )
-        summary["MuJoCo peer"] = "compared (rigid-body part); see the last table"
-    robots = [h for h in headline if not h[0].startswith(("double", "turntable"))]
-    summary["headline"] = (
-        "central differences / linearize run time: "
-        + ", ".join(f"{lab.split(':')[0]} (n = {n}) {s:.1f}x" for lab, n, s, _, _ in headline)
-        + "; accuracy ratio (best central error / linearize error, reference): "
-        + ", ".join(f"{lab.split(':')[0]} {a:.1e} ({r})" for lab, _, _, a, r in headline)
-    )
-    exact_refs = [h for h in headline if h[4] != "Richardson"]
-    summary["robots (n >= 6)"] = (
-        f"min speed ratio {min(h[2] for h in robots):.1f}x (target >= 5x); min accuracy ratio against exact "
-        f"references (closed form, mpmath) {min(h[3] for h in exact_refs):.1e} (target >= 1e4); against "
-        f"Richardson (floating base) {min((h[3] for h in headline if h[4] == 'Richardson'), default=float('nan')):.1e},"
-        " a lower bound set by Richardson's own accuracy"
-    )
+        summary["MuJoCo peer"] = "compared (rigid-body part); see its table"
     ws_table, ws_summary = workspace_section(quick)
     summary.update(ws_summary)
     if ws_table is not None:
         tables.append(ws_table)
+    plot_series = {}
+    sweep_plot = {}
+    for label, r in rows.items():
+        t = r["times"]
+        plot_series[f"{short[label]}: linearize"] = [(t["linearize"], r["err_lin"])]
+        plot_series[f"{short[label]}: bare central FD (best h)"] = [(t["central"], r["best"]["central"][0])]
+        plot_series[f"{short[label]}: bare forward FD (best h)"] = [(t["forward"], r["best"]["forward"][0])]
+        sweep_plot[short[label]] = {"forward": r["errs"]["forward"], "central": r["errs"]["central"], "analytic": r["err_lin"]}
     figures = _plot(plot_series, sweep_plot, sweep, quick)
+    summary["machine load (1-minute load average, before / after)"] = f"{load_before} / {load_average()} on {os.cpu_count()} CPUs"
     text = (
         "Analytic linearization (pinlin.linearize: Pinocchio's analytic derivatives plus the elements' own) against "
-        "finite differences of the same residual, and MuJoCo's finite-difference inverse-dynamics derivatives as a "
-        "peer when mujoco is importable. Small systems (n = 2) cost the difference quotients only 4n + 1 = 9 "
-        "residual evaluations, less than linearize's checks; from the 6-joint arm upward analytic wins on time too. "
-        "The last table (benchmarks/bench_workspace.py) times linearize before and after the per-thread Pinocchio "
-        "workspaces of issue 10, and a fresh Data per call against the reused one."
+        "the cheapest Pinocchio calls the scene needs (the floor) and against finite differences of bare-Pinocchio "
+        "residuals, the honest baselines of issue 14; MuJoCo's finite-difference inverse-dynamics derivatives as a "
+        "peer when mujoco is importable. The last table (benchmarks/bench_workspace.py) times linearize before and "
+        "after the per-thread Pinocchio workspaces of issue 10, and a fresh Data per call against the reused one."
     )
     report = Report("linearize", tables, summary, figures, text=text)
     report.elapsed = time.perf_counter() - t_start

@@ -1,16 +1,21 @@
-"""Scaling of the whole pipeline with the size of a pendulum chain, and the memory guard.
+"""Scaling of the whole pipeline with the size of a pendulum chain, and the memory guard (issue 14).
 
-For n = 10 ... 300 links (springs, dampers, gravity; SPEC 7.4), each n in a
+For n = 10 ... 400 links (springs, dampers, gravity; SPEC 7.4), each n in a
 fresh subprocess, the stages of the data flow:
 
 1. ``load``: ``load_urdf_string(pendulum_chain_urdf(n))`` and ``Scene(...)``
-   (which allocates Pinocchio's data: 32 n^3 bytes kept, about twice that at the peak; SPEC section 1);
-2. ``equilibrium``: ``find_equilibrium`` from every joint 0.2/n rad off (a 0.2 rad curl);
-3. ``linearize``;
-4. ``spectrum``: ``modal_analysis`` (the general path: joint dampers are not
+   (the memory guard checks the estimate; no Pinocchio ``Data`` yet);
+2. ``createData``: the thread's workspace, ``workspace(scene)`` (memory guard +
+   ``model.createData()``): Pinocchio allocates four nv^3 derivative tensors
+   (32 nv^3 bytes kept, about twice that at the peak; SPEC section 1) that no
+   algorithm pinlin calls uses, an upstream limit.  pinlin creates one Data per
+   robot and thread and shares it among the robot's scenes (a sweep pays once);
+3. ``equilibrium``: ``find_equilibrium`` from every joint 0.2/n rad off (a 0.2 rad curl);
+4. ``linearize``;
+5. ``spectrum``: ``modal_analysis`` (the general path: joint dampers are not
    proportional);
-5. ``frequency response``: ``frequency_response`` at 1000 frequencies from the
-   tip torque to every angle, modal form with the modes of stage 4, residual
+6. ``frequency response``: ``frequency_response`` at 1000 frequencies from the
+   tip torque to every angle, modal form with the modes of stage 5, residual
    check on.
 
 Measured per stage: wall time (median of repeats for small n); peak resident
@@ -19,11 +24,17 @@ set size (RSS) during the stage, sampled every millisecond from
 count; a spike shorter than a millisecond can be missed), minus the RSS before
 the pipeline; and the tracemalloc peak (Python and numpy allocations only:
 Pinocchio's C++ allocations are invisible to it).  The subprocess's VmHWM
-(its true peak RSS, interpreter included) is reported as the high-water mark.  The cost exponent is the
-least-squares slope of log(time) against log(n) for n >= 50.
+(its true peak RSS, interpreter included) is reported as the high-water mark.
+The cost exponents are the least-squares slopes of log(time) against log(n)
+for n >= :data:`FIT_FROM` only: below it fixed costs dominate and flatten the
+slope (issue 14: "linearize 0.99" fitted from n = 50 was 1.9 from 100 to 500).
+
+Chains up to the largest n the memory guard admits on this machine: set
+``PINLIN_BENCH_LARGE=1`` (it adds that n and one between; a run of several
+minutes that allocates most of the memory the guard allows, so CI never sets it).
 
 The memory guard: ``load_urdf_string`` estimates Pinocchio's data before
-allocating it and refuses with ``ModelTooLargeError`` beyond its limit (half
+allocating it and refuses with ``ModelTooLargeError`` beyond its limit (80 % of
 the available memory by default); shown for a chain too large for this machine
 and for an explicit limit.
 """
@@ -40,10 +51,17 @@ import tracemalloc
 
 import numpy as np
 
-SIZES = (10, 20, 50, 100, 200, 300)
+SIZES = (10, 20, 50, 100, 200, 300, 400)
 QUICK_SIZES = (10, 20, 50, 100)
-STAGES = ("load", "equilibrium", "linearize", "spectrum", "frequency response")
+STAGES = ("load", "createData", "equilibrium", "linearize", "spectrum", "frequency response")
 FREQUENCIES = 1000
+#: Exponents are fitted from this n on: below it the stages' fixed costs dominate.
+FIT_FROM = 100
+#: Stages cheap enough to repeat at every n (a single sample of a millisecond is noise on a shared machine).
+CHEAP = ("equilibrium", "linearize")
+CHEAP_REPEATS = 7
+#: Environment variable that adds the largest chains the memory guard admits.
+LARGE = "PINLIN_BENCH_LARGE"
 PAGE = os.sysconf("SC_PAGE_SIZE")
 
 
@@ -95,12 +113,17 @@ def worker(n: int) -> dict:
     out: dict = {"n": n, "stages": {}}
     state: dict = {}
 
+    from pinlin.linearization.workspace import workspace
+
     def load():
         state.pop("scene", None)  # a repeat must not hold two Pinocchio datas at once
         robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(n))
         el = [pinlin.JointSpring(f"joint{i + 1}", 5.0) for i in range(n)]
         el += [pinlin.JointDamper(f"joint{i + 1}", 0.01 * (1 + i % 3)) for i in range(n)]
         state["scene"] = pinlin.Scene(robot, el)
+
+    def create_data():
+        state["workspace"] = workspace(state["scene"])
 
     def equilibrium():
         q0 = np.full(state["scene"].robot.nq, 0.2 / n)
@@ -117,11 +140,18 @@ def worker(n: int) -> dict:
         state["fr"] = pinlin.frequency_response(state["sys"], omega, [n - 1], None, method="modal", modes=state["modes"])
 
     tracemalloc.start()
-    for name, fn in zip(STAGES, (load, equilibrium, linearize, spectrum, response)):
+    for name, fn in zip(STAGES, (load, create_data, equilibrium, linearize, spectrum, response)):
+        if name == "createData":  # once: the thread's workspace is made on first use and kept
+            with PeakRSS() as p:
+                t0 = time.perf_counter()
+                fn()
+                elapsed = time.perf_counter() - t0
+            out["stages"][name] = {"time": elapsed, "peak_rss": p.peak - base, "tracemalloc_peak": 0}
+            continue
         times = []
         peak_rss = 0
         peak_py = 0
-        for k in range(repeats):
+        for k in range(max(repeats, CHEAP_REPEATS) if name in CHEAP else repeats):
             tracemalloc.reset_peak()
             with PeakRSS() as p:
                 t0 = time.perf_counter()
@@ -180,19 +210,41 @@ def guard_demo() -> list[list]:
 
 
 def _fit(ns, ts) -> float:
+    """Least-squares slope of log(time) against log(n) for n >= FIT_FROM (NaN with fewer than two points)."""
     ns, ts = np.asarray(ns, float), np.asarray(ts, float)
-    keep = ns >= 50
+    keep = ns >= FIT_FROM
     if keep.sum() < 2:
-        keep = np.ones_like(ns, dtype=bool)
+        return float("nan")
     return float(np.polyfit(np.log(ns[keep]), np.log(ts[keep]), 1)[0])
+
+
+def largest_admitted_n() -> int:
+    """The largest chain whose Pinocchio data the memory guard admits here by default (80 % of available)."""
+    import pinlin
+
+    available = pinlin.model.memory.available_memory() or 0
+    limit = pinlin.model.memory.MEMORY_FRACTION * available
+    n = 10
+    while pinlin.model.memory.pinocchio_data_bytes(n + 10) <= limit:
+        n += 10
+    return n
+
+
+def sizes(quick: bool) -> tuple[int, ...]:
+    """The chain lengths of a run: quick, default, or up to the guard's limit when PINLIN_BENCH_LARGE is set."""
+    if quick:
+        return QUICK_SIZES
+    if not os.environ.get(LARGE):
+        return SIZES
+    top = largest_admitted_n()
+    return tuple(sorted(set(SIZES) | {(SIZES[-1] + top) // 2 // 10 * 10, top}))
 
 
 def run(quick: bool = False):
     from .common import Report, Table, result_path, work_precision_plot
 
     t_start = time.perf_counter()
-    sizes = QUICK_SIZES if quick else SIZES
-    results = [_run_worker(n) for n in sizes]
+    results = [_run_worker(n) for n in sizes(quick)]
     rows, mem_rows = [], []
     for r in results:
         st = r["stages"]
@@ -210,10 +262,11 @@ def run(quick: bool = False):
         "Time per stage [ms] of the pipeline for n-link pendulum chains",
         ["n"] + [f"{s} [ms]" for s in STAGES] + ["total [ms]", "spectral path", "max eta", "response residual",
                                                   "verdict"],
-        rows + [["exponent (n >= 50)"] + [f"{exps[s]:.2f}" for s in STAGES] + [f"{exponent:.2f}", "", "", "", ""]],
+        rows + [[f"exponent (n >= {FIT_FROM})"] + [f"{exps[s]:.2f}" for s in STAGES] + [f"{exponent:.2f}", "", "", "", ""]],
         note=(
-            "Each n in a fresh subprocess; medians of 3 repeats for n <= 100, one run above. Last row: least-squares "
-            "slope of log(time) against log(n) for n >= 50. Frequency response: 1000 frequencies 0.1 ... 1000 "
+            f"Each n in a fresh subprocess; medians of 3 repeats for n <= 100, one run above, but always "
+            f"{CHEAP_REPEATS} for {' and '.join(CHEAP)} (createData: once, the thread's workspace is kept). Last row: least-squares slope of log(time) against log(n) for "
+            f"n >= {FIT_FROM} (below, fixed costs flatten it). Frequency response: 1000 frequencies 0.1 ... 1000 "
             "rad/s, tip torque to every angle, modal form with the modes of the spectrum stage."
         ),
     )
@@ -227,7 +280,7 @@ def run(quick: bool = False):
             "Peak RSS: resident set size sampled every 1 ms during the first run of the stage "
             "(/proc/self/statm), minus the RSS before the pipeline started (interpreter, numpy, Pinocchio "
             "loaded); cumulative, so it includes what earlier stages still hold, in particular Pinocchio's C++ "
-            "data (four n x n x n tensors, allocated and zeroed by Scene: compare the last column). tracemalloc "
+            "data (four n x n x n tensors, allocated and zeroed by createData: compare the last column). tracemalloc "
             "sees Python and numpy allocations only. VmHWM: the subprocess's true peak RSS, interpreter "
             "included. The sampling thread needs the GIL, so a transient inside one C++ call is seen only in "
             "VmHWM: Pinocchio's createData peaks at about twice its final size (64 n^3 bytes, e.g. 1.84 GiB "
@@ -242,10 +295,18 @@ def run(quick: bool = False):
         note="The estimate is pinlin.model.memory.pinocchio_data_bytes(n) = 72 n^3 + 400 n^2 + 4e6 bytes: the peak of "
         "createData (measured 2.1-2.25 times the 32 n^3 bytes it keeps).",
     )
+    share = {r["n"]: r["stages"]["createData"]["time"] / max(sum(st["time"] for st in r["stages"].values()), 1e-300)
+             for r in results}
     summary = {
-        "fitted cost exponent of the whole pipeline (n >= 50)": f"{exponent:.2f}",
+        f"fitted cost exponent of the whole pipeline (n >= {FIT_FROM})": f"{exponent:.2f}",
         "exponents per stage": ", ".join(f"{s} {exps[s]:.2f}" for s in STAGES),
         f"total at n = {ns[-1]}": f"{totals[-1]:.2f} s",
+        "load time: createData": ", ".join(
+            f"n = {r['n']} {r['stages']['createData']['time'] * 1e3:.3g} ms ({share[r['n']]:.0%} of the pipeline)"
+            for r in results if r["n"] >= FIT_FROM
+        ) + " (one Data per robot and thread, shared by its scenes)",
+        "largest chain the memory guard admits here": f"n = {largest_admitted_n()} "
+        + ("(measured: PINLIN_BENCH_LARGE)" if os.environ.get(LARGE) else f"(not measured: set {LARGE}=1)"),
         "memory guard": "refused cleanly in every case" if all("ModelTooLargeError" in g[-1] for g in guard)
         else "DID NOT REFUSE",
     }

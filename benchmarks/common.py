@@ -241,31 +241,47 @@ def result_path(name: str, quick: bool, suffix: str = "png") -> Path:
     return RESULTS / f"{name}{'_quick' if quick else ''}.{suffix}"
 
 
-def interleaved_medians(fns: Sequence[Callable[[], object]], repeats: int = 7, min_time: float = 0.01) -> list[float]:
-    """Median wall time [s] per call of each function, sampled in turn.
+def interleaved_medians(
+    fns: Sequence[Callable[[], object]],
+    repeats: int = 7,
+    min_time: float = 0.01,
+    clock: Callable[[], float] = time.perf_counter,
+) -> list[float]:
+    """Median time [s] per call of each function, sampled in turn.
 
     Each function gets one warm-up call and a loop count making one sample last
     at least ``min_time``; then the samples of all functions are taken
     alternately, so a change of machine load (this machine is shared) does not
-    favour one side of a ratio.
+    favour one side of a ratio.  ``clock``: wall time by default;
+    ``time.thread_time`` counts this thread's CPU time only, so other processes'
+    load shows less (it still slows the caches).
     """
     loops = []
     for fn in fns:
         fn()
         n = 1
         while True:
-            t0 = time.perf_counter()
+            t0 = clock()
             for _ in range(n):
                 fn()
-            if time.perf_counter() - t0 >= min_time or n >= 1 << 20:
+            if clock() - t0 >= min_time or n >= 1 << 20:
                 break
             n *= 2
         loops.append(n)
     samples: list[list[float]] = [[] for _ in fns]
     for _ in range(repeats):
         for fn, n, out in zip(fns, loops, samples):
-            t0 = time.perf_counter()
+            t0 = clock()
             for _ in range(n):
                 fn()
-            out.append((time.perf_counter() - t0) / n)
+            out.append((clock() - t0) / n)
     return [statistics.median(s) for s in samples]
+
+
+def load_average() -> str:
+    """The 1-minute load average (from /proc/loadavg), or 'unknown': how busy the shared machine was."""
+    try:
+        with open("/proc/loadavg", encoding="ascii") as f:
+            return f.read().split()[0]
+    except OSError:
+        return "unknown"

@@ -260,3 +260,24 @@ def test_each_thread_computes_in_its_own_workspace():
     assert theirs[0] != threading.get_ident()
     assert theirs[1] is not mine and theirs[1].data is not mine.data
     assert not hasattr(scene, "data")  # the description holds no Pinocchio workspace
+
+
+def test_scenes_of_one_robot_share_the_threads_data():
+    """One Data per robot and thread (createData dominates loading): a sweep's scenes reuse it.
+
+    Scenes of one robot differ in gravity and elements, not in the model's structure;
+    interleaving them in one workspace gives bitwise the results of each alone.
+    """
+    from pinlin.linearization.workspace import workspace
+
+    robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(4))
+    weak = pinlin.Scene(robot, [pinlin.JointSpring(j, 5.0) for j in robot.joint_names])
+    strong = weak.replace(gravity=(0.0, 0.0, -20.0), elements=[pinlin.JointSpring(j, 50.0) for j in robot.joint_names])
+    q = np.array([0.1, -0.2, 0.3, 0.05])
+    alone = [pinlin.linearize(s, q, balancing=True) for s in (weak, strong)]
+    assert workspace(weak) is workspace(strong)
+    mixed = [pinlin.linearize(s, q, balancing=True) for s in (weak, strong, weak, strong)]
+    for got, expected in zip(mixed, alone + alone):
+        for name in ("M", "S", "balancing"):
+            assert np.array_equal(getattr(got, name), getattr(expected, name))
+    assert not np.array_equal(alone[0].S, alone[1].S)  # the two scenes do differ

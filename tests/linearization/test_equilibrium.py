@@ -126,3 +126,57 @@ def test_equilibrium_result_convention():
     assert d["method"] == "analytic" and d["error"] == sys.residual
     assert_allclose(d["S"], sys.S)
     assert len(repr(sys).splitlines()) == 1
+
+
+# --- bad input gets a clear error, never a history of inf and a "relative nan" (issue 13, item 9)
+
+SLIDER = """<robot name="slider"><link name="world_link"/>
+  <link name="block"><inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>
+  </inertial></link>
+  <joint name="slide" type="prismatic"><parent link="world_link"/><child link="block"/><axis xyz="1 0 0"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"""
+
+
+def test_start_at_1e300_rad_is_refused_naming_the_joint():
+    """q = [1e300, 0]: doubles that large are ~1e284 rad apart, so the angle says nothing about the position."""
+    scene = double_pendulum(elements=[pinlin.JointSpring("joint1", 3.0), pinlin.JointSpring("joint2", 2.0)])
+    with pytest.raises(pinlin.ConfigurationError, match=r"q0\[0\] = 1e\+300 rad on revolute joint 'joint1' is beyond"):
+        pinlin.find_equilibrium(scene, [1e300, 0.0])
+    with pytest.raises(pinlin.ConfigurationError, match="beyond 2.83e\\+16 rad"):
+        pinlin.linearize(scene, [0.0, -1e17])
+
+
+def test_huge_but_finite_forces_keep_a_finite_history():
+    """A slider 1e200 m from its spring's rest: ||r|| = 6e200 squares past double precision, the norm does not."""
+    scene = pinlin.Scene(pinlin.load_urdf_string(SLIDER), [pinlin.JointSpring("slide", 6.0)])
+    eq = pinlin.find_equilibrium(scene, [1e200])
+    assert eq.history[0] == pytest.approx(6e200, rel=1e-15)  # k x: the spring alone acts along the slide
+    assert eq.q[0] == 0.0 and eq.iterations == 1  # Newton on a linear spring: one step
+
+
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")  # numpy, in the spring's force
+def test_overflowing_forces_at_the_start_are_a_clear_error():
+    scene = pinlin.Scene(pinlin.load_urdf_string(SLIDER), [pinlin.JointSpring("slide", 6.0)])
+    with pytest.raises(pinlin.ConfigurationError, match=r"non-finite generalized forces on \['slide'\].*overflow"):
+        pinlin.find_equilibrium(scene, [1e308])
+
+
+@pytest.mark.parametrize("min_step", [0.0, -1e-3, 1.0, 2.0, np.nan, np.inf, "small", None])
+def test_min_step_is_validated(min_step):
+    with pytest.raises(pinlin.ParameterError, match=r"min_step: must be a line-search fraction in \(0, 1\)"):
+        pinlin.find_equilibrium(double_pendulum(), [0.1, 0.0], min_step=min_step)
+
+
+def test_min_step_is_validated_with_constraints_too():
+    robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    loop = pinlin.PointConstraint("rocker_tip", (1.0, 0.0, 0.0))
+    with pytest.raises(pinlin.ParameterError, match="min_step"):
+        pinlin.find_equilibrium(pinlin.Scene(robot, constraints=[loop]), min_step=0.0)
+
+
+def test_zero_quaternion_is_not_taken_as_the_identity():
+    robot = pinlin.load_example("solo12", free_flyer=True)
+    q0 = robot.neutral()
+    q0[3:7] = 0.0
+    with pytest.raises(pinlin.ConfigurationError, match=r"q0\[3:7\] = \[0.0, 0.0, 0.0, 0.0\] of joint 'root_joint' is not"):
+        pinlin.find_equilibrium(pinlin.Scene(robot, gravity=(0, 0, 0)), q0)

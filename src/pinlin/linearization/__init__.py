@@ -6,6 +6,10 @@ One concept per module:
   and :class:`Evaluation`, the kinematic quantities at one (q, v) that elements share;
 - :mod:`.assembly` -- the residual r(q, v) and its analytic derivatives, running only
   the Pinocchio algorithms a scene needs;
+- :mod:`.plan` -- :class:`~.plan.LinearizationPlan`, what a linearization decides once
+  per scene (``scene.linearization_plan``);
+- :mod:`.time_invariance` -- do the equations depend on a prescribed joint's position?
+  Proofs once per scene, the numerical check elsewhere;
 - :mod:`.equilibrium` -- Newton on the configuration manifold;
 - :mod:`.linearize` -- :func:`linearize`: restriction to the free coordinates,
   symmetric and skew parts;
@@ -18,12 +22,12 @@ One concept per module:
   the constraint stiffness K_lambda).
 """
 
+from .closure import ClosureResult, close_loops
+from .constrained import constraint_stiffness
 from .equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
 from .linearize import generalized_force, linearize
 from .system import LinearizedSystem
 from .workspace import Evaluation, Workspace
-from .closure import ClosureResult, close_loops
-from .constrained import constraint_stiffness
 
 __all__ = [
     "Workspace",

@@ -38,12 +38,24 @@ __all__ = ["Assembly", "assemble", "external_forces", "fro"]
 
 
 def fro(a: np.ndarray) -> float:
-    """Frobenius norm (cheaper than ``np.linalg.norm`` on small arrays)."""
+    """Frobenius norm, overflow-safe (cheaper than ``np.linalg.norm`` on small arrays).
+
+    The sum of squares overflows for entries beyond about 1e154; then (numpy has
+    warned about the overflow) the norm is computed again from the scaled array.
+    """
+    square = np.vdot(a, a)  # flattens; one call
+    if square < math.inf:  # False for inf and NaN
+        return math.sqrt(square)
     flat = a.ravel()
-    return math.sqrt(float(np.dot(flat, flat)))
+    big = float(np.max(np.abs(flat))) if flat.size else 0.0
+    if not math.isfinite(big) or big == 0.0:
+        return big
+    with np.errstate(over="ignore"):
+        scaled = flat / big
+        return big * math.sqrt(float(np.dot(scaled, scaled)))
 
 
-@dataclass
+@dataclass(slots=True)
 class Assembly:
     """Residual and derivatives of one scene at one point, on the full tangent space.
 
@@ -98,6 +110,35 @@ def external_forces(scene: Scene, ev: Evaluation) -> pin.StdVec_Force | None:
     return fext
 
 
+def _dynamics(ev: Evaluation, fext, stiffness: bool, derivatives: bool):
+    """Pinocchio's part at (q, v, a = 0): (tau, K, C, M or None); only the algorithm the point needs.
+
+    ``derivatives``: any of K, C, M asked for (with a velocity, one RNEA-derivative
+    pass gives all three).  tau, K and C are fresh arrays the caller may modify.
+    """
+    model, data, q = ev.model, ev.data, ev.q
+    extra = () if fext is None else (fext,)
+    if not ev.at_rest:
+        zero = np.zeros(model.nv)
+        if not derivatives:
+            return np.array(ev.call("rnea", pin.rnea, model, data, q, ev.v, zero, *extra)), None, None, None
+        dq, dv, Mu = ev.call("computeRNEADerivatives", pin.computeRNEADerivatives, model, data, q, ev.v, zero, *extra)
+        ev.provide_mass_matrix(symmetric_from_upper(Mu, ev.ws.lower))  # views of Data: copied
+        return data.tau.copy(), np.array(dq), np.array(dv), ev.mass_matrix()
+    if fext is not None:
+        if stiffness:  # the binding returns a fresh array
+            K = ev.call("computeStaticTorqueDerivatives", pin.computeStaticTorqueDerivatives, model, data, q, fext)
+            return data.tau.copy(), K, None, None
+        return ev.call("computeStaticTorque", pin.computeStaticTorque, model, data, q, fext), None, None, None
+    if ev.scene.has_gravity:
+        if stiffness:
+            K = ev.call("computeGeneralizedGravityDerivatives", pin.computeGeneralizedGravityDerivatives, model, data, q)
+            return data.g.copy(), K, None, None
+        return ev.call("computeGeneralizedGravity", pin.computeGeneralizedGravity, model, data, q), None, None, None
+    nv = model.nv
+    return np.zeros(nv), (np.zeros((nv, nv)) if stiffness else None), None, None
+
+
 def assemble(
     scene: Scene,
     q: np.ndarray,
@@ -115,63 +156,37 @@ def assemble(
     used whenever v = 0.  Pinocchio writes into ``ws`` (default: the calling
     thread's workspace for the scene).
     """
-    v0 = scene.v0 if v is None else np.asarray(v, dtype=float)
-    ev = Evaluation(scene, q, v0, ws)
-    model, data = scene.model, ev.data
-    nv = model.nv
-    fext = external_forces(scene, ev)
-    extra = () if fext is None else (fext,)
-    M = C = K = coriolis_D = None
-    scale_C = 0.0
-
-    if not ev.at_rest:
-        zero = np.zeros(nv)
-        if stiffness or damping or mass:
-            dq, dv, Mu = ev.call("computeRNEADerivatives", pin.computeRNEADerivatives, model, data, q, v0, zero, *extra)
-            K, C = np.array(dq), np.array(dv)
-            ev.provide_mass_matrix(symmetric_from_upper(Mu, ev.ws.lower))
-            tau = data.tau.copy()
-            coriolis_D = (C + C.T) / 2
-            scale_C = fro(C)
-        else:
-            tau = np.array(ev.call("rnea", pin.rnea, model, data, q, v0, zero, *extra))
-    elif fext is not None:
-        if stiffness:
-            K = np.array(ev.call("computeStaticTorqueDerivatives", pin.computeStaticTorqueDerivatives, model, data, q, fext))
-            tau = data.tau.copy()
-        else:
-            tau = np.array(ev.call("computeStaticTorque", pin.computeStaticTorque, model, data, q, fext))
-    elif scene.has_gravity:
-        if stiffness:
-            K = np.array(ev.call("computeGeneralizedGravityDerivatives", pin.computeGeneralizedGravityDerivatives, model, data, q))
-            tau = data.g.copy()
-        else:
-            tau = np.array(ev.call("computeGeneralizedGravity", pin.computeGeneralizedGravity, model, data, q))
+    if v is None:
+        v0, at_rest = scene.v0, not scene.linearization_plan.moving
     else:
-        tau = np.zeros(nv)
-        if stiffness:
-            K = np.zeros((nv, nv))
-    if damping and C is None:
+        v0 = np.asarray(v, dtype=float)
+        at_rest = not np.count_nonzero(v0)
+    ev = Evaluation(scene, q, v0, ws, at_rest=at_rest)
+    nv = scene.model.nv
+    tau, K, C, M = _dynamics(ev, external_forces(scene, ev), stiffness, stiffness or damping or mass)
+    coriolis_D = None
+    scale_C = 0.0
+    if C is not None:
+        scale_C = fro(C)
+        if damping:
+            coriolis_D = (C + C.T) * 0.5
+    elif damping:
         C = np.zeros((nv, nv))
-    if mass:
+    if mass and M is None:
         M = ev.mass_matrix()
-
     scale_K = fro(K) if stiffness else 0.0
     Q = np.zeros(nv)
-    symmetric = True
     for group in scene.groups:
         group.add_force(ev, Q)
         if stiffness:
             group.add_stiffness(ev, K)
-            symmetric = symmetric and group.symmetric_stiffness
         if damping:
             group.add_damping(ev, C)
     if stiffness:
         for wrench in scene.varying_wrenches:
             wrench.add_stiffness(ev, K)
-            symmetric = symmetric and wrench.symmetric_stiffness
     K_norm = fro(K) if stiffness else 0.0
-    if not symmetric:
+    if stiffness and not scene.linearization_plan.symmetric_elements:
         scale_K += K_norm
     return Assembly(
         residual=tau - Q,

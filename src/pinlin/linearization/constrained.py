@@ -52,7 +52,7 @@ from .constraint_set import (
     relative_residual,
 )
 from .coordinates import coordinate_basis
-from .linearize import STRUCTURE_EPS_FACTOR
+from .plan import STRUCTURE_EPS_FACTOR
 from .singularity import check_regular
 from .system import LinearizedSystem, null_motion
 
@@ -161,11 +161,14 @@ def linearize_constrained(
 def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, structure_tol, calls, t0):
     B = basis.B
     M = B.T @ asm.M @ B
-    M = (M + M.T) * 0.5
+    M = M + M.T
+    M *= 0.5
     C = B.T @ asm.C @ B
     K = B.T @ Kt @ B
-    if not math.isfinite(float(M.sum() + C.sum() + K.sum())):
-        raise ComputationError("linearize: non-finite entries in the projected M, C or K")
+    # one product per pair: a NaN or inf anywhere makes it non-finite (inf * 0 is NaN)
+    if not (math.isfinite(np.vdot(M, C)) and math.isfinite(np.vdot(K, K))):
+        if not (np.isfinite(M).all() and np.isfinite(C).all() and np.isfinite(K).all()):
+            raise ComputationError("linearize: non-finite entries in the projected M, C or K")
     if lapack.dpotrf(M, lower=1, clean=0)[1] != 0:
         smallest, weak = null_motion(M, basis.dof_names)
         raise SingularMassError(
@@ -176,14 +179,14 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
     dropped: dict[str, float] = {}
     S, N = (K + K.T) * 0.5, (K - K.T) * 0.5
     # rounding in B^T (K - K_lambda) B: eps-relative to ||B||^2 (||K|| + ||K_lambda||) (||B||_2 <= ||B||_F)
-    size = fro(N) / max(fro(B) ** 2 * asm.rounding_scale_K, _TINY)
+    size = fro(N) / max(float(np.vdot(B, B)) * asm.rounding_scale_K, _TINY)
     if structure_tol is None:
         structure_tol = STRUCTURE_EPS_FACTOR * len(basis.dof_names) * _EPS
     if size <= structure_tol:
         if size:
             dropped["N"] = size
-        N = np.zeros_like(K)
-    D, G = (C + C.T) * 0.5, np.zeros_like(K)  # v0 = 0: C comes from the (symmetric) elements alone
+        N = np.zeros(K.shape)
+    D, G = (C + C.T) * 0.5, np.zeros(K.shape)  # v0 = 0: C comes from the (symmetric) elements alone
     notes, _ = constraint_notes(scene, state, lam, all_contacts=False)
     if scene.contact_index:
         notes.append(BILATERAL_NOTE)

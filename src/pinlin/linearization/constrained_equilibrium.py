@@ -23,7 +23,7 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from ..errors import ConvergenceError, ParameterError
+from ..errors import ConvergenceError
 from ..model.scene import Scene
 from .assembly import fro
 from .closure import CLOSURE_TOL, close_loops, project
@@ -36,7 +36,7 @@ from .constraint_set import (
     evaluate_constraints,
     relative_residual,
 )
-from .equilibrium import ARMIJO, EquilibriumResult, _newton_step
+from .equilibrium import ARMIJO, EquilibriumResult, _newton_step, check_solver_parameters
 
 __all__ = ["find_constrained_equilibrium", "PROJECTION_ITERATIONS"]
 
@@ -89,7 +89,7 @@ def find_constrained_equilibrium(
     Raises
     ------
     ParameterError
-        A bad tolerance or iteration count.
+        A bad tolerance, iteration count or ``min_step``.
     ConfigurationError
         q0 has the wrong size or is not finite.
     AssemblyError
@@ -98,10 +98,7 @@ def find_constrained_equilibrium(
         Newton did not converge; ``.history`` holds the residual norms.
     """
     t0 = time.perf_counter()
-    if not (np.isfinite(tol) and tol > 0):
-        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
-    if not isinstance(max_iterations, (int, np.integer)) or max_iterations < 0:
-        raise ParameterError("max_iterations", f"must be an integer >= 0, got {max_iterations!r}")
+    check_solver_parameters(tol, max_iterations, min_step)
     closure = close_loops(scene, q0, tol=closure_tol, rank_tol=rank_tol)
     q = closure.q
     state = evaluate_constraints(scene, q, rank_tol=rank_tol)

@@ -98,7 +98,7 @@ class ConstraintState:
     @cached_property
     def rank(self) -> int:
         """Numerical rank of J_c: pivots |R_kk| above ``rank_tol`` |R_11|."""
-        d = np.abs(np.diagonal(self.qr[0]))
+        d = np.abs(self.qr[0].diagonal())
         if not len(d) or d[0] == 0:
             return 0
         return int(np.count_nonzero(d > self.rank_tol * d[0]))
@@ -152,12 +152,12 @@ class ConstraintState:
     def gaps(self) -> tuple[float, float, str]:
         """Largest distance [m], largest rotation [rad], and the label of the constraint with the largest distance."""
         P = self.phi[self.scene.position_rows]
-        d2 = (P * P).sum(axis=1)
+        d2 = np.add.reduce(P * P, axis=1)
         worst = int(d2.argmax())
         rot = 0.0
         if len(self.scene.rotation_rows):
             R = self.phi[self.scene.rotation_rows]
-            rot = math.sqrt(float((R * R).sum(axis=1).max()))
+            rot = math.sqrt(float(np.maximum.reduce(np.add.reduce(R * R, axis=1))))
         return math.sqrt(float(d2[worst])), rot, self.scene.constraints[worst].label
 
     def contacts_violated(self, lam: np.ndarray) -> bool:
@@ -167,9 +167,10 @@ class ConstraintState:
             return False
         L = lam[scene.contact_rows]
         n = scene.contact_normals
-        fn = (L * n).sum(axis=1)
+        fn = np.add.reduce(L * n, axis=1)
         t = L - fn[:, None] * n
-        return bool((fn < 0).any() or ((t * t).sum(axis=1) > (scene.contact_friction * fn) ** 2).any())
+        mu_fn = scene.contact_friction * fn
+        return bool(np.count_nonzero(fn < 0) or np.count_nonzero(np.add.reduce(t * t, axis=1) > mu_fn * mu_fn))
 
     def row_owners(self, vector: np.ndarray, share: float) -> list[str]:
         """Labels of the constraints whose rows carry at least ``share`` of a unit vector (m,)."""

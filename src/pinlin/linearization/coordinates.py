@@ -80,7 +80,7 @@ def _joint_basis(J: np.ndarray, independent, dependent, X: np.ndarray) -> np.nda
     """B with the identity on the independent rows and -X on the dependent ones."""
     n = len(independent)
     B = np.zeros((J.shape[1], n))
-    B[independent, range(n)] = 1.0
+    B[independent, np.arange(n)] = 1.0
     B[dependent] = -X
     return B
 
@@ -148,15 +148,14 @@ def coordinate_basis(
         raise ParameterError(
             "coordinates", f"expected None, 'orthonormal' or a list of joint names, got {coordinates!r}"
         )
-    if coordinates == "orthonormal":
+    if isinstance(coordinates, str):  # "orthonormal"
         B = state.kernel()
         return CoordinateBasis(B, tuple(f"z{i + 1}" for i in range(n)), 1.0, "orthonormal", ())
     if coordinates is None:
         R, perm = state.qr[:2]  # the rank-revealing QR of J_c: its pivots are the dependent joints
-        perm = perm.tolist()
-        dependent = perm[:r]
-        order = sorted(range(n), key=perm[r:].__getitem__)  # coordinates in joint order
-        independent = [perm[r + k] for k in order]
+        dependent, rest = perm[:r], perm[r:]
+        order = np.argsort(rest)  # coordinates in joint order
+        independent = rest[order]
         X = lapack.dtrtrs(R[:r, :r], R[:r, r:])[0][:, order] if r else np.zeros((0, n))  # upper triangle only
         B = _joint_basis(J, independent, dependent, X)
         condition = _condition(R[:r, :r]) if r else 1.0
@@ -175,8 +174,8 @@ def coordinate_basis(
         method = "joints (given)"
     return CoordinateBasis(
         B,
-        tuple(dof_names[i] for i in independent),
+        tuple(map(dof_names.__getitem__, np.asarray(independent).tolist())),
         condition,
         method,
-        tuple(dof_names[i] for i in sorted(dependent)),
+        tuple(map(dof_names.__getitem__, np.sort(dependent).tolist())),
     )

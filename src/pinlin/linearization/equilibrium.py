@@ -10,12 +10,19 @@ import numpy as np
 import pinocchio as pin
 import scipy.linalg
 
-from .assembly import assemble
-from ..errors import ConvergenceError, ParameterError
+from ..errors import ConfigurationError, ConvergenceError, ParameterError
 from ..model.scene import Scene
 from ..results import Result
+from .assembly import assemble, fro
 
-__all__ = ["EquilibriumResult", "find_equilibrium", "equilibrium_residual", "ARMIJO", "STALL_RATIO"]
+__all__ = [
+    "EquilibriumResult",
+    "find_equilibrium",
+    "equilibrium_residual",
+    "check_solver_parameters",
+    "ARMIJO",
+    "STALL_RATIO",
+]
 
 #: Armijo's sufficient-decrease constant of the line search: a step is taken when
 #: ||r|| falls by at least ARMIJO * alpha of itself (the usual 1e-4 of Nocedal and
@@ -101,8 +108,32 @@ class EquilibriumResult(Result):
 
 
 def _relative(r: np.ndarray, scale: float) -> float:
-    norm = float(np.linalg.norm(r))
+    norm = fro(r)
     return norm / scale if scale > 0 else 0.0
+
+
+def check_solver_parameters(tol, max_iterations, min_step) -> None:
+    """Raise ParameterError unless tol > 0 is finite, max_iterations >= 0 an integer and 0 < min_step < 1."""
+    if not (isinstance(tol, (int, float, np.integer, np.floating)) and 0 < tol < np.inf):
+        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
+    if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 0:
+        raise ParameterError("max_iterations", f"must be an integer >= 0, got {max_iterations!r}")
+    if not (isinstance(min_step, (int, float, np.integer, np.floating)) and 0 < min_step < 1):
+        raise ParameterError(
+            "min_step", f"must be a line-search fraction in (0, 1), got {min_step!r}"
+        )
+
+
+def _check_start(scene: Scene, q: np.ndarray, r: np.ndarray) -> None:
+    """Raise ConfigurationError when the residual at the start is not finite (the forces overflow)."""
+    bad = np.flatnonzero(~np.isfinite(r))
+    if bad.size:
+        names = [scene.dof_names[i] for i in bad[:5]]
+        raise ConfigurationError(
+            f"q0 = {np.array2string(q, precision=4, threshold=8)} gives non-finite generalized forces on {names}: "
+            f"the scene's forces overflow double precision there, so no Newton step can start; start from "
+            f"a configuration of physical size"
+        )
 
 
 def _result(q, norm, rel, iteration, history, least_squares, t0) -> EquilibriumResult:
@@ -184,28 +215,26 @@ def find_equilibrium(
         Stop when ||r|| / (||tau|| + ||Q_e|| + ||K||) <= tol.
     max_iterations : int
     min_step : float
-        Smallest line-search fraction before giving up.
+        Smallest line-search fraction before giving up, in (0, 1).
 
     Raises
     ------
     ParameterError
-        ``tol`` or ``max_iterations`` is not valid.
+        ``tol``, ``max_iterations`` or ``min_step`` is not valid.
     ConfigurationError
-        q0 has the wrong size or is not finite.
+        q0 has the wrong size, is not finite (or has a revolute angle beyond
+        :data:`~pinlin.model.scene.ANGLE_LIMIT`), or its forces overflow.
     ConvergenceError
         No convergence; ``.history`` holds the residual norms.
     AssemblyError
         (With constraints) the constraints cannot be closed from q0.
     """
+    check_solver_parameters(tol, max_iterations, min_step)
     if scene.constraints:
         from .constrained_equilibrium import find_constrained_equilibrium
 
         return find_constrained_equilibrium(scene, q0, tol=tol, max_iterations=max_iterations, min_step=min_step)
     t0 = time.perf_counter()
-    if not (np.isfinite(tol) and tol > 0):
-        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
-    if not isinstance(max_iterations, (int, np.integer)) or max_iterations < 0:
-        raise ParameterError("max_iterations", f"must be an integer >= 0, got {max_iterations!r}")
     q = scene.check_configuration(scene.neutral() if q0 is None else q0, "q0")
     f = scene.free_dofs
     model = scene.model
@@ -214,7 +243,9 @@ def find_equilibrium(
     for iteration in range(max_iterations + 1):
         asm = assemble(scene, q, stiffness=True)
         r = asm.residual[f]
-        norm = float(np.linalg.norm(r))
+        norm = fro(r)
+        if not iteration and not np.isfinite(norm):
+            _check_start(scene, q, r)
         history.append(norm)
         rel = _relative(r, asm.force_scale)
         if rel <= tol:
@@ -229,7 +260,7 @@ def find_equilibrium(
         while True:
             trial = pin.integrate(model, q, alpha * dx)
             r_trial = assemble(scene, trial, stiffness=False).residual[f]
-            if np.all(np.isfinite(r_trial)) and np.linalg.norm(r_trial) <= (1 - ARMIJO * alpha) * norm:
+            if fro(r_trial) <= (1 - ARMIJO * alpha) * norm:  # False for a non-finite trial
                 q = trial
                 break
             alpha /= 2

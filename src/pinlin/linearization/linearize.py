@@ -1,4 +1,12 @@
-"""Linearization of a scene at an equilibrium or steady motion (SPEC section 1)."""
+"""Linearization of a scene at an equilibrium or steady motion (SPEC section 1).
+
+:func:`linearize` runs the scene's Pinocchio passes once (:mod:`.assembly`),
+with everything that does not depend on q decided beforehand in the scene's
+:class:`~pinlin.linearization.plan.LinearizationPlan`; then the checks
+(equilibrium, finite entries, positive definite mass, time invariance) and the
+split of C and K into their symmetric and skew parts, rounding-level parts set
+to exactly zero and reported.
+"""
 
 from __future__ import annotations
 
@@ -6,38 +14,26 @@ import math
 import time
 
 import numpy as np
-import pinocchio as pin
-import scipy.linalg
+import scipy.linalg.lapack as lapack
 
-from .assembly import assemble, fro
-from ..model.elements import WrenchElement
 from ..errors import (
     ComputationError,
     NotAnEquilibriumError,
     ParameterError,
     SingularMassError,
-    TimePeriodicError,
 )
+from ..model.elements import WrenchElement
 from ..model.scene import Scene
+from .assembly import Assembly, assemble, fro
 from .constraint_set import CONSTRAINT_TOL, RANK_TOL
+from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan
 from .system import LinearizedSystem, null_motion
+from .time_invariance import PERIODIC_TEST_ANGLES, numeric_change
 from .workspace import Evaluation
 
 __all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES", "STRUCTURE_EPS_FACTOR"]
 
-#: Offsets [rad or m] of a prescribed joint at which the equations are
-#: evaluated again to check that they do not depend on its position.
-PERIODIC_TEST_ANGLES = (1.0, 2.5)
-
-
-#: Default structure_tol is STRUCTURE_EPS_FACTOR n eps: Pinocchio's recursive algorithms
-#: accumulate a few rounding errors per joint, so an exactly (skew-)symmetric part that
-#: should vanish comes out at a small multiple of n eps of the computed part's norm.
-STRUCTURE_EPS_FACTOR = 100.0
-
-
-def _structure_tol(n: int) -> float:
-    return STRUCTURE_EPS_FACTOR * n * np.finfo(float).eps
+_TINY = float(np.finfo(float).tiny)
 
 
 def _massless_joints(scene: Scene) -> list[str]:
@@ -61,7 +57,7 @@ def _massless_joints(scene: Scene) -> list[str]:
 
 
 def _check_mass(scene: Scene, M: np.ndarray) -> None:
-    if scipy.linalg.lapack.dpotrf(M, lower=1, clean=0)[1] == 0:  # Cholesky succeeded: positive definite
+    if lapack.dpotrf(M, lower=1, clean=0)[1] == 0:  # Cholesky succeeded: positive definite
         return
     joints = _massless_joints(scene)
     if not joints:
@@ -75,43 +71,36 @@ def _check_mass(scene: Scene, M: np.ndarray) -> None:
     )
 
 
-def _time_invariance(scene: Scene, q: np.ndarray, base, tol: float) -> tuple[float, list[str]]:
-    """Largest relative change of M, C, K and the residual when a prescribed joint moves,
-    and the Pinocchio calls this check made."""
-    f = scene.free_dofs
-    ref = {
-        "M": base.M[np.ix_(f, f)],
-        "C": base.C[np.ix_(f, f)],
-        "K": base.K[np.ix_(f, f)],
-    }
-    worst = 0.0
-    calls: list[str] = []
-    for name in scene.prescribed:
-        j = scene.robot.joint(name)
-        for offset in PERIODIC_TEST_ANGLES:
-            dq = np.zeros(scene.model.nv)
-            dq[j.idx_v] = offset
-            other = assemble(scene, pin.integrate(scene.model, q, dq), stiffness=True, damping=True, mass=True)
-            calls.extend(other.calls)
-            change = max(
-                fro(getattr(other, key)[np.ix_(f, f)] - val) / max(fro(val), np.finfo(float).tiny)
-                for key, val in ref.items()
-            )
-            change = max(
-                change,
-                fro(other.residual[f] - base.residual[f]) / max(base.force_scale, np.finfo(float).tiny),
-            )
-            worst = max(worst, change)
-            if change > tol:
-                raise TimePeriodicError(
-                    f"the linearized equations depend on the position of prescribed joint {name!r} "
-                    f"(relative change {change:.2e} after {offset} rad): with its prescribed velocity "
-                    f"they are time-periodic, not constant-coefficient, and cannot be analysed as "
-                    f"M x'' + C x' + K x = f",
-                    joint=name,
-                    variation=change,
-                )
-    return worst, calls
+def _number(value) -> bool:
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+
+
+def _positive(name: str, value, upper: float = math.inf) -> None:
+    if not (_number(value) and 0 < value < upper):
+        bound = "" if upper == math.inf else f" below {upper:g}"
+        raise ParameterError(name, f"must be a finite positive number{bound}, got {value!r}")
+
+
+def _check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol) -> None:
+    """Raise ParameterError for a tolerance that is not a finite positive number (structure_tol: >= 0)."""
+    if (  # the common case (floats) in one expression; NaN fails every comparison
+        type(equilibrium_tol) is float
+        and type(periodic_tol) is float
+        and type(constraint_tol) is float
+        and type(rank_tol) is float
+        and (structure_tol is None or type(structure_tol) is float and 0 <= structure_tol < math.inf)
+        and 0 < equilibrium_tol < math.inf
+        and 0 < periodic_tol < math.inf
+        and 0 < constraint_tol < math.inf
+        and 0 < rank_tol < 1
+    ):
+        return
+    _positive("equilibrium_tol", equilibrium_tol)
+    _positive("periodic_tol", periodic_tol)
+    _positive("constraint_tol", constraint_tol)
+    _positive("rank_tol", rank_tol, upper=1.0)
+    if structure_tol is not None and not (_number(structure_tol) and 0 <= structure_tol < math.inf):
+        raise ParameterError("structure_tol", f"must be None or a finite number >= 0, got {structure_tol!r}")
 
 
 def linearize(
@@ -136,7 +125,7 @@ def linearize(
     on the free coordinates, at velocity v0 (zero except on prescribed joints)
     and a = 0, with the derivatives in the tangent space; then D, G, S, N are
     the symmetric and skew parts of C and K.  Only the Pinocchio algorithms the
-    scene needs are run (see :mod:`pinlin.assembly`); they are listed in
+    scene needs are run (see :mod:`pinlin.linearization.assembly`); they are listed in
     ``sys.calls``.
 
     With constraints (closed loops, contacts; SPEC section 10) the system has
@@ -173,10 +162,16 @@ def linearize(
         Relative size below which the skew part of K (the symmetric part of the
         Coriolis C) that Pinocchio's rounding leaves is set to exactly zero; the
         reference scale is the norm of the Pinocchio-computed part.  Default
-        100 n eps.  What was dropped is reported in ``sys.dropped``.
+        100 n eps (:data:`STRUCTURE_EPS_FACTOR`).  What was dropped is reported in
+        ``sys.dropped``.  Must be a finite number >= 0.
     periodic_tol : float
         Largest relative change of M, C, K, r allowed when a prescribed joint is
-        moved by :data:`PERIODIC_TEST_ANGLES`.
+        moved by :data:`PERIODIC_TEST_ANGLES`, each against the system-wide scale
+        of :func:`~pinlin.linearization.time_invariance.numeric_change`.  Joints
+        whose position provably does not enter the equations (a root turntable
+        about an axis along gravity, an axisymmetric rotor, a joint held still:
+        :mod:`pinlin.linearization.time_invariance`) are not moved; ``sys.notes``
+        says which were proved and which were checked.
     constraint_tol : float
         With constraints: largest gap [m] (and rotation [rad]) accepted at q.
     rank_tol : float
@@ -185,8 +180,14 @@ def linearize(
 
     Raises
     ------
+    ParameterError
+        A tolerance is not a finite positive number (``structure_tol``: >= 0;
+        ``rank_tol``: below 1), or ``coordinates`` is given without constraints.
     ConfigurationError
-        q has the wrong size or is not finite.
+        q has the wrong size, is not finite, has a revolute angle beyond
+        :data:`~pinlin.model.scene.ANGLE_LIMIT` or a zero quaternion.
+    ComputationError
+        M, C, K or the residual overflow (non-finite entries).
     NotAnEquilibriumError
         q is not an equilibrium and ``balancing`` is False.
     SingularMassError
@@ -202,10 +203,7 @@ def linearize(
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
-    if not (equilibrium_tol > 0 and math.isfinite(equilibrium_tol)):
-        raise ParameterError("equilibrium_tol", f"must be a positive number, got {equilibrium_tol!r}")
-    if not (periodic_tol > 0 and math.isfinite(periodic_tol)):
-        raise ParameterError("periodic_tol", f"must be a positive number, got {periodic_tol!r}")
+    _check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
     if scene.constraints:
         from .constrained import linearize_constrained
 
@@ -215,72 +213,23 @@ def linearize(
         )  # fmt: skip
     if coordinates is not None:
         raise ParameterError("coordinates", "applies to scenes with constraints only; this scene has none")
-    f = scene.free_dofs
-    n = len(f)
-    everything = n == scene.model.nv
+    plan = scene.linearization_plan
     base = assemble(scene, q, stiffness=True, damping=True, mass=True)
-    r = base.residual if everything else base.residual[f]
-    rel = fro(r) / base.force_scale if base.force_scale > 0 else 0.0
-    if rel > equilibrium_tol and not balancing:
-        worst = int(np.argmax(np.abs(r)))
-        raise NotAnEquilibriumError(
-            f"q is not an equilibrium of the scene: relative residual {rel:.3e} > equilibrium_tol "
-            f"{equilibrium_tol:g} (largest unbalanced force {r[worst]:.4g} on {scene.dof_names[worst]!r}); "
-            f"use find_equilibrium, or balancing=True to hold q with actuator forces",
-            residual=fro(r),
-            relative_residual=rel,
-        )
-
-    def restrict(a):
-        return a if everything else a[np.ix_(f, f)]
-
-    M, C, K = restrict(base.M), restrict(base.C), restrict(base.K)
-    if not math.isfinite(base.force_scale + fro(C) + fro(M)):
-        raise ComputationError(
-            "linearize: non-finite entries in M, C, K or the residual (overflow from extreme parameters?)"
-        )
-    _check_mass(scene, M)
-    notes = []
-    calls = list(base.calls)
+    r, rel = _equilibrium(scene, plan, base, equilibrium_tol, balancing)
+    M, C, K = (base.M, base.C, base.K) if plan.everything else (a[plan.block] for a in (base.M, base.C, base.K))
+    _check_finite_and_mass(scene, M, C, base)
+    calls, notes = base.calls, []
     if scene.prescribed:
-        change, more = _time_invariance(scene, q, base, periodic_tol)
-        notes.append(f"independent of the prescribed joint positions (relative change {change:.1e})")
-        calls.extend(more)
-
-    tol = _structure_tol(n) if structure_tol is None else float(structure_tol)
-    tiny = np.finfo(float).tiny
+        notes, more = _prescribed_notes(scene, plan, q, base, periodic_tol)
+        calls = calls + more
+    tol = plan.structure_tol if structure_tol is None else float(structure_tol)
     dropped: dict[str, float] = {}
-    S = (K + K.T) * 0.5
-    N = (K - K.T) * 0.5
-    size = fro(N) / max(base.rounding_scale_K, tiny)
-    if size <= tol:
-        if size:
-            dropped["N"] = size
-        N = np.zeros_like(K)
-    if base.coriolis_D is None:  # C comes from the elements alone: exactly symmetric
-        D, G = C, np.zeros_like(C)
-    else:
-        D = (C + C.T) * 0.5
-        G = (C - C.T) * 0.5
-        D_rnea = restrict(base.coriolis_D)
-        size = fro(D_rnea) / max(base.rounding_scale_C, tiny)
-        if size <= tol:  # the Coriolis part of C is skew in exact arithmetic
-            D = D - D_rnea
-            if size:
-                dropped["D (Coriolis rounding)"] = size
-        size = fro(G) / max(base.rounding_scale_C, tiny)
-        if size <= tol:
-            if size:
-                dropped["G"] = size
-            G = np.zeros_like(C)
+    S, N = _split_stiffness(K, base.rounding_scale_K, tol, dropped)
+    D, G = _split_damping(C, base, plan, tol, dropped)
     if balancing:
         notes.append(f"held at q by constant actuator forces (relative residual {rel:.2e})")
     return LinearizedSystem.trusted(
-        M,
-        D,
-        G,
-        S,
-        N,
+        M, D, G, S, N,
         dof_names=scene.dof_names,
         q=q,
         v=scene.v0,
@@ -291,7 +240,123 @@ def linearize(
         dropped=dropped,
         notes=tuple(notes),
         method="analytic",
-    )
+    )  # fmt: skip
+
+
+def _equilibrium(
+    scene: Scene, plan: LinearizationPlan, base: Assembly, tol: float, balancing: bool
+) -> tuple[np.ndarray, float]:
+    """The residual on the free coordinates and its relative size; raise unless q is an equilibrium."""
+    r = base.residual if plan.everything else base.residual[plan.rows]
+    norm = fro(r)
+    rel = norm / base.force_scale if base.force_scale > 0 else 0.0
+    if rel > tol and not balancing:
+        worst = int(np.argmax(np.abs(r)))
+        raise NotAnEquilibriumError(
+            f"q is not an equilibrium of the scene: relative residual {rel:.3e} > equilibrium_tol "
+            f"{tol:g} (largest unbalanced force {r[worst]:.4g} on {scene.dof_names[worst]!r}); "
+            f"use find_equilibrium, or balancing=True to hold q with actuator forces",
+            residual=norm,
+            relative_residual=rel,
+        )
+    return r, rel
+
+
+def _check_finite_and_mass(scene: Scene, M: np.ndarray, C: np.ndarray, base: Assembly) -> None:
+    """Raise ComputationError for non-finite entries, SingularMassError for M not positive definite.
+
+    ``force_scale`` covers tau, Q_e and K; one product covers M and C (a NaN or
+    inf in either makes it non-finite), checked entry by entry only when it is.
+    """
+    if not (math.isfinite(base.force_scale) and math.isfinite(np.vdot(M, C))):
+        if not (math.isfinite(base.force_scale) and np.isfinite(M).all() and np.isfinite(C).all()):
+            raise ComputationError(
+                "linearize: non-finite entries in M, C, K or the residual (overflow from extreme parameters?)"
+            )
+    _check_mass(scene, M)
+
+
+def _prescribed_notes(
+    scene: Scene, plan: LinearizationPlan, q: np.ndarray, base: Assembly, tol: float
+) -> tuple[list[str], list[str]]:
+    """Notes on the time invariance of the prescribed joints, and the Pinocchio calls of the checks.
+
+    Proved joints (``plan.proofs``, whose departure from symmetry is within ``tol``)
+    cost nothing; the others are moved and assembled again (:func:`numeric_change`).
+    """
+    if tol >= plan.largest_departure:  # the usual case: every proof applies
+        notes, checked = list(plan.proof_notes), plan.unproved
+    else:
+        proved = [p for p in plan.proofs.values() if p.departure <= tol]
+        notes = [p.note for p in proved]
+        checked = tuple(name for name in scene.prescribed if name not in {p.joint for p in proved})
+    calls: list[str] = []
+    if checked:
+        change, calls = numeric_change(scene, q, base, checked, tol)
+        notes.append(
+            f"independent of the position of prescribed joint(s) {list(checked)}: relative change {change:.1e} "
+            f"after moving them by {list(PERIODIC_TEST_ANGLES)} (checked numerically)"
+        )
+    return notes, calls
+
+
+def _split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) -> tuple[np.ndarray, np.ndarray]:
+    """S = (K + K^T) / 2 and N = (K - K^T) / 2, N set to zero when it is at rounding level.
+
+    The reference of N's size is ``rounding``: the norm of the parts of K that
+    carry rounding breaking their exact symmetry (Pinocchio's, and the elements'
+    whose stiffness is not exactly symmetric).
+    """
+    N = K - K.T
+    size = 0.5 * fro(N) / max(rounding, _TINY)  # ||(K - K^T) / 2||, exactly (a power-of-two scaling)
+    S = K + K.T
+    S *= 0.5
+    if size <= tol:
+        if size:
+            dropped["N"] = size
+        return S, np.zeros(K.shape)
+    N *= 0.5
+    return S, N
+
+
+def _split_damping(
+    C: np.ndarray, base: Assembly, plan: LinearizationPlan, tol: float, dropped: dict
+) -> tuple[np.ndarray, np.ndarray]:
+    """D = (C + C^T) / 2 and G = (C - C^T) / 2 with the rounding-level parts set to zero.
+
+    At rest C is the elements' damping: G is their rounding (products that are
+    not symmetric in floating point) unless it exceeds ``tol`` of ||C||.  With a
+    prescribed velocity, Pinocchio's dtau/dv is skew in exact arithmetic: its
+    symmetric part (``coriolis_D``) is dropped from D when at rounding level, and
+    G when it is, both against the norm of Pinocchio's part.
+    """
+    G = C - C.T
+    if base.coriolis_D is None:  # C from the elements alone
+        if not np.count_nonzero(G):
+            return C, G  # exactly symmetric (G is zero)
+        G *= 0.5
+        size = fro(G) / max(fro(C), _TINY)
+        D = C + C.T
+        D *= 0.5
+        if size <= tol:
+            dropped["G (element rounding)"] = size
+            G = np.zeros(C.shape)
+        return D, G
+    G *= 0.5
+    D = C + C.T
+    D *= 0.5
+    D_rnea = base.coriolis_D if plan.everything else base.coriolis_D[plan.block]
+    size = fro(D_rnea) / max(base.rounding_scale_C, _TINY)
+    if size <= tol:  # the Coriolis part of C is skew in exact arithmetic
+        D = D - D_rnea
+        if size:
+            dropped["D (Coriolis rounding)"] = size
+    size = fro(G) / max(base.rounding_scale_C, _TINY)
+    if size <= tol:
+        if size:
+            dropped["G"] = size
+        G = np.zeros(C.shape)
+    return D, G
 
 
 def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -43,6 +44,11 @@ def _readonly(a: np.ndarray | None) -> np.ndarray | None:
     return a
 
 
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a.setflags(write=False)
+    return a
+
+
 def _fro(a: np.ndarray) -> float:
     return float(np.linalg.norm(a))
 
@@ -53,7 +59,8 @@ class LinearizedSystem(Result):
 
     Build one with :func:`pinlin.linearize` from a scene, or with
     :meth:`from_matrices` from plain matrices.  The arrays are copies and
-    read-only; C = D + G and K = S + N are available as attributes.
+    read-only; C = D + G and K = S + N are available as attributes, formed on
+    first access (and kept).
 
     Attributes
     ----------
@@ -135,8 +142,6 @@ class LinearizedSystem(Result):
     basis_names: tuple[str, ...] = ()
     basis_condition: float | None = None
     constraint_forces: tuple = ()
-    C: np.ndarray = field(init=False)
-    K: np.ndarray = field(init=False)
 
     def __post_init__(self):
         mats = {}
@@ -182,8 +187,6 @@ class LinearizedSystem(Result):
             ) from None
         for name, a in mats.items():
             object.__setattr__(self, name, _readonly(a))
-        object.__setattr__(self, "C", _readonly(mats["D"] + mats["G"]))
-        object.__setattr__(self, "K", _readonly(mats["S"] + mats["N"]))
         object.__setattr__(self, "dof_names", names)
         object.__setattr__(self, "q", _readonly(self.q))
         object.__setattr__(self, "v", _readonly(self.v))
@@ -285,21 +288,29 @@ class LinearizedSystem(Result):
         should call the constructor, which validates.
         """
         obj = object.__new__(cls)
-        C, K = D + G, S + N
-        for a in (M, D, G, S, N, C, K, q, v, balancing, basis):
+        for a in (M, D, G, S, N, q, balancing, basis):
             if a is not None:
-                a.flags.writeable = False
-        set_ = object.__setattr__
-        for name, value in (
-            ("M", M), ("D", D), ("G", G), ("S", S), ("N", N), ("C", C), ("K", K),
-            ("dof_names", tuple(dof_names)), ("q", q), ("v", v), ("residual", residual),
-            ("balancing", balancing), ("elapsed", elapsed), ("calls", tuple(calls)),
-            ("dropped", dict(dropped or {})), ("notes", tuple(notes)), ("method", method),
-            ("basis", basis), ("basis_names", tuple(basis_names)), ("basis_condition", basis_condition),
-            ("constraint_forces", tuple(constraint_forces)),
-        ):  # fmt: skip
-            set_(obj, name, value)
+                a.setflags(write=False)
+        if v is not None and v.flags.writeable:  # a scene's v0 is read-only already: no copy, no flag
+            v.setflags(write=False)
+        object.__setattr__(obj, "__dict__", {
+            "M": M, "D": D, "G": G, "S": S, "N": N, "dof_names": tuple(dof_names), "q": q, "v": v,
+            "residual": residual, "balancing": balancing, "elapsed": elapsed, "calls": tuple(calls),
+            "dropped": dict(dropped or {}), "notes": tuple(notes), "method": method, "basis": basis,
+            "basis_names": tuple(basis_names), "basis_condition": basis_condition,
+            "constraint_forces": tuple(constraint_forces),
+        })  # fmt: skip
         return obj
+
+    @cached_property
+    def C(self) -> np.ndarray:
+        """C = D + G (n x n), read-only; formed on first access."""
+        return _frozen(self.D + self.G)
+
+    @cached_property
+    def K(self) -> np.ndarray:
+        """K = S + N (n x n), read-only; formed on first access."""
+        return _frozen(self.S + self.N)
 
     def replace(self, **changes) -> LinearizedSystem:
         """A copy with some fields changed (validated again)."""
@@ -369,3 +380,7 @@ class LinearizedSystem(Result):
             f"LinearizedSystem(n={self.n}, dofs={names}, nonzero={'+'.join(self.nonzero)}{basis}, "
             f"method={self.method!r}, error={self.error:.1e})"
         )
+
+
+#: ``to_dict`` dumps the declared fields, then C and K (formed on access), as before they became lazy.
+LinearizedSystem._dict_fields = tuple(f.name for f in dataclasses.fields(LinearizedSystem)) + ("C", "K")

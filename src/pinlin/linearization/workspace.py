@@ -3,8 +3,9 @@
 A :class:`~pinlin.Scene` is an immutable description shared freely, Pinocchio's
 ``Model`` included.  Pinocchio's ``Data`` is the mutable workspace its algorithms
 write into, so it must belong to one caller at a time (Pinocchio's Model/Data split).
-:func:`workspace` gives each thread its own :class:`Workspace` per scene, created
-on that thread's first use (behind the memory guard) and reused afterwards:
+:func:`workspace` gives each thread its own :class:`Workspace` per robot (shared by
+the robot's scenes, whose models differ only in gravity), created on that
+thread's first use (behind the memory guard) and reused afterwards:
 ``createData`` costs about 35-40 us on a 9-joint arm and 40-48 ms on a 100-link
 chain, 4x and 60-80x a whole linearization, so a fresh one per call would be the
 slower choice (benchmarks/bench_workspace.py measures both).  Within one thread computations
@@ -15,6 +16,7 @@ callback) are safe too.
 
 from __future__ import annotations
 
+import functools
 import threading
 import weakref
 from typing import TYPE_CHECKING
@@ -25,22 +27,40 @@ import pinocchio as pin
 if TYPE_CHECKING:  # pragma: no cover
     from ..model.scene import Scene
 
-__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper"]
+__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric"]
 
 
-def symmetric_from_upper(a: np.ndarray, lower: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+def symmetric_from_upper(a: np.ndarray, lower: np.ndarray) -> np.ndarray:
     """A copy of ``a`` with its strictly lower triangle mirrored from the upper one.
 
-    Pinocchio's C++ ``crba`` fills only the upper triangle of M (its Python
-    binding may or may not mirror it, depending on the version).
+    Pinocchio's C++ ``crba`` (and ``computeRNEADerivatives``' M) fill only the upper
+    triangle of M.  ``lower`` is :attr:`Workspace.lower`: the (nv x nv) boolean mask
+    of the strict lower triangle.
     """
-    a = np.array(a)
-    a[lower] = a.T[lower]
-    return a
+    return np.where(lower, a.T, a)  # one pass, a fresh array
+
+
+@functools.cache
+def crba_is_symmetric() -> bool:
+    """True when this Pinocchio's Python ``crba`` returns the whole symmetric M (a fresh array).
+
+    Decided once per process on a two-link arm whose M has a nonzero coupling
+    term, so that no per-call mirror (or copy) is made when the binding already
+    gives both triangles, and the upper one is mirrored when it does not.
+    """
+    model = pin.Model()
+    inertia = pin.Inertia(1.0, np.array([0.0, 0.0, -0.5]), np.diag([0.1, 0.1, 0.01]))
+    parent = 0
+    for k in range(2):
+        placement = pin.SE3(np.eye(3), np.array([0.0, 0.0, -1.0 * k]))
+        parent = model.addJoint(parent, pin.JointModelRY(), placement, f"j{k}")
+        model.appendBodyToJoint(parent, inertia, pin.SE3.Identity())
+    M = pin.crba(model, model.createData(), np.array([0.3, 0.4]))
+    return bool(M[0, 1] != 0 and M[1, 0] == M[0, 1] and M.flags.owndata)
 
 
 class Workspace:
-    """Pinocchio ``Data`` for one scene's model, owned by one thread.
+    """Pinocchio ``Data`` for one robot's models (every scene of it), owned by one thread.
 
     Parameters
     ----------
@@ -58,30 +78,47 @@ class Workspace:
     def __init__(self, scene: Scene):
         self.model = scene.model
         self.data = scene.robot.create_data(scene.model, scene.memory_limit)
-        #: Strict lower-triangle indices, for mirroring Pinocchio's upper-triangular M.
-        self.lower = np.tril_indices(scene.model.nv, -1)
+        #: Mask of M's strict lower triangle, for mirroring Pinocchio's upper-triangular M in one pass.
+        self.lower = np.tri(scene.model.nv, k=-1, dtype=bool)
 
 
 _local = threading.local()
 
 
 def workspace(scene: Scene) -> Workspace:
-    """The calling thread's workspace for ``scene``, created on its first use.
+    """The calling thread's workspace for ``scene``'s robot, created on its first use.
 
-    The cache is keyed weakly on the scene, so a scene that is no longer used
-    frees its workspaces; nothing is stored on the scene itself.
+    One ``Data`` serves every scene of a robot in a thread: a scene's model is a
+    copy of the robot's with its own gravity, the same structure, so the Data
+    fits all of them, and ``createData`` (which dominates loading from n of
+    about 200 links: it allocates Pinocchio's nv^3 derivative tensors) runs once
+    per robot and thread however many scenes a sweep builds.  Computations in a
+    thread run one after another and copy what they read out of Data, so scenes
+    sharing it cannot disturb each other.
+
+    The thread's cache maps ``id(robot)`` to a weak reference to the robot and its
+    workspace; the reference's callback drops the entry when the robot is freed
+    (so its Data goes with it, and the id cannot be reused while the entry
+    stands).  Nothing is stored on the scene or the robot.  A lookup is a
+    dictionary access, less than a ``WeakKeyDictionary`` (which builds a
+    reference per call).
 
     Raises
     ------
     ModelTooLargeError
-        Pinocchio's data would not fit in the memory allowed.
+        Pinocchio's data would not fit in the memory allowed (checked when the
+        workspace is created, against the scene's ``memory_limit``).
     """
     cache = getattr(_local, "cache", None)
     if cache is None:
-        cache = _local.cache = weakref.WeakKeyDictionary()
-    ws = cache.get(scene)
-    if ws is None:
-        ws = cache[scene] = Workspace(scene)
+        cache = _local.cache = {}
+    robot = scene.robot
+    key = id(robot)
+    entry = cache.get(key)
+    if entry is not None and entry[0]() is robot:
+        return entry[1]
+    ws = Workspace(scene)
+    cache[key] = (weakref.ref(robot, lambda _, cache=cache, key=key: cache.pop(key, None)), ws)
     return ws
 
 
@@ -99,9 +136,31 @@ class Evaluation:
     v : ndarray (nv,)
     ws : Workspace, optional
         Where Pinocchio writes; default the calling thread's workspace.
+    at_rest : bool, optional
+        Whether v = 0, when the caller knows it (a scene's steady velocity); default
+        decided from v.
     """
 
-    def __init__(self, scene: Scene, q: np.ndarray, v: np.ndarray, ws: Workspace | None = None):
+    # Per-point caches start empty at the class level and are created on first use:
+    # most evaluations (a joint-space scene) never read a frame, so building five
+    # containers per call would be a measurable part of a linearization (issue 14).
+    _kinematics = False
+    _rotations: dict[int, np.ndarray] | None = None
+    _jacobians: dict[tuple[int, pin.ReferenceFrame], np.ndarray] | None = None
+    _positions: dict[tuple[int, ...], np.ndarray] | None = None
+    _mass: np.ndarray | None = None
+    _elastic: np.ndarray | None = None
+    _world_jacobian: np.ndarray | None = None
+
+    def __init__(
+        self,
+        scene: Scene,
+        q: np.ndarray,
+        v: np.ndarray,
+        ws: Workspace | None = None,
+        *,
+        at_rest: bool | None = None,
+    ):
         ws = workspace(scene) if ws is None else ws
         self.scene = scene
         self.robot = scene.robot
@@ -111,16 +170,10 @@ class Evaluation:
         self.q = q
         self.v = v
         self.free = scene.free_dofs
-        #: True when v = 0: velocity-proportional forces vanish.
-        self.at_rest = not v.any()
+        #: True when v = 0: velocity-proportional forces vanish (``at_rest`` may say so
+        #: when the caller knows it, as for a scene's own steady velocity).
+        self.at_rest = (not np.count_nonzero(v)) if at_rest is None else at_rest
         self.calls: list[str] = []
-        self._kinematics = False
-        self._rotations: dict[int, np.ndarray] = {}
-        self._jacobians: dict[tuple[int, pin.ReferenceFrame], np.ndarray] = {}
-        self._mass: np.ndarray | None = None
-        self._elastic: np.ndarray | None = None
-        self._world_jacobian: np.ndarray | None = None
-        self._positions: dict[tuple[int, ...], np.ndarray] = {}
 
     def call(self, name: str, algorithm, *args):
         """Run a Pinocchio algorithm and log its name."""
@@ -145,6 +198,8 @@ class Evaluation:
 
     def frame_rotation(self, frame_id: int) -> np.ndarray:
         """World orientation R of a frame (3 x 3): world vector = R @ local vector."""
+        if self._rotations is None:
+            self._rotations = {}
         if frame_id not in self._rotations:
             self._ensure_kinematics()
             self._rotations[frame_id] = self.data.oMf[frame_id].rotation.copy()
@@ -156,6 +211,8 @@ class Evaluation:
         Computed once per evaluation for a given tuple of ids: an element group
         reading many frames in its force, stiffness and damping pays for one pass.
         """
+        if self._positions is None:
+            self._positions = {}
         out = self._positions.get(frame_ids)
         if out is None:
             self._ensure_kinematics()
@@ -190,6 +247,8 @@ class Evaluation:
         the local Jacobian by rotating its rows, without another Pinocchio call.
         """
         key = (frame_id, reference)
+        if self._jacobians is None:
+            self._jacobians = {}
         if key not in self._jacobians:
             local = self._jacobians.get((frame_id, pin.ReferenceFrame.LOCAL))
             if local is None:
@@ -211,6 +270,8 @@ class Evaluation:
         Jacobian is not needed too (constraints, SPEC section 10).
         """
         key = (frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        if self._jacobians is None:
+            self._jacobians = {}
         J = self._jacobians.get(key)
         if J is None:
             self._ensure_kinematics()
@@ -223,7 +284,7 @@ class Evaluation:
         """The full mass matrix M(q) (nv x nv), exactly symmetric."""
         if self._mass is None:
             M = self.call("crba", pin.crba, self.model, self.data, self.q)
-            self._mass = symmetric_from_upper(M, self.ws.lower)
+            self._mass = M if crba_is_symmetric() else symmetric_from_upper(M, self.ws.lower)
         return self._mass
 
     def provide_mass_matrix(self, M: np.ndarray) -> None:

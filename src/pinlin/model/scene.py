@@ -2,19 +2,39 @@
 
 from __future__ import annotations
 
+import math
 import types
 from collections.abc import Iterable, Mapping
+from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
+from ..errors import ConfigurationError, ParameterError, PrescribedJointError
 from .constraints import Constraint, PointConstraint
 from .elements import Element, JointDamper, WrenchElement
 from .elements.base import check_vector3
-from ..errors import ConfigurationError, ParameterError, PrescribedJointError
 from .robot import Robot
 
-__all__ = ["Scene"]
+if TYPE_CHECKING:  # pragma: no cover
+    from ..linearization.plan import LinearizationPlan
+
+__all__ = ["Scene", "ANGLE_LIMIT", "UNIT_NORM_MIN"]
+
+#: Largest magnitude [rad] of a revolute joint's angle that :meth:`Scene.check_configuration`
+#: accepts: beyond 2 pi / eps (about 2.8e16 rad) consecutive doubles are more than a turn
+#: apart, so the number no longer says where in its turn the joint is.
+ANGLE_LIMIT = 2.0 * math.pi / float(np.finfo(float).eps)
+#: Smallest length of a unit quaternion (free-flyer, spherical joint) or (cos, sin) pair
+#: (continuous, planar joint) that :meth:`Scene.check_configuration` normalizes: a rotation
+#: is a unit vector, and one this short is unset (typed zeros) rather than a rotation; its
+#: normalization would amplify its rounding by more than 1e8.
+UNIT_NORM_MIN = 1e-8
+#: Configurations up to this size are checked as Python floats (cheaper than numpy calls for few entries).
+_SMALL_NQ = 64
+#: Joint kinds whose configuration ends with a unit vector (quaternion, or (cos, sin)), and its size.
+_UNIT_BLOCKS = {"FreeFlyer": 4, "Spherical": 4, "RUBX": 2, "RUBY": 2, "RUBZ": 2, "RevoluteUnboundedUnaligned": 2, "Planar": 2}
 
 
 class Scene:
@@ -92,6 +112,7 @@ class Scene:
         self.elements: tuple[Element, ...] = elements
         self.gravity = check_vector3(gravity, "gravity")
         self.gravity.flags.writeable = False
+        self._has_gravity = bool(np.any(self.gravity != 0))
 
         pres: dict[str, float] = {}
         for name, omega in dict(prescribed or {}).items():
@@ -112,7 +133,6 @@ class Scene:
         self.memory_limit = memory_limit
         self._user_constraints = None if constraints is None else tuple(constraints)
         self.constraints = self._check_constraints(robot, self._user_constraints)
-
         mask = np.ones(robot.nv, dtype=bool)
         self.v0 = np.zeros(robot.nv)
         for name, omega in pres.items():
@@ -134,6 +154,7 @@ class Scene:
         robot.check_memory(memory_limit)  # refuse a model whose workspace would not fit, now
         self._compile()
         self._compile_constraints()
+        self._compile_configuration()
 
     def _compile(self) -> None:
         """Group the elements for evaluation and precompute what does not depend on q.
@@ -197,6 +218,29 @@ class Scene:
                 np.array([c.target for c in self.constraints]),
             )
 
+    def _compile_configuration(self) -> None:
+        """Bounds and unit blocks of q, for :meth:`check_configuration` (one vectorized pass per call).
+
+        ``_q_limit`` (nq,): :data:`ANGLE_LIMIT` on revolute angles, the largest double elsewhere
+        (one comparison also catches inf and NaN); ``_unit_blocks``: (joint name, slice of q)
+        of each quaternion and (cos, sin) pair, None when there is none.
+        """
+        limit = np.full(self.robot.nq, np.finfo(float).max)
+        blocks: list[tuple[str, slice]] = []
+        for name in self.robot.joint_names:
+            j = self.robot.joint(name)
+            kind = j.kind.removeprefix("JointModel")
+            if j.nq == 1 and (kind in ("RX", "RY", "RZ") or kind == "RevoluteUnaligned"):
+                limit[j.idx_q] = ANGLE_LIMIT
+            elif kind in _UNIT_BLOCKS:  # the unit vector ends the joint's configuration
+                end = j.idx_q + j.nq
+                blocks.append((name, slice(end - _UNIT_BLOCKS[kind], end)))
+        limit.flags.writeable = False
+        self._q_limit = limit
+        self._q_shape = (self.robot.nq,)
+        self._q_small = self.robot.nq <= _SMALL_NQ
+        self._unit_blocks = tuple(blocks) or None
+
     def _check_constraints(self, robot: Robot, given: tuple | None) -> tuple[Constraint, ...]:
         constraints = robot.constraints if given is None else given
         for i, constraint in enumerate(constraints):
@@ -249,7 +293,8 @@ class Scene:
 
     @property
     def has_gravity(self) -> bool:
-        return bool(np.any(self.gravity != 0))
+        """True when gravity is not zero (decided once: the scene is immutable)."""
+        return self._has_gravity
 
     def replace(self, **changes) -> Scene:
         """A new scene with some constructor arguments changed (for sweeps)."""
@@ -275,30 +320,73 @@ class Scene:
         return self.robot.neutral()
 
     def check_configuration(self, q, label: str = "q") -> np.ndarray:
-        """A finite configuration of size nq, normalized on its manifold.
+        """A finite configuration of size nq, normalized on its manifold (a copy).
+
+        Quaternions and (cos, sin) pairs are normalized (Pinocchio's ``normalize``);
+        one shorter than :data:`UNIT_NORM_MIN` is refused rather than taken as a
+        rotation.  Revolute angles beyond :data:`ANGLE_LIMIT` are refused: no double
+        that large says where in its turn the joint is.
 
         Raises
         ------
         ConfigurationError
-            Wrong size or non-finite entries.
+            Wrong size, complex or non-finite entries, an angle beyond
+            :data:`ANGLE_LIMIT`, or a zero quaternion or (cos, sin) pair (naming the joint).
         """
-        try:
-            q = np.atleast_1d(np.array(q, dtype=float))  # a copy: the result may be frozen read-only
-        except (TypeError, ValueError):
-            raise ConfigurationError(f"{label} must be an array of numbers, got {q!r}") from None
-        if q.shape != (self.robot.nq,):
+        if type(q) is np.ndarray and q.dtype == np.float64:
+            q = q.copy()  # the result may be frozen read-only
+        else:  # numpy would drop an imaginary part with a warning
+            if np.iscomplexobj(q):
+                raise ConfigurationError(f"{label} must be real, got complex entries: {q!r}")
+            try:
+                q = np.array(q, dtype=float)
+            except (TypeError, ValueError):
+                raise ConfigurationError(f"{label} must be an array of numbers, got {q!r}") from None
+            if q.ndim == 0:
+                q = q.reshape(1)
+        if q.shape != self._q_shape:
             raise ConfigurationError(
                 f"{label} has shape {q.shape}; robot {self.robot.name!r} needs a full Pinocchio "
                 f"configuration of size nq = {self.robot.nq} (prescribed joints included)"
             )
-        if not np.isfinite(q).all():
-            raise ConfigurationError(f"{label} has non-finite entries: {q}")
-        if self.robot.nq == self.robot.nv:  # a vector space: nothing to normalize
+        # within ANGLE_LIMIT everywhere is the common case (NaN fails the comparisons); beyond it each
+        # entry is checked against its own limit (Python floats are cheaper than numpy for few entries)
+        values = q.tolist() if self._q_small else None
+        within = all(-ANGLE_LIMIT <= x <= ANGLE_LIMIT for x in values) if values else np.abs(q).max() <= ANGLE_LIMIT
+        if not within and not (np.abs(q) <= self._q_limit).all():
+            self._refuse_configuration(q, label)
+        if self._unit_blocks is None:  # a vector space: nothing to normalize
             return q
-        q = pin.normalize(self.model, q)
-        if not np.isfinite(q).all():
-            raise ConfigurationError(f"{label} cannot be normalized (a zero quaternion or complex number?)")
-        return q
+        for name, block in self._unit_blocks:
+            unit = values[block] if values is not None else q[block].tolist()
+            length = math.hypot(*unit)
+            if not length >= UNIT_NORM_MIN:  # False for NaN
+                raise ConfigurationError(
+                    f"{label}[{block.start}:{block.stop}] = {unit} of joint {name!r} is not a rotation: "
+                    f"its length {length:.3g} is below {UNIT_NORM_MIN:g} (a unit quaternion or "
+                    f"(cos, sin) pair is expected; pinlin does not take a zero one as the identity)"
+                )
+        return pin.normalize(self.model, q)
+
+    def _refuse_configuration(self, q: np.ndarray, label: str) -> None:
+        bad = np.flatnonzero(~np.isfinite(q))
+        if bad.size:
+            raise ConfigurationError(f"{label} has non-finite entries at {bad.tolist()}: {q}")
+        k = int(np.flatnonzero(np.abs(q) > self._q_limit)[0])
+        joint = next(n for n in self.robot.joint_names if self.robot.joint(n).idx_q == k)
+        raise ConfigurationError(  # only revolute angles have a limit below the largest double
+            f"{label}[{k}] = {q[k]:.6g} rad on revolute joint {joint!r} is beyond {ANGLE_LIMIT:.3g} rad: "
+            f"doubles that large are more than a turn apart, so the angle does not say where the joint is; "
+            f"give the angle modulo 2 pi"
+        )
+
+    @cached_property
+    def linearization_plan(self) -> LinearizationPlan:
+        """What :func:`pinlin.linearize` runs for this scene, decided once (the scene is immutable): see
+        :class:`pinlin.linearization.plan.LinearizationPlan` (time-invariance proofs included)."""
+        from ..linearization.plan import LinearizationPlan  # the linearization layer reads scenes
+
+        return LinearizationPlan(self)
 
     def __repr__(self) -> str:
         kinds: dict[str, int] = {}

@@ -1,0 +1,109 @@
+"""What a linearization of one scene runs, decided once per scene (issue 14).
+
+A :class:`~pinlin.Scene` is immutable, so everything :func:`pinlin.linearize`
+decides without looking at q is decided once, on first use, and kept as
+``scene.linearization_plan``: the free coordinates and their index arrays, the
+Pinocchio derivative algorithm (see :mod:`.assembly`), whether the elements'
+stiffness is exactly symmetric, the default structure tolerance, and which
+prescribed joints are proved not to enter the equations
+(:mod:`.time_invariance`) and which need the numerical check at every call.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..model.scene import Scene
+from .time_invariance import InvarianceProof, invariance_proofs
+
+__all__ = ["LinearizationPlan", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
+
+#: Default structure_tol is STRUCTURE_EPS_FACTOR n eps: Pinocchio's recursive algorithms
+#: accumulate a few rounding errors per joint, so an exactly (skew-)symmetric part that
+#: should vanish comes out at a small multiple of n eps of the computed part's norm.
+STRUCTURE_EPS_FACTOR = 100.0
+
+
+def default_structure_tol(n: int) -> float:
+    """STRUCTURE_EPS_FACTOR n eps: the default ``structure_tol`` of an n-coordinate system."""
+    return STRUCTURE_EPS_FACTOR * n * float(np.finfo(float).eps)
+
+
+class LinearizationPlan:
+    """The q-independent decisions of :func:`pinlin.linearize` for one scene.
+
+    Attributes
+    ----------
+    free : (n,) ndarray of int
+        The free velocity coordinates (``scene.free_dofs``).
+    n : int
+    everything : bool
+        True when every coordinate is free (no prescribed joint): no restriction.
+    ix : tuple of ndarray or None
+        ``np.ix_(free, free)``, None when ``everything``.
+    block : tuple
+        What restricts an (nv x nv) matrix to the free coordinates: two slices when
+        they are contiguous (a view, no copy; prescribed joints usually come first
+        or last), else ``ix``.
+    rows : slice or ndarray
+        What restricts a vector to the free coordinates: the slice, else ``free``.
+    moving : bool
+        True when a prescribed velocity is nonzero: the dynamics need
+        ``computeRNEADerivatives`` (Coriolis and gyroscopic terms).
+    symmetric_elements : bool
+        True when every element group's stiffness is exactly symmetric (then the
+        skew part N carries only Pinocchio's rounding, measured against its part).
+    structure_tol : float
+        The default ``structure_tol`` (:func:`default_structure_tol`).
+    proofs : dict of str to InvarianceProof
+        Prescribed joints whose position provably does not enter the equations.
+    unproved : tuple of str
+        Prescribed joints to check numerically at every linearization.
+    proof_notes : tuple of str
+        The proofs' notes, for ``sys.notes``.
+    largest_departure : float
+        The largest departure from exact symmetry among the proofs (0 when none):
+        with a ``periodic_tol`` at least this large every proof applies.
+    """
+
+    __slots__ = (
+        "free",
+        "n",
+        "everything",
+        "ix",
+        "block",
+        "rows",
+        "moving",
+        "symmetric_elements",
+        "structure_tol",
+        "proofs",
+        "unproved",
+        "proof_notes",
+        "largest_departure",
+    )
+
+    def __init__(self, scene: Scene):
+        self.free = scene.free_dofs
+        self.n = len(self.free)
+        self.everything = self.n == scene.model.nv
+        self.ix = None if self.everything else np.ix_(self.free, self.free)
+        contiguous = self.n > 0 and self.free[-1] - self.free[0] == self.n - 1
+        span = slice(int(self.free[0]), int(self.free[-1]) + 1) if contiguous else None
+        self.block = (span, span) if contiguous else self.ix
+        self.rows = span if contiguous else self.free
+        self.moving = bool(scene.v0.any())
+        self.symmetric_elements = all(g.symmetric_stiffness for g in scene.groups) and all(
+            w.symmetric_stiffness for w in scene.varying_wrenches
+        )
+        self.structure_tol = default_structure_tol(self.n)
+        self.proofs: dict[str, InvarianceProof] = invariance_proofs(scene)
+        self.unproved = tuple(name for name in scene.prescribed if name not in self.proofs)
+        self.proof_notes = tuple(p.note for p in self.proofs.values())
+        self.largest_departure = max((p.departure for p in self.proofs.values()), default=0.0)
+
+    def __repr__(self) -> str:
+        proved = ", ".join(self.proofs) or "none"
+        return (
+            f"LinearizationPlan(n={self.n}, moving={self.moving}, proved={proved}, "
+            f"checked per call={list(self.unproved)})"
+        )

@@ -1,0 +1,251 @@
+"""Do the linearized equations depend on the position of a prescribed joint? (SPEC section 2)
+
+A prescribed joint moves at a constant velocity Omega, so its position grows with
+time; the linearized equations are constant-coefficient only if they do not
+depend on it.  Where the scene's structure settles the question, it is decided
+once per scene (:func:`invariance_proofs`), from the model alone: the position
+of the joint is then a symmetry of the whole scene, at every configuration.
+
+1. **A root joint** (its parent is the world) turning about an axis along gravity
+   (or without gravity), or sliding along any fixed axis: moving its whole subtree
+   rigidly about (along) that world-fixed axis preserves the kinetic energy,
+   gravity's potential up to a constant, and every element known to be invariant:
+   joint springs and dampers (they read their own joint's coordinates), Rayleigh
+   damping (M and the springs' K_e), follower wrenches (fixed in their body), dead
+   wrenches outside the subtree or along the axis.
+2. **A rotor**: a revolute joint whose subtree is one rigid body with its centre of
+   mass on the axis and an inertia symmetric about it, and no wrench on it: turning
+   it changes neither the kinetic energy nor the weight's potential.
+3. A joint held still (velocity 0) does not move.
+
+Everything else (elements between frames, a tilted turntable, an unbalanced
+rotor) is checked numerically at each linearization (:func:`numeric_change`):
+the equations are assembled again with the joint moved by
+:data:`PERIODIC_TEST_ANGLES` and compared against one system-wide scale, so an
+exactly zero matrix (an undamped system's C) does not turn rounding into a huge
+relative change.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from ..errors import TimePeriodicError
+from ..model.elements import DeadWrench, FollowerWrench, JointDamper, JointSpring, RayleighDamping
+from ..model.scene import Scene
+from .assembly import Assembly, assemble, fro
+
+__all__ = [
+    "InvarianceProof",
+    "invariance_proofs",
+    "numeric_change",
+    "PERIODIC_TEST_ANGLES",
+    "SYMMETRY_TOL",
+]
+
+#: Offsets [rad or m] of a prescribed joint at which the equations are evaluated again
+#: (when no proof applies) to check that they do not depend on its position; two offsets
+#: not commensurate with a turn, so that no periodic dependence hides at both.
+PERIODIC_TEST_ANGLES = (1.0, 2.5)
+
+#: Relative departure from an exact symmetry (gravity or a dead force across the axis, a
+#: centre of mass off it, an inertia not symmetric about it) still taken as a symmetry by
+#: a proof: a URDF's data are either exactly symmetric or far from it, and a departure of
+#: 1e-12 changes the equations by about as much, far below the default periodic_tol.  The
+#: proof records its departure; linearize uses it only when periodic_tol is not smaller.
+SYMMETRY_TOL = 1e-12
+
+#: Element classes whose forces are known to be unchanged by the rigid motions of a proof
+#: (exact types: a subclass may read more).  Wrenches are judged by their frame and direction.
+_JOINT_SPACE = (JointSpring, JointDamper, RayleighDamping)
+
+
+@dataclass(frozen=True)
+class InvarianceProof:
+    """Why the equations do not depend on the position of one prescribed joint.
+
+    Attributes
+    ----------
+    joint : str
+    note : str
+        The reason, for ``sys.notes``.
+    departure : float
+        Largest relative departure from the exact symmetry (0 when exact).
+    """
+
+    joint: str
+    note: str
+    departure: float
+
+
+def _motion_axis(model: pin.Model, jid: int) -> tuple[str, np.ndarray] | None:
+    """("rotation" or "translation", unit axis in the joint frame) of a 1-DOF joint, else None."""
+    jm = model.joints[jid]
+    data = jm.createData()
+    jm.calc(data, np.asarray(jm.lieGroup().neutral, dtype=float))
+    S = np.asarray(data.S, dtype=float).ravel()
+    linear, angular = S[:3], S[3:]
+    if not np.any(linear) and np.any(angular):
+        return "rotation", angular / np.linalg.norm(angular)
+    if np.any(linear) and not np.any(angular):
+        return "translation", linear / np.linalg.norm(linear)
+    return None  # helical or unknown: no proof
+
+
+def _across(vector: np.ndarray, axis: np.ndarray) -> float:
+    """Relative size of the part of ``vector`` across the unit ``axis`` (0 for a zero vector)."""
+    size = float(np.linalg.norm(vector))
+    return float(np.linalg.norm(np.cross(vector, axis))) / size if size else 0.0
+
+
+def _subtree_joints(model: pin.Model, jid: int) -> set[int]:
+    return {int(j) for j in model.subtrees[jid]}
+
+
+def _root_proof(scene: Scene, name: str, jid: int, kind: str, axis: np.ndarray) -> InvarianceProof | None:
+    """Case 1 of the module docstring, or None."""
+    model = scene.model
+    if model.parents[jid] != 0:
+        return None
+    world_axis = model.jointPlacements[jid].rotation @ axis
+    departure = 0.0
+    if kind == "rotation":
+        departure = _across(scene.gravity, world_axis)
+    inside = _subtree_joints(model, jid)
+    for element in scene.elements:
+        if type(element) in _JOINT_SPACE or type(element) is FollowerWrench:
+            continue
+        if type(element) is not DeadWrench:
+            return None  # an element the proof does not know (between frames, user-defined)
+        frame_joint = model.frames[scene.robot.frame_id(element.frame)].parentJoint
+        if kind == "rotation" and frame_joint in inside:
+            departure = max(departure, _across(element.force, world_axis), _across(element.torque, world_axis))
+    if departure > SYMMETRY_TOL:
+        return None
+    how = "turning about a fixed axis" + (" along gravity" if scene.has_gravity else " without gravity")
+    if kind == "translation":
+        how = "sliding along a fixed axis"
+    return InvarianceProof(
+        name,
+        f"independent of the position of prescribed joint {name!r} by symmetry: a root joint {how}, "
+        f"every element invariant (departure {departure:.1e})",
+        departure,
+    )
+
+
+def _rotor_proof(scene: Scene, name: str, jid: int, kind: str, axis: np.ndarray) -> InvarianceProof | None:
+    """Case 2 of the module docstring, or None."""
+    model = scene.model
+    if kind != "rotation" or _subtree_joints(model, jid) != {jid}:
+        return None
+    for element in scene.elements:
+        if type(element) in _JOINT_SPACE:
+            continue
+        if not element.is_wrench or model.frames[scene.robot.frame_id(element.frame)].parentJoint == jid:
+            return None  # a load on the rotor turns with it; unknown elements are not proved
+    body = model.inertias[jid]
+    I = np.asarray(body.inertia, dtype=float)
+    c = np.asarray(body.lever, dtype=float)
+    size = float(np.linalg.norm(I))
+    gyration = math.sqrt(size / body.mass) if body.mass > 0 else 0.0
+    P = np.eye(3) - np.outer(axis, axis)
+    plane = P @ I @ P
+    departure = max(
+        float(np.linalg.norm(np.cross(c, axis))) / max(float(np.linalg.norm(c)) + gyration, np.finfo(float).tiny),
+        float(np.linalg.norm(np.cross(I @ axis, axis))) / max(size, np.finfo(float).tiny),
+        float(np.linalg.norm(plane - np.trace(plane) / 2 * P)) / max(size, np.finfo(float).tiny),
+    )
+    if body.mass == 0 and size == 0:
+        departure = 0.0  # a massless rotor carries nothing that could turn
+    if departure > SYMMETRY_TOL:
+        return None
+    return InvarianceProof(
+        name,
+        f"independent of the position of prescribed joint {name!r} by symmetry: an axisymmetric rigid rotor "
+        f"(centre of mass on the axis, inertia symmetric about it) with no load on it (departure {departure:.1e})",
+        departure,
+    )
+
+
+def invariance_proofs(scene: Scene) -> dict[str, InvarianceProof]:
+    """The prescribed joints whose position provably does not enter the equations, and why.
+
+    Decided from the model and the elements alone (module docstring); a joint
+    missing from the result is checked numerically by :func:`numeric_change`.
+    """
+    out: dict[str, InvarianceProof] = {}
+    for name, omega in scene.prescribed.items():
+        if omega == 0:
+            out[name] = InvarianceProof(
+                name, f"prescribed joint {name!r} is held still (velocity 0): its position does not change", 0.0
+            )
+            continue
+        jid = scene.robot.joint(name).id
+        motion = _motion_axis(scene.model, jid)
+        if motion is None:
+            continue
+        proof = _root_proof(scene, name, jid, *motion) or _rotor_proof(scene, name, jid, *motion)
+        if proof is not None:
+            out[name] = proof
+    return out
+
+
+def _scales(base: Assembly, free: np.ndarray, omega: float) -> dict[str, float]:
+    """System-wide scales of M, C, K and the residual: L(w) at one frequency w of the whole system.
+
+    .. math::  w^2 = \\|K\\| / \\|M\\| + (\\|C\\| / \\|M\\|)^2 + \\Omega^2
+
+    so that C is measured against ``||C|| + w ||M||`` and K against ``||K|| + w^2 ||M||``
+    (an undamped system's exactly zero C against the inertia forces, not against zero).
+    """
+    ix = np.ix_(free, free)
+    nM, nC, nK = fro(base.M[ix]), fro(base.C[ix]), fro(base.K[ix])
+    w2 = nK / nM + (nC / nM) ** 2 + omega**2
+    return {"M": nM, "C": nC + math.sqrt(w2) * nM, "K": nK + w2 * nM, "r": base.force_scale + w2 * nM}
+
+
+def numeric_change(
+    scene: Scene, q: np.ndarray, base: Assembly, joints, tol: float
+) -> tuple[float, list[str]]:
+    """Largest relative change of M, C, K and the residual when a prescribed joint moves.
+
+    Each joint of ``joints`` is moved by :data:`PERIODIC_TEST_ANGLES` and the scene
+    assembled again; the changes are measured against the system-wide scales of
+    :func:`_scales`.  Returns the change and the Pinocchio calls made.
+
+    Raises
+    ------
+    TimePeriodicError
+        A change exceeds ``tol``.
+    """
+    free = scene.free_dofs
+    ix = np.ix_(free, free)
+    omega = max(abs(w) for w in scene.prescribed.values())
+    scale = _scales(base, free, omega)
+    worst = 0.0
+    calls: list[str] = []
+    for name in joints:
+        j = scene.robot.joint(name)
+        for offset in PERIODIC_TEST_ANGLES:
+            dq = np.zeros(scene.model.nv)
+            dq[j.idx_v] = offset
+            other = assemble(scene, pin.integrate(scene.model, q, dq), stiffness=True, damping=True, mass=True)
+            calls.extend(other.calls)
+            diffs = {key: fro(getattr(other, key)[ix] - getattr(base, key)[ix]) for key in ("M", "C", "K")}
+            diffs["r"] = fro(other.residual[free] - base.residual[free])
+            change = max(d / scale[key] if d else 0.0 for key, d in diffs.items())
+            worst = max(worst, change)
+            if not change <= tol:
+                raise TimePeriodicError(
+                    f"the linearized equations depend on the position of prescribed joint {name!r} "
+                    f"(relative change {change:.2e} after {offset} rad, against the system's scales): with its "
+                    f"prescribed velocity they are time-periodic, not constant-coefficient, and cannot be "
+                    f"analysed as M x'' + C x' + K x = f",
+                    joint=name,
+                    variation=change,
+                )
+    return worst, calls
