@@ -29,7 +29,7 @@ SUITE = (
     ("spectral", "bench_spectral", "modal analysis paths against plain QZ: time and backward error"),
     ("adjoint", "bench_adjoint", "frequency responses (modal vs direct) and the characteristic polynomial"),
     ("response", "bench_response", "free response: modal formula against expm and time integration"),
-    ("scaling", "bench_scaling", "time and memory per stage for chains of n = 10 ... 300; the memory guard"),
+    ("scaling", "bench_scaling", "time and memory per stage for chains of n = 10 ... 400; the memory guard"),
     ("constraints", "bench_constraints", "constrained systems: linearize overhead, KKT equilibrium, accuracy"),
     ("frame_elements", "bench_frame_elements",
      "elements between frames: cost per element against a joint spring's, and against central differences"),
@@ -120,7 +120,7 @@ def _headlines() -> list[str]:
     if sc:
         s = sc["summary"]
         out.append(f"**Scaling**: fitted cost exponent of the whole pipeline "
-                   f"{s.get('fitted cost exponent of the whole pipeline (n >= 50)')} "
+                   f"{s.get('fitted cost exponent of the whole pipeline (n >= 100)')} "
                    f"({s.get('exponents per stage')}); memory guard: {s.get('memory guard')}.")
     return out
 

@@ -5,20 +5,8 @@ values hold no NaN while it is), or raise a PinlinError; never another
 exception (a numpy error, a ZeroDivisionError, an IndexError), a numpy
 ComplexWarning that drops an imaginary part, or a hang.
 
-Known bugs the strategies leave out until they are fixed (each named where it
-is left out; reproducers in the helper's report of issue 13):
-
-- KNOWN_RAGGED: a ragged nested list ``[[1.0], [2.0, 3.0]]`` raises numpy's
-  ValueError from ``np.iscomplexobj`` / ``np.asarray`` in
-  ``LinearizedSystem.from_matrices`` (linearization/system.py),
-  ``modal_analysis((M, C, K))`` (spectral/problem.py ``_matrix``) and
-  ``Scene.check_configuration`` (model/scene.py), instead of a ParameterError
-  or ConfigurationError;
-- KNOWN_NONSQUARE: ``LinearizedSystem.from_matrices`` with (4, 3) matrices raises
-  numpy's ValueError "operands could not be broadcast" (linearization/system.py)
-  instead of a ParameterError naming the matrix;
-
-Fixed since (no longer left out): huge points in adjugate / adjugate_eigenvectors,
+Bugs it found, fixed since and no longer left out: ragged nested lists and non-square
+matrices in from_matrices, modal_analysis and linearize; huge points in adjugate / adjugate_eigenvectors,
 arrays of strings in check_free_response, huge free responses and energy budgets.
 """
 
@@ -69,22 +57,15 @@ def _magnitude(value) -> float:
     return float(np.max(a[np.isfinite(a)], initial=0.0))
 
 
-def _non_square(*matrices) -> bool:
-    return any(isinstance(a, np.ndarray) and a.ndim == 2 and a.shape[0] != a.shape[1] for a in matrices)
-
-
 def _error_on_complex_loss():
     """Turn numpy's ComplexWarning (an imaginary part dropped) into an error: the issue's item 5."""
     warnings.simplefilter("error", getattr(np, "exceptions", np).ComplexWarning)  # numpy >= 1.25 / older
 
 
-@given(M=arrays([(2, 2)], ragged=False), C=arrays([(2, 2)], ragged=False), K=arrays([(2, 2)], ragged=False),
-       through=st.booleans())  # KNOWN_RAGGED
+@given(M=arrays([(2, 2)]), C=arrays([(2, 2)]), K=arrays([(2, 2)]), through=st.booleans())
 def test_matrices_to_modal_analysis(M, C, K, through):
     with warnings.catch_warnings():
         _error_on_complex_loss()
-        if through and _non_square(M, C, K):
-            return  # KNOWN_NONSQUARE
         if through:
             sys_ = outcome(lambda: pinlin.LinearizedSystem.from_matrices(M, C, K), "from_matrices")
             if sys_ is not None:
@@ -144,8 +125,8 @@ def test_time_domain_arguments(x0, v0, x, t, which):
         outcome(calls[which], which)
 
 
-@given(q=arrays([(2,)], ragged=False), v=arrays([(2,)], ragged=False), t=_times(),
-       which=st.sampled_from(["linearize", "equilibrium", "coordinates", "simulate"]))  # KNOWN_RAGGED
+@given(q=arrays([(2,)]), v=arrays([(2,)]), t=_times(),
+       which=st.sampled_from(["linearize", "equilibrium", "coordinates", "simulate"]))
 def test_scene_functions_arguments(q, v, t, which):
     with warnings.catch_warnings():
         _error_on_complex_loss()

@@ -45,3 +45,19 @@ def test_energy_budget_that_overflows():
     x[3, 1] = 1e300
     with pytest.raises(pinlin.ComputationError, match="overflow"):
         pinlin.energy_budget(SPEC, np.linspace(0, 1, 4), x, x)
+
+
+@pytest.mark.parametrize(
+    "M, C, match",
+    [(np.eye(2), [[1.0], [2.0, 3.0]], r"C: expected a real matrix of numbers \(rectangular\)"),
+     (np.zeros((4, 3)), np.zeros((4, 3)), r"M: expected a square matrix, got shape \(4, 3\)")],
+)
+def test_from_matrices_of_bad_shape(M, C, match):
+    with pytest.raises(pinlin.ParameterError, match=match):
+        pinlin.LinearizedSystem.from_matrices(M, C, np.eye(2))
+
+
+def test_ragged_configuration():
+    scene = pinlin.Scene(pinlin.load_urdf_string(pinlin.double_pendulum_urdf()))
+    with pytest.raises(pinlin.ConfigurationError, match="q must be an array of numbers"):
+        pinlin.linearize(scene, [[1.0], [2.0, 3.0]])

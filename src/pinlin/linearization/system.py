@@ -235,12 +235,18 @@ class LinearizedSystem(Result):
             M is not positive definite.
         """
         for name, a in (("M", M), ("C", C), ("K", K)):  # numpy would drop the imaginary part with a warning
-            if a is not None and np.iscomplexobj(a):
+            try:
+                complex_entries = a is not None and np.iscomplexobj(a)
+            except (TypeError, ValueError):  # a ragged nested list
+                raise ParameterError(name, "expected a real matrix of numbers (rectangular)") from None
+            if complex_entries:
                 raise ParameterError(name, "expected a real matrix, got complex entries")
         try:
             M = np.array(M, dtype=float)
         except (TypeError, ValueError):
             raise ParameterError("M", "expected a real matrix") from None
+        if M.ndim != 2 or M.shape[0] != M.shape[1]:
+            raise ParameterError("M", f"expected a square matrix, got shape {M.shape}")
         parts = {}
         for name, a in (("C", C), ("K", K)):
             if a is None:

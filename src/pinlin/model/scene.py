@@ -336,12 +336,13 @@ class Scene:
         if type(q) is np.ndarray and q.dtype == np.float64:
             q = q.copy()  # the result may be frozen read-only
         else:  # numpy would drop an imaginary part with a warning
-            if np.iscomplexobj(q):
-                raise ConfigurationError(f"{label} must be real, got complex entries: {q!r}")
             try:
-                q = np.array(q, dtype=float)
-            except (TypeError, ValueError):
-                raise ConfigurationError(f"{label} must be an array of numbers, got {q!r}") from None
+                complex_entries = np.iscomplexobj(q)
+                q = np.array(q, dtype=float) if not complex_entries else q
+            except (TypeError, ValueError):  # strings, a ragged nested list
+                raise ConfigurationError(f"{label} must be an array of numbers, got {q!r:.80}") from None
+            if complex_entries:
+                raise ConfigurationError(f"{label} must be real, got complex entries: {q!r:.80}")
             if q.ndim == 0:
                 q = q.reshape(1)
         if q.shape != self._q_shape:
