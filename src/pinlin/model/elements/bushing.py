@@ -12,9 +12,9 @@ import pinocchio as pin
 from ...errors import ParameterError
 from .base import Element, ElementGroup, check_psd
 from .frame_pairs import (
+    FramePairElement,
     ancestor_mask,
     as_placement,
-    check_supports,
     cross_motion,
     fixed_wrench_stiffness,
     support_mask,
@@ -40,7 +40,7 @@ def _matrix6(value, label: str) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class Bushing(Element):
+class Bushing(FramePairElement):
     """Six-axis spring and damper between ``frame`` and ``target``, exact for finite rotations.
 
     With X = O^-1 (oMb^-1 oMa) the placement of the frame (a) relative to its
@@ -139,32 +139,6 @@ class Bushing(Element):
         arr = np.array(value.homogeneous if isinstance(value, pin.SE3) else value, dtype=float)
         arr.flags.writeable = False
         return arr
-
-    def check(self, robot: Robot) -> None:
-        label = f"Bushing({self.frame!r})"
-        check_supports(robot, self.frame, label)
-        if isinstance(self.target, str):
-            check_supports(robot, self.target, f"{label}.target")
-
-    def needs(self) -> frozenset[str]:
-        return frozenset({"frame_kinematics"})
-
-    def _one(self, ev: Evaluation) -> BushingGroup:
-        return BushingGroup((self,), ev.robot)
-
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
-        Q = np.zeros(ev.model.nv)
-        self._one(ev).add_force(ev, Q)
-        return Q
-
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
-        self._one(ev).add_stiffness(ev, K)
-
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
-        self._one(ev).add_damping(ev, C)
-
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
-        self._one(ev).add_elastic_stiffness(ev, K)
 
     def deflection(self, ev: Evaluation) -> np.ndarray:
         """e = log6(X) (6,): [m] then [rad], in the frame's axes."""

@@ -35,12 +35,14 @@ import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
-from .base import check_vector3
+from .base import Element, ElementGroup, check_vector3
 
 if TYPE_CHECKING:  # pragma: no cover
+    from ...linearization.workspace import Evaluation
     from ..robot import Robot
 
 __all__ = [
+    "FramePairElement",
     "MULTI_DOF_JOINTS",
     "check_supports",
     "support_mask",
@@ -173,3 +175,41 @@ def fixed_wrench_stiffness(J0: np.ndarray, T: np.ndarray, W: np.ndarray) -> np.n
     W : (6, nv) column k: the sum of the spatial wrenches [N, N m] on the bodies dof k supports.
     """
     return T * (cross_force(J0, W).T @ J0)
+
+
+class FramePairElement(Element):
+    """An element between a frame and a target (a frame or the world), evaluated through its group.
+
+    Subclasses (spring-dampers, bushings) have ``frame`` and ``target`` fields and a
+    :meth:`~pinlin.Element.group` classmethod: one element alone is a group of one, so
+    the element's own methods and the vectorized group share one implementation.
+    """
+
+    frame: str
+    target: object
+
+    def check(self, robot: Robot) -> None:
+        label = f"{type(self).__name__}({self.frame!r})"
+        check_supports(robot, self.frame, label)
+        if isinstance(self.target, str):
+            check_supports(robot, self.target, f"{label}.target")
+
+    def needs(self) -> frozenset[str]:
+        return frozenset({"frame_kinematics"})
+
+    def _one(self, ev: Evaluation) -> ElementGroup:
+        return type(self).group((self,), ev.robot)
+
+    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+        Q = np.zeros(ev.model.nv)
+        self._one(ev).add_force(ev, Q)
+        return Q
+
+    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        self._one(ev).add_stiffness(ev, K)
+
+    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+        self._one(ev).add_damping(ev, C)
+
+    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+        self._one(ev).add_elastic_stiffness(ev, K)

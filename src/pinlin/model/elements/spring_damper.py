@@ -11,8 +11,8 @@ import numpy as np
 from ...errors import ConfigurationError, ParameterError
 from .base import Element, ElementGroup, check_vector3
 from .frame_pairs import (
+    FramePairElement,
     ancestor_mask,
-    check_supports,
     cross,
     cross_motion,
     fixed_wrench_stiffness,
@@ -41,7 +41,7 @@ def _number(value, label: str) -> float:
 
 
 @dataclass(frozen=True, eq=False)
-class LinearSpringDamper(Element):
+class LinearSpringDamper(FramePairElement):
     """A spring and a dashpot along the line from the origin of ``frame`` to ``target``.
 
     With p_a the frame origin, p_b the target, d = p_b - p_a, l = |d|, u = d / l
@@ -106,32 +106,6 @@ class LinearSpringDamper(Element):
             self.target.flags.writeable = False
         for name in ("stiffness", "damping", "rest_length"):
             object.__setattr__(self, name, _number(getattr(self, name), f"{label}.{name}"))
-
-    def check(self, robot: Robot) -> None:
-        label = f"LinearSpringDamper({self.frame!r})"
-        check_supports(robot, self.frame, label)
-        if isinstance(self.target, str):
-            check_supports(robot, self.target, f"{label}.target")
-
-    def needs(self) -> frozenset[str]:
-        return frozenset({"frame_kinematics"})
-
-    def _one(self, ev: Evaluation) -> SpringDamperGroup:
-        return SpringDamperGroup((self,), ev.robot)
-
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
-        Q = np.zeros(ev.model.nv)
-        self._one(ev).add_force(ev, Q)
-        return Q
-
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
-        self._one(ev).add_stiffness(ev, K)
-
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
-        self._one(ev).add_damping(ev, C)
-
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
-        self._one(ev).add_elastic_stiffness(ev, K)
 
     @classmethod
     def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
