@@ -114,7 +114,7 @@ def test_every_printed_matrix_has_its_unit(capsys, tmp_path):
     """The turntable (SPEC 7.2): coordinates theta [rad] and r [m], so M, G, S have mixed units."""
     out, report = analyze([str(pinlin.data_path("scenes/turntable.toml"))], capsys, tmp_path)
     assert report["scene"]["dof_units"] == ["rad", "m"]
-    assert "free coordinates n = 2: arm [rad], slider [m]" in out
+    assert "free joint coordinates n = 2: arm [rad], slider [m]" in out
     printed = printed_matrices(out)
     assert set(printed) == {"M", "G", "S"}
     assert printed["M"][0] == "kg m^2 (rad, rad), kg m (rad, m), kg m (m, rad), kg (m, m) for (row, column) units"
@@ -144,3 +144,14 @@ def test_mode_table_has_no_verdict(capsys, tmp_path):
     _, report = analyze([], capsys, tmp_path)
     table = mode_table(report["modes"], precision=4)
     assert "stability" not in table.lower() and "3.977" in table and "12.06" in table
+
+
+def test_constrained_report_names_the_independent_coordinates_and_the_constraint_forces(capsys, tmp_path):
+    """The four-bar: the matrices are labelled with the system's coordinate (not the scene's first joint), and
+    the loop's force on the rocker tip is listed; it equals the equilibrium result's own."""
+    scene_file = str(pinlin.data_path("scenes/four_bar.toml"))
+    out, report = analyze([scene_file], capsys, tmp_path)
+    (name,) = report["linearization"]["dof_names"]
+    assert re.search(rf"  M \[kg m\^2\] =\n\s+{name}\s+{number(report['linearization']['M'][0][0], 6)}\n", out)
+    force = report["equilibrium"]["constraint_forces"][0]
+    assert f"constraint 'loop' on 'rocker_tip': force [{number(force['force'][0], 6)}," in out

@@ -92,3 +92,12 @@ def test_no_limit_and_the_summary(pendulum):
 def test_bad_budgets_raise(pendulum, kwargs, match):
     with pytest.raises(pinlin.ParameterError, match=match):
         pinlin.simulate(pendulum, [0.1, 0], [0, 0], [0, 1], **kwargs)
+
+
+def test_constrained_scenes_are_refused_not_integrated_as_open_trees():
+    """Forward dynamics of the tree alone would silently drop the loop's forces."""
+    robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0)], constraints=[loop])
+    with pytest.raises(pinlin.ConstraintError, match="simulate integrates open trees only.*'loop'"):
+        pinlin.simulate(scene, robot.neutral(), None, [0.0, 0.1])

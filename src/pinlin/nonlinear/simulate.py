@@ -16,7 +16,7 @@ from dataclasses import replace
 import numpy as np
 import pinocchio as pin
 
-from ..errors import IntegrationBudgetError, IntegrationError, ParameterError
+from ..errors import ConstraintError, IntegrationBudgetError, IntegrationError, ParameterError
 from ..model.scene import Scene
 from ..numerics.checks import check_integer, check_tolerance
 from ..response._inputs import check_times
@@ -223,6 +223,8 @@ def simulate(
         unknown method; non-positive tolerances, rtol too small for solve_ivp (or
         for the comparison run); chart_radius outside (0, 3]; max_steps not a
         positive integer, max_time not a positive number (or None).
+    ConstraintError
+        The scene has constraints (closed loops, contacts): not integrated yet.
     IntegrationBudgetError
         A run used up ``max_steps`` or ``max_time`` or would clearly exceed them;
         ``t_reached``, ``steps`` and ``elapsed`` say how far it got.
@@ -233,6 +235,13 @@ def simulate(
     t_start = time.perf_counter()
     if not isinstance(scene, Scene):
         raise ParameterError("scene", f"expected a pinlin.Scene, got {type(scene).__name__}")
+    if scene.constraints:
+        raise ConstraintError(
+            f"simulate integrates open trees only: the scene has {len(scene.constraints)} constraint(s) "
+            f"({', '.join(repr(c.label) for c in scene.constraints)}), "
+            f"whose forces forward dynamics without them would silently drop",
+            tuple(scene.constraints),
+        )
     if t is None:
         raise ParameterError("t", "the output times are required")
     times = check_times(t)

@@ -76,11 +76,23 @@ def _scene_lines(s: dict) -> list[str]:
     elements = ", ".join(f"{e['kind']}({e.get('joint', e.get('frame', ''))})" for e in s["elements"]) or "none"
     return [
         f"  scene file: {s['source']}",
-        f"  nq = {s['nq']}, nv = {s['nv']}, free coordinates n = {s['n']}: {coordinates}",
+        f"  nq = {s['nq']}, nv = {s['nv']}, free joint coordinates n = {s['n']}: {coordinates}",
         f"  gravity = {_vector_text(s['gravity'], 6)} m/s^2{prescribed}",
         f"  elements: {elements}",
         "",
     ]
+
+
+def _constraint_force_lines(eq: dict, precision: int) -> list[str]:
+    """One line per constraint: the world-axes force (and torque) it applies on its frame."""
+    lines = []
+    for f in eq.get("constraint_forces") or ():
+        torque = f"; torque {_vector_text(f['torque'], precision)} N m" if f.get("torque") is not None else ""
+        lines.append(
+            f"  constraint {f['constraint']!r} on {f['frame']!r}: force {_vector_text(f['force'], precision)} N"
+            f"{torque} (world axes)"
+        )
+    return lines
 
 
 def _equilibrium_lines(eq: dict, precision: int) -> list[str]:
@@ -89,6 +101,7 @@ def _equilibrium_lines(eq: dict, precision: int) -> list[str]:
         f"  q = {_vector_text(eq['q'], precision)}",
         f"  residual = {_float(eq['residual']):.3e} (relative {_float(eq['relative_residual']):.2e}), "
         f"{eq['iterations']} iterations, {eq['elapsed'] * 1e3:.2f} ms",
+        *_constraint_force_lines(eq, precision),
         *(f"  note: {note}" for note in eq["notes"]),
         "",
     ]
@@ -205,7 +218,10 @@ def render_text(report: dict, precision: int = 6) -> str:
     out = [f"pinlin {report['pinlin_version']}: {s['robot']} from {s['urdf']}", *_scene_lines(s)]
     if "equilibrium" in report:
         out += _equilibrium_lines(report["equilibrium"], precision)
-    out += _linearization_lines(report["linearization"], s["dof_names"], units, precision)
+    # the system's coordinates: the scene's free joints, or the independent ones of a constrained scene
+    names = report["linearization"].get("dof_names") or s["dof_names"]
+    unit_of = dict(zip(s["dof_names"], units))
+    out += _linearization_lines(report["linearization"], names, [unit_of.get(n, "?") for n in names], precision)
     modes = report["modes"]
     out += [mode_table(modes, precision), f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms", ""]
     st = report["stability"]
