@@ -347,6 +347,18 @@ def test_contact_that_must_pull():
     assert any("'floor': the ground must pull" in n for n in eq.notes)
 
 
+def test_the_verdict_quotes_a_violated_contact():
+    """Issue 11 part 5: the stability verdict's reason says the contact would have to pull (the linearization
+    keeps it bilateral); a contact that holds adds nothing to the reason."""
+    scene = _box_on_ground(push=(0.0, 0.0, 20.0))
+    eq = pinlin.find_equilibrium(scene, scene.neutral())
+    modes = pinlin.modal_analysis(pinlin.linearize(scene, eq.q))
+    assert "but contact 'floor': the ground must pull (normal force -10.19 N)" in modes.stability.reason
+    held = _box_on_ground()
+    eq = pinlin.find_equilibrium(held, held.neutral())
+    assert "contact 'floor'" not in pinlin.modal_analysis(pinlin.linearize(held, eq.q)).stability.reason
+
+
 def test_contact_that_would_slip():
     scene = _box_on_ground(push=(6.0, 0.0, 0.0), friction=0.5)  # 6 N sideways, mu N = 4.9 N
     eq = pinlin.find_equilibrium(scene, scene.neutral())

@@ -168,6 +168,7 @@ def modal_analysis(
         facts, lam, model, clusters, K_is_zero=not np.any(problem.K), exact_drift=drift,
         safety=tolerances["safety"], uncertainty=tolerances["uncertainty"],
     )
+    stability = _with_contact_notes(stability, problem.system)
     r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
     return Modes(
         eigenvalues=_owned(lam),
@@ -341,3 +342,11 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
     return left, left_ok, ErrorModel(eta, sens, tuple(defective)), notes
 
 
+def _with_contact_notes(stability, system):
+    """The verdict's reason quotes a contact that the equilibrium violates (the ground would have to pull, or
+    friction exceed mu): the linearization treats contacts as bilateral, so such a verdict holds only while
+    the contact is held (SPEC section 10, issue 11)."""
+    notes = [n for n in getattr(system, "notes", ()) if n.startswith("contact '")]
+    if not notes:
+        return stability
+    return stability.replace(reason=f"{stability._basis}; but {'; '.join(notes)}")
