@@ -280,3 +280,24 @@ def test_scenes_of_one_robot_share_the_threads_data():
         for name in ("M", "S", "balancing"):
             assert np.array_equal(getattr(got, name), getattr(expected, name))
     assert not np.array_equal(alone[0].S, alone[1].S)  # the two scenes do differ
+
+
+def test_shared_descriptions_are_immutable():
+    """Robot, Scene and elements are shared by threads: none can be changed after construction, and an
+    element does not alias the caller's arrays."""
+    robot = pinlin.load_example("talos_reduced")
+    with pytest.raises(AttributeError, match="Robot is immutable"):
+        robot.source = "elsewhere"
+    assert not robot.reference_configurations["half_sitting"].flags.writeable
+    with pytest.raises(TypeError):
+        robot.reference_configurations["other"] = robot.neutral()
+    force = np.array([0.0, 0.0, 4.0])
+    wrench = pinlin.FollowerWrench("tip", force=force)
+    force[2] = 99.0
+    assert wrench.force[2] == 4.0 and not wrench.force.flags.writeable
+    spring = pinlin.JointSpring("joint1", stiffness=np.array([[3.0]]))
+    assert not spring.stiffness.flags.writeable
+    scene = pinlin.Scene(pinlin.load_urdf_string(pinlin.double_pendulum_urdf()), [wrench])
+    with pytest.raises(AttributeError, match="Scene is immutable"):
+        scene.gravity = np.zeros(3)
+    assert not scene.gravity.flags.writeable and not scene.free_dofs.flags.writeable

@@ -151,6 +151,7 @@ class Evaluation:
     _mass: np.ndarray | None = None
     _elastic: np.ndarray | None = None
     _world_jacobian: np.ndarray | None = None
+    _memo: dict | None = None
 
     def __init__(
         self,
@@ -174,6 +175,22 @@ class Evaluation:
         #: when the caller knows it, as for a scene's own steady velocity).
         self.at_rest = (not np.count_nonzero(v)) if at_rest is None else at_rest
         self.calls: list[str] = []
+
+    def memo(self, owner, build):
+        """``build()`` once per evaluation and ``owner`` (an element group), then the same value.
+
+        Groups keep what one point costs them (geometry shared by their force,
+        stiffness and damping) here, on the evaluation that one caller owns, never on
+        themselves: a group belongs to a scene that threads share.
+        """
+        if self._memo is None:
+            self._memo = {}
+        # keyed by the owner itself (identity hash): the entry keeps it alive, so a short-lived
+        # group of one element cannot hand its id to another group within this evaluation
+        value = self._memo.get(owner)
+        if value is None:
+            value = self._memo[owner] = build()
+        return value
 
     def call(self, name: str, algorithm, *args):
         """Run a Pinocchio algorithm and log its name."""

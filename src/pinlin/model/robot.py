@@ -6,6 +6,7 @@ guard in front of ``createData`` in :mod:`.memory`.
 
 from __future__ import annotations
 
+import types
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -13,6 +14,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import FrameNotFoundError, JointNotFoundError, ParameterError
+from ..results import readonly as _readonly
 from .constraints import Constraint
 from .memory import check_memory
 
@@ -90,9 +92,9 @@ class Robot:
     ):
         self._model = model
         self.source = source
-        self.reference_configurations = {
-            k: np.array(v, dtype=float) for k, v in (reference_configurations or {}).items()
-        }
+        self.reference_configurations = types.MappingProxyType(
+            {k: _readonly(v) for k, v in (reference_configurations or {}).items()}
+        )
         self._joints: dict[str, JointInfo] = {}
         for jid in range(1, model.njoints):
             jm = model.joints[jid]
@@ -119,6 +121,12 @@ class Robot:
             if not isinstance(constraint, Constraint):
                 raise ParameterError(f"constraints[{i}]", f"expected a PointConstraint or FrameConstraint, got {constraint!r}")
             constraint.check(self)
+        self._frozen = True
+
+    def __setattr__(self, name, value):
+        if getattr(self, "_frozen", False):
+            raise AttributeError(f"Robot is immutable (threads share it): cannot set {name!r}")
+        object.__setattr__(self, name, value)
 
     @property
     def model(self) -> pin.Model:

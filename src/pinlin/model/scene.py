@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import types
 from collections.abc import Iterable, Mapping
-from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -155,6 +154,16 @@ class Scene:
         self._compile()
         self._compile_constraints()
         self._compile_configuration()
+        from ..linearization.plan import LinearizationPlan  # the linearization layer reads scenes
+
+        #: What linearize runs for this scene, decided once (:class:`~pinlin.linearization.plan.LinearizationPlan`)
+        self.linearization_plan: LinearizationPlan = LinearizationPlan(self)
+        self._frozen = True
+
+    def __setattr__(self, name, value):
+        if getattr(self, "_frozen", False):
+            raise AttributeError(f"Scene is immutable (threads share it): cannot set {name!r}; use replace()")
+        object.__setattr__(self, name, value)
 
     def _compile(self) -> None:
         """Group the elements for evaluation and precompute what does not depend on q.
@@ -380,14 +389,6 @@ class Scene:
             f"doubles that large are more than a turn apart, so the angle does not say where the joint is; "
             f"give the angle modulo 2 pi"
         )
-
-    @cached_property
-    def linearization_plan(self) -> LinearizationPlan:
-        """What :func:`pinlin.linearize` runs for this scene, decided once (the scene is immutable): see
-        :class:`pinlin.linearization.plan.LinearizationPlan` (time-invariance proofs included)."""
-        from ..linearization.plan import LinearizationPlan  # the linearization layer reads scenes
-
-        return LinearizationPlan(self)
 
     def __repr__(self) -> str:
         kinds: dict[str, int] = {}

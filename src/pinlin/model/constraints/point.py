@@ -74,9 +74,7 @@ class PointConstraint(Constraint):
         if not isinstance(self.frame, str):
             raise ParameterError(f"{label}.frame", f"expected a frame name, got {self.frame!r}")
         if not isinstance(self.target, str):
-            target = check_vector3(self.target, f"{label}.target")
-            target.flags.writeable = False
-            object.__setattr__(self, "target", target)
+            object.__setattr__(self, "target", check_vector3(self.target, f"{label}.target"))
         object.__setattr__(self, "contact", bool(self.contact))
         normal = check_vector3(self.normal, f"{label}.normal")
         size = float(np.linalg.norm(normal))

@@ -21,6 +21,7 @@ import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
+from ...results import readonly
 
 if TYPE_CHECKING:  # pragma: no cover
     from ...linearization.workspace import Evaluation
@@ -50,7 +51,8 @@ def as_matrix(value, size: int, label: str) -> np.ndarray:
 
 
 def check_psd(value, label: str) -> np.ndarray:
-    """Validate a scalar / vector / matrix coefficient: finite, >= 0 or symmetric psd."""
+    """Validate a scalar / vector / matrix coefficient: finite, >= 0 or symmetric psd (a read-only copy:
+    elements are shared by threads, and the caller's array must not alias them)."""
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -62,7 +64,7 @@ def check_psd(value, label: str) -> np.ndarray:
     if arr.ndim < 2:
         if np.any(arr < 0):
             raise ParameterError(label, f"must be non-negative, got {value!r}")
-        return arr
+        return readonly(arr)
     if arr.shape[0] != arr.shape[1]:
         raise ParameterError(label, f"a matrix must be square, got shape {arr.shape}")
     scale = max(np.abs(arr).max(), np.finfo(float).tiny)
@@ -71,10 +73,11 @@ def check_psd(value, label: str) -> np.ndarray:
     arr = (arr + arr.T) / 2
     if np.linalg.eigvalsh(arr).min() < -1e-12 * scale:
         raise ParameterError(label, "a matrix must be positive semi-definite")
-    return arr
+    return readonly(arr)
 
 
 def check_vector3(value, label: str) -> np.ndarray:
+    """Three finite numbers, as a read-only copy."""
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -83,7 +86,7 @@ def check_vector3(value, label: str) -> np.ndarray:
         raise ParameterError(label, f"expected 3 numbers, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
         raise ParameterError(label, f"must be finite, got {value!r}")
-    return arr
+    return readonly(arr)
 
 
 class ElementGroup:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import KW_ONLY, dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -10,6 +9,7 @@ import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
+from ...results import readonly
 from .base import Element, ElementGroup, check_psd
 from .frame_pairs import (
     FramePairElement,
@@ -136,9 +136,7 @@ class Bushing(FramePairElement):
 
     @staticmethod
     def _frozen(value) -> np.ndarray:
-        arr = np.array(value.homogeneous if isinstance(value, pin.SE3) else value, dtype=float)
-        arr.flags.writeable = False
-        return arr
+        return readonly(value.homogeneous if isinstance(value, pin.SE3) else value, dtype=float)
 
     def deflection(self, ev: Evaluation) -> np.ndarray:
         """e = log6(X) (6,): [m] then [rad], in the frame's axes."""
@@ -230,21 +228,11 @@ class BushingGroup(ElementGroup):
         self.K6 = np.array([e.stiffness for e in elements]).reshape(-1, 6, 6)
         self.D6 = np.array([e.damping for e in elements]).reshape(-1, 6, 6)
         self.damped = bool(np.any(self.D6))
-        self._last: tuple[weakref.ref, _State] | None = None
 
     def state(self, ev: Evaluation) -> _State:
-        """The bushings at ``ev``, computed once for its force, stiffness and damping.
-
-        The last state is kept with a weak reference to its evaluation (one
-        point (q, v)); the pair is replaced atomically, so threads sharing the
-        scene only miss, never mix.
-        """
-        last = self._last
-        if last is not None and last[0]() is ev:
-            return last[1]
-        state = _State(self, ev, velocity=self.damped and not ev.at_rest)
-        self._last = (weakref.ref(ev), state)
-        return state
+        """The bushings at ``ev``, computed once for its force, stiffness and damping (kept on the
+        evaluation, which one caller owns: the group is shared with the scene)."""
+        return ev.memo(self, lambda: _State(self, ev, velocity=self.damped and not ev.at_rest))
 
     def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
         st = self.state(ev)

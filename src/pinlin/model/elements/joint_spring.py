@@ -9,6 +9,7 @@ import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
+from ...results import readonly
 from .base import Element, ElementGroup, as_matrix, check_psd
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -55,7 +56,7 @@ class JointSpring(Element):
             rest = np.asarray(self.rest, dtype=float)
             if rest.ndim > 1 or not np.all(np.isfinite(rest)):
                 raise ParameterError(f"JointSpring({self.joint!r}).rest", f"must be finite numbers, got {self.rest!r}")
-            object.__setattr__(self, "rest", rest)
+            object.__setattr__(self, "rest", readonly(rest))
 
     def matrix(self, j: JointInfo) -> np.ndarray:
         """The stiffness as a (nv_j x nv_j) matrix."""

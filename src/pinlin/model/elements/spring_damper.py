@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import KW_ONLY, dataclass
 from typing import TYPE_CHECKING, ClassVar
 
@@ -103,7 +102,6 @@ class LinearSpringDamper(FramePairElement):
                 raise ParameterError(f"{label}.target", "is the frame itself: the spring would have no length")
         else:
             object.__setattr__(self, "target", check_vector3(self.target, f"{label}.target"))
-            self.target.flags.writeable = False
         for name in ("stiffness", "damping", "rest_length"):
             object.__setattr__(self, name, _number(getattr(self, name), f"{label}.{name}"))
 
@@ -212,21 +210,11 @@ class SpringDamperGroup(ElementGroup):
         self.k = np.array([e.stiffness for e in elements])
         self.c = np.array([e.damping for e in elements])
         self.l0 = np.array([e.rest_length for e in elements])
-        self._last: tuple[weakref.ref, _Line] | None = None
 
     def _line(self, ev: Evaluation) -> _Line:
-        """The geometry at ``ev``, computed once for the force, stiffness and damping of one evaluation.
-
-        The last one is kept with a weak reference to its evaluation (an
-        evaluation is one point (q, v) and lives for one assembly); the pair is
-        replaced atomically, so threads sharing the scene only miss, never mix.
-        """
-        last = self._last
-        if last is not None and last[0]() is ev:
-            return last[1]
-        line = _Line(self, ev, velocity=not ev.at_rest and bool(self.c.any()))
-        self._last = (weakref.ref(ev), line)
-        return line
+        """The geometry at ``ev``, computed once for the force, stiffness and damping of one evaluation
+        (kept on the evaluation, which one caller owns: the group is shared with the scene)."""
+        return ev.memo(self, lambda: _Line(self, ev, velocity=not ev.at_rest and bool(self.c.any())))
 
     def _laplacian(self, C: np.ndarray, w: np.ndarray) -> np.ndarray:
         """sum_e w_e J_rel_e^T J_rel_e (nv x nv) = sum_i C_i^T (B^T diag(w) B) C_i."""
