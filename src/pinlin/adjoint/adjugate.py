@@ -42,11 +42,6 @@ __all__ = [
     "adjugate_taylor",
 ]
 
-# Names of pinlin 0.1 used by pinlin.frf (private); remove once it imports from .svd.
-_residual_scaled = residual_scaled
-_svd_adjugate = svd_adjugate
-
-
 def adjugate_residual(L, A, p) -> float:
     """Relative residual of ``L A = A L = p I``: ``max(||LA - pI||, ||AL - pI||) / (||L|| ||A||)``.
 

@@ -23,8 +23,9 @@ from numpy.polynomial import Polynomial
 from ..errors import ComputationError, ParameterError
 from ..numerics.checks import check_system, check_tolerance, complex_points
 from ..numerics.floating import EPS
+from ..numerics.stacks import chunks
 from ..results import Result
-from ._circle import RADIUS_RATIO, check_points, chunks, eigenvalue_radii, fit_on_circles
+from ._circle import RADIUS_RATIO, check_points, eigenvalue_radii, fit_on_circles
 
 __all__ = ["CharacteristicPolynomial", "characteristic_polynomial", "det_samples", "HORNER_ROUNDING"]
 

@@ -21,7 +21,7 @@ One concept per module:
 - :mod:`.residues` -- principal parts of H at a root of any multiplicity, by contour
   integrals of H from the engine (paper Sec. 10, Theorem 10.2); :mod:`.contour` finds
   and samples the contour (argument-principle counts);
-- :mod:`._inputs` -- checks of angular frequencies and force amplitudes.
+- :mod:`._inputs` -- the check of angular frequencies.
 
 Axis orders: stacks put the points first (``flexibility``: (len(s), n, n);
 ``harmonic_response``: (len(omega), n), like a time response (len(t), n));

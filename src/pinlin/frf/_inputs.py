@@ -1,4 +1,4 @@
-"""Input checks of the linear responses: angular frequencies and vectors of coordinates (SPEC section 9).
+"""Input check of the frequency responses: angular frequencies (SPEC section 9).
 
 Each raises a :class:`~pinlin.ParameterError` naming the parameter, the
 expected and the found value or shape.  Checks shared beyond ``frf`` live in
@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["real_frequencies", "check_vector"]
+__all__ = ["real_frequencies"]
 
 
 def real_frequencies(omega, label: str = "omega") -> tuple[np.ndarray, bool]:
@@ -36,29 +36,3 @@ def real_frequencies(omega, label: str = "omega") -> tuple[np.ndarray, bool]:
     if np.any(bad):
         raise ParameterError(label, f"must be finite; entry {int(np.flatnonzero(bad)[0])} is {w[bad][0]}")
     return w, scalar
-
-
-def check_vector(value, n: int, label: str, *, complex_ok: bool = False, allow_none: bool = True) -> np.ndarray:
-    """A finite vector of n real (or, with ``complex_ok``, complex) numbers; None gives zeros when allowed.
-
-    Used for force amplitudes here and initial conditions in :mod:`pinlin.response`.
-
-    Raises
-    ------
-    ParameterError
-        None where not allowed, a callable, not numbers, another shape, or non-finite.
-    """
-    kind = "complex" if complex_ok else "real"
-    if value is None and allow_none:
-        return np.zeros(n, dtype=complex if complex_ok else float)
-    if value is None or callable(value):
-        raise ParameterError(label, f"expected {n} {kind} numbers (one per coordinate), got {value!r:.80}")
-    try:
-        arr = np.array(value, dtype=complex if complex_ok else float)
-    except (TypeError, ValueError):
-        raise ParameterError(label, f"expected {n} {kind} numbers (one per coordinate), got {value!r:.80}") from None
-    if arr.shape != (n,):
-        raise ParameterError(label, f"expected shape ({n},) (one value per coordinate), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ParameterError(label, f"must be finite, got {arr}")
-    return arr

@@ -6,8 +6,9 @@ import time
 import warnings
 
 from ..numerics import check_system, check_tolerance
+from ..numerics.arrays import check_vector
 from ..results import ResultArray
-from ._inputs import check_vector, real_frequencies
+from ._inputs import real_frequencies
 from .engine import DEFAULT_METHOD, DEFAULT_TOL, METHODS, per_point, solve, warn_inaccurate
 
 __all__ = ["HarmonicResponse", "harmonic_response", "HARMONIC_METHODS"]

@@ -18,8 +18,8 @@ import pinocchio as pin
 
 from ..errors import ConstraintError, IntegrationBudgetError, IntegrationError, ParameterError
 from ..model.scene import Scene
+from ..numerics.arrays import check_times
 from ..numerics.checks import check_integer, check_tolerance
-from ..response._inputs import check_times
 from .charts import MAX_CHART_RADIUS
 from .coordinates import linear_coordinates
 from .dynamics import initial_velocity

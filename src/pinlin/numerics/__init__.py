@@ -3,6 +3,8 @@
 - :mod:`.checks` -- input checks: ``check_system``, ``check_tolerance(value, label, upper=None)``,
   ``check_uncertainty``, ``check_integer``, ``check_radii``, ``complex_scalar``, ``complex_points``,
   ``dof_indices``;
+- :mod:`.arrays` -- ``check_times``, ``check_vector``, ``check_samples``: time grids, coordinate
+  vectors and sampled signals;
 - :mod:`.floating` -- ``EPS``, ``LOG_MAX``, ``LOG_TINY`` and ``checked_exp`` (back from logarithms);
 - :mod:`.stacks` -- ``chunks``: stacks of (n, n) matrices in pieces of bounded memory;
 - :mod:`.scaling` -- Fan-Lin-Van Dooren ``Scaling`` (gamma, delta, in logarithms), ``frobenius``
@@ -28,6 +30,7 @@ from .accuracy import (
     eigen_weight,
     homogeneous,
 )
+from .arrays import check_samples, check_times, check_vector
 from .checks import (
     check_integer,
     check_radii,
@@ -66,6 +69,9 @@ from .scaling import (
 from .stacks import CHUNK_BYTES, chunks
 
 __all__ = [
+    "check_times",
+    "check_vector",
+    "check_samples",
     # checks
     "check_system",
     "check_tolerance",

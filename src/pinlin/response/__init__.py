@@ -6,8 +6,8 @@ One concept per module:
 - :mod:`.forced` -- any sampled or callable force, by exact discretization;
 - :mod:`.energy` -- the linearized power theorem along a trajectory;
 - :mod:`.state`, :mod:`.signal` -- the first-order form and the piecewise-polynomial
-  reading of sampled (or callable) forces they share; :mod:`._inputs` -- checks of
-  time grids, vectors and samples.
+  reading of sampled (or callable) forces they share (their input checks are in
+  :mod:`pinlin.numerics.arrays`).
 
 Arrays are (len(t), n): time first, coordinates last.  The modal expansion the
 free response evaluates is :mod:`pinlin.frf.expansion` (also the modal method of

@@ -21,8 +21,8 @@ import scipy.linalg
 from ..errors import ComputationError
 from ..linearization.system import LinearizedSystem
 from ..numerics import check_system
+from ..numerics.arrays import check_samples, check_times
 from ..results import Result
-from ._inputs import check_samples, check_times
 from .signal import SampledForce, check_interpolation, sample_callable
 
 __all__ = ["EnergyBudget", "energy_budget", "METHOD"]

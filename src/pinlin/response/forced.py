@@ -19,8 +19,8 @@ import scipy.linalg
 from ..errors import AccuracyWarning, ParameterError
 from ..linearization.system import LinearizedSystem
 from ..numerics import check_integer, check_system, check_tolerance
+from ..numerics.arrays import check_samples, check_times, check_vector
 from ..results import Result
-from ._inputs import check_samples, check_times, check_vector
 from .energy import EnergyBudget, energy_budget
 from .signal import INTERPOLATIONS, SampledForce, check_interpolation, sample_callable
 from .state import first_order

@@ -13,8 +13,8 @@ from ..frf.engine import DEFAULT_TOL
 from ..frf.expansion import ModalExpansion, complex_matmul, modal_expansion
 from ..linearization.system import LinearizedSystem
 from ..numerics import check_system, check_tolerance
+from ..numerics.arrays import check_times, check_vector
 from ..results import ResultArray
-from ._inputs import check_times, check_vector
 
 __all__ = ["FreeResponse", "free_response", "modal_free_motion", "TIME_CHUNK", "DEFAULT_TOL"]
 

@@ -1,10 +1,9 @@
-"""Validation of the inputs of the time responses: time grids, vectors, samples (SPEC section 9).
+"""Input checks of arrays over time and coordinates: time grids, coordinate vectors, sampled signals.
 
-Every check raises a :class:`~pinlin.ParameterError` naming the parameter and
-giving the expected and the found shape or value.  The checks shared with the
-other analyses (the system, tolerances) live in :mod:`pinlin.numerics.checks`,
-the check of a vector of coordinates in :mod:`pinlin.frf._inputs` (the harmonic
-force amplitude uses it too); they are re-exported here.
+Used by the frequency responses (force amplitudes), the time responses (initial
+conditions, sampled forces) and the nonlinear simulation (time grids).  Each raises
+a :class:`~pinlin.ParameterError` naming the parameter, the expected and the found
+value or shape.
 """
 
 from __future__ import annotations
@@ -12,10 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
-from ..frf._inputs import check_vector
-from ..numerics import check_system, check_tolerance
 
-__all__ = ["check_system", "check_times", "check_vector", "check_samples", "check_tolerance"]
+__all__ = ["check_times", "check_vector", "check_samples"]
 
 
 def _real_array(value, label: str) -> np.ndarray:
@@ -67,4 +64,30 @@ def check_samples(value, rows: int, n: int, label: str) -> np.ndarray:
     if not np.all(np.isfinite(arr)):
         k = int(np.flatnonzero(~np.all(np.isfinite(arr), axis=1))[0])
         raise ParameterError(label, f"must be finite; row {k} is {arr[k]}")
+    return arr
+
+
+def check_vector(value, n: int, label: str, *, complex_ok: bool = False, allow_none: bool = True) -> np.ndarray:
+    """A finite vector of n real (or, with ``complex_ok``, complex) numbers; None gives zeros when allowed.
+
+    Force amplitudes (:mod:`pinlin.frf`) and initial conditions (:mod:`pinlin.response`).
+
+    Raises
+    ------
+    ParameterError
+        None where not allowed, a callable, not numbers, another shape, or non-finite.
+    """
+    kind = "complex" if complex_ok else "real"
+    if value is None and allow_none:
+        return np.zeros(n, dtype=complex if complex_ok else float)
+    if value is None or callable(value):
+        raise ParameterError(label, f"expected {n} {kind} numbers (one per coordinate), got {value!r:.80}")
+    try:
+        arr = np.array(value, dtype=complex if complex_ok else float)
+    except (TypeError, ValueError):
+        raise ParameterError(label, f"expected {n} {kind} numbers (one per coordinate), got {value!r:.80}") from None
+    if arr.shape != (n,):
+        raise ParameterError(label, f"expected shape ({n},) (one value per coordinate), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(label, f"must be finite, got {arr}")
     return arr
