@@ -183,6 +183,10 @@ def run(quick: bool = False) -> Report:
         "quick": quick,
     }
     report = Report(name="response", tables=[table], summary=summary)
+    report.target(14, f"free response incl. the modal analysis >= {TARGET_SPEEDUP:.0f}x solve_ivp, and more accurate",
+                  f"{speedup:.0f}x (error {modal[2]:.1e} vs {best_1e10[2]:.1e})",
+                  bool(speedup >= TARGET_SPEEDUP and modal[2] <= 10 * most_accurate),
+                  f"solve_ivp {best_method} at rtol 1e-10")
     figure = _plot(rows, quick)
     if figure:
         report.figures.append(figure)

@@ -73,6 +73,25 @@ class Table:
         return "\n".join(lines) + "\n"
 
 
+@dataclass(frozen=True)
+class Target:
+    """One target of an issue and what a benchmark run measured for it."""
+
+    issue: int
+    what: str
+    measured: str
+    met: bool | None
+    baseline: str = ""
+
+    def row(self) -> list[object]:
+        verdict = "not decided" if self.met is None else ("yes" if self.met else "**no**")
+        return [self.issue, self.what, self.baseline, self.measured, verdict]
+
+
+#: Columns of the targets table (:meth:`Target.row`).
+TARGET_COLUMNS = ("issue", "target", "baseline", "measured", "met")
+
+
 @dataclass
 class Report:
     """What one benchmark module measured."""
@@ -83,6 +102,13 @@ class Report:
     figures: list[str] = field(default_factory=list)
     text: str = ""
     elapsed: float = 0.0
+    #: Targets of the issues checked by this run: one :class:`Target` each; the
+    #: README collects them into one table (``python -m benchmarks``).
+    targets: list[Target] = field(default_factory=list)
+
+    def target(self, issue: int, what: str, measured: str, met: bool | None, baseline: str = "") -> None:
+        """Record a target: its issue, what it asks, the measured value, met or not (None: not decided)."""
+        self.targets.append(Target(issue, what, measured, met, baseline))
 
     def markdown(self) -> str:
         parts = [f"## {self.name}", ""]
@@ -90,6 +116,8 @@ class Report:
             parts += [self.text.strip(), ""]
         if self.summary:
             parts += [f"- **{k}**: {v}" for k, v in self.summary.items()] + [""]
+        if self.targets:
+            parts += [Table("Targets checked by this run", TARGET_COLUMNS, [t.row() for t in self.targets]).markdown()]
         parts += [t.markdown() for t in self.tables]
         parts += [f"![{Path(f).stem}]({Path(f).name})\n" for f in self.figures]
         return "\n".join(parts)
@@ -173,6 +201,7 @@ def write_report(report: Report, directory: Path = RESULTS) -> Path:
         "summary": report.summary,
         "tables": [{"title": t.title, "columns": list(t.columns), "rows": t.rows, "note": t.note} for t in report.tables],
         "figures": report.figures,
+        "targets": [dict(zip(TARGET_COLUMNS, (t.issue, t.what, t.baseline, t.measured, t.met))) for t in report.targets],
     }
     (directory / f"{report.name}.json").write_text(json.dumps(payload, indent=2, default=_jsonable), encoding="utf-8")
     return md
