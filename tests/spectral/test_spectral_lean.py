@@ -49,6 +49,8 @@ def test_margin_is_computed_on_first_access_and_kept():
 
 def test_a_lazy_margin_survives_pickling_and_to_dict():
     modes = pinlin.modal_analysis(double_pendulum(P=4.0, c=0.05))
+    # the verdict is itself formed on first access (issue 14): formed here, pickled with its margin still lazy
+    assert modes.stability.__dict__["_margin"] is None
     copy = pickle.loads(pickle.dumps(modes))
     assert copy.stability.__dict__["_margin"] is None
     assert copy.stability.margin == modes.stability.margin

@@ -34,6 +34,7 @@ __all__ = [
     "eigen_weight",
     "column_norms",
     "backward_errors",
+    "residual_figures",
     "condition_numbers",
     "backward_error",
     "condition_number",
@@ -87,7 +88,8 @@ def column_norms(A: np.ndarray) -> np.ndarray:
         return np.zeros(A.shape[:-2] + A.shape[-1:])
     if np.iscomplexobj(A):
         if A.dtype == np.complex128 and A.flags.c_contiguous:  # (re, im) pairs as one real array
-            pairs = np.einsum("...ij,...ij->...j", A.view(float), A.view(float))
+            f = A.view(float)
+            pairs = np.einsum("...ij,...ij->...j", f, f)  # (no overflow warning: the window below decides)
             total = pairs[..., 0::2] + pairs[..., 1::2]
         else:
             total = np.einsum("...ij,...ij->...j", A.real, A.real) + np.einsum("...ij,...ij->...j", A.imag, A.imag)
@@ -95,7 +97,7 @@ def column_norms(A: np.ndarray) -> np.ndarray:
         total = np.einsum("...ij,...ij->...j", A, A)
     lo, hi = _SQUARES_WINDOW
     ok = (total > lo) & (total < hi)
-    if ok.all():
+    if np.count_nonzero(ok) == ok.size:
         return np.sqrt(total)
     s = np.max(np.abs(A), axis=-2)
     safe = np.where((s > 0) & np.isfinite(s), s, 1.0)
@@ -115,19 +117,49 @@ def backward_errors(lam, X, MX, CX, KX, norms: Norms) -> np.ndarray:
     An exactly zero residual gives 0 (also where the weight vanishes: lam = 0
     with K = 0); a zero column x gives inf (it is no eigenvector).
     """
+    return residual_figures(lam, X, MX, CX, KX, norms)[0]
+
+
+def residual_figures(lam, X, MX, CX, KX, norms: Norms) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(eta, ||x||, w(lam)) for each column: :func:`backward_errors` with the column norms and weights it formed.
+
+    A caller that normalizes the vectors or forms error bounds next reuses ||x|| and
+    w(lam) = |lam|^2 ||M|| + |lam| ||C|| + ||K|| instead of computing them again.
+    """
     lam = np.asarray(lam, dtype=complex)
-    R = MX * (lam * lam)
-    R += CX * lam
-    R += KX
-    num = column_norms(R)
-    nx = column_norms(X)
-    den = eigen_weight(lam, norms) * nx
-    if den.all() and num.all() and np.isfinite(den).all() and np.isfinite(num).all():  # no zero, no overflow
-        return num / den
-    with np.errstate(divide="ignore", invalid="ignore"):
+    lam2 = lam * lam
+    shape = (2,) + np.shape(MX)  # X, M X, C X, K X: arrays of one shape
+    if _real_residual(lam, lam2, X, MX, CX, KX):
+        # real vectors and products, lam^2 real and no imaginary C x lam term: L(lam) x is real, and formed
+        # in real arithmetic it has the same real part (the complex form adds exact zeros) and no imaginary one
+        RX = np.empty(shape)
+        R = np.multiply(MX, lam2.real, out=RX[0])
+        if np.count_nonzero(lam.imag) == 0:
+            R += CX * lam.real
+        R += KX
+    else:
+        RX = np.empty(shape, dtype=complex)  # L(lam) x beside x
+        R = np.multiply(MX, lam2, out=RX[0])
+        R += CX * lam
+        R += KX
+    RX[1] = X
+    num, nx = column_norms(RX)  # one pass over both
+    w = eigen_weight(lam, norms)
+    den = w * nx
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         eta = num / den
+    if np.count_nonzero(np.isfinite(eta)) == eta.size:
+        # no zero x (den = 0 would give inf or nan), no overflow; num = 0 gives 0 also where den = inf
+        return eta, nx, w
     eta = np.where(num == 0, 0.0, np.where(np.isfinite(eta), eta, np.inf))
-    return np.where(nx == 0, np.inf, eta)
+    return np.where(nx == 0, np.inf, eta), nx, w
+
+
+def _real_residual(lam, lam2, X, MX, CX, KX) -> bool:
+    """L(lam) x = lam^2 M x + lam C x + K x is real: real X and products, lam^2 real, and lam real or C x = 0."""
+    if any(np.iscomplexobj(a) for a in (X, MX, CX, KX)) or np.count_nonzero(lam2.imag):
+        return False
+    return np.count_nonzero(lam.imag) == 0 or not np.any(CX)
 
 
 def condition_numbers(lam, yMx, yCx, yKx, norms: Norms) -> np.ndarray:

@@ -7,6 +7,7 @@ name, what was expected and what was found.
 
 from __future__ import annotations
 
+import math
 import numbers
 from collections.abc import Sequence
 
@@ -60,7 +61,7 @@ def check_tolerance(value, label: str, *, upper: float | None = None) -> float:
         v = float(value)
     except (TypeError, ValueError):
         raise ParameterError(label, f"expected a positive number, got {value!r}") from None
-    if not np.isfinite(v) or v <= 0:
+    if not math.isfinite(v) or v <= 0:
         raise ParameterError(label, f"expected a finite positive number, got {value!r}")
     if upper is not None and v >= upper:
         raise ParameterError(label, f"expected a number below {upper:g}, got {v:g}")
@@ -81,7 +82,7 @@ def check_uncertainty(value, label: str = "uncertainty") -> float:
         v = float(value)
     except (TypeError, ValueError):
         raise ParameterError(label, f"expected a relative uncertainty in [0, 1), got {value!r}") from None
-    if not np.isfinite(v) or v < 0 or v >= 1:
+    if not math.isfinite(v) or v < 0 or v >= 1:
         raise ParameterError(label, f"expected a relative uncertainty in [0, 1), got {value!r}")
     return v
 

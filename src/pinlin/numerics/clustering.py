@@ -25,6 +25,12 @@ CLUSTER_TOL = 1e-5
 CLUSTER_BOUND_FACTOR = 10.0
 
 
+#: Factor on cluster_tol in the quick test of :func:`_far_apart`: the moduli and their
+#: differences carry a few eps of relative rounding, so the test is widened far beyond it
+#: and stays a sufficient condition for "no pair within cluster_tol".
+_FAR_MARGIN = 1.0 + 1e-8
+
+
 def find_clusters(
     lam,
     cluster_tol: float = CLUSTER_TOL,
@@ -58,6 +64,8 @@ def find_clusters(
     """
     lam = np.asarray(lam, dtype=complex)
     k = lam.shape[0]
+    if not singletons and _far_apart(lam, cluster_tol, scale):
+        return []
     a = np.abs(lam)
     # candidates only: |lam_i - lam_j| >= ||lam_i| - |lam_j||, so linked eigenvalues have moduli within
     # cluster_tol max(|lam_j|, scale) of each other; sorted by modulus, each is compared with those in that window
@@ -88,3 +96,35 @@ def find_clusters(
         groups.setdefault(int(labels[idx]), []).append(idx)
     least = 1 if singletons else 2
     return sorted((tuple(g) for g in groups.values() if len(g) >= least), key=lambda g: g[0])
+
+
+def _far_apart(lam: np.ndarray, cluster_tol: float, scale: float) -> bool:
+    """True when no two eigenvalues can be linked by the cluster_tol test (a cheap, sufficient check).
+
+    Reflect every eigenvalue into the closed upper half plane, w = Re lam + i |Im lam|:
+    two eigenvalues are at least as far apart as their images (same half plane: equal;
+    opposite halves: reflecting one across the real axis brings it closer), and an
+    image's distance is at least the difference of the moduli.  A conjugate pair has one
+    image and distance 2 |Im lam|.  So when (a) the sorted distinct images are farther
+    apart in modulus than the tolerance and (b) every complex eigenvalue is farther than
+    it from its conjugate, no pair passes ``|lam_i - lam_j| <= cluster_tol max(|lam_i|,
+    |lam_j|, scale)``.  Images are taken once per pair (the Im >= 0 members); a spectrum
+    whose Im < 0 members do not each follow their exact conjugate, or with a non-finite
+    member, gives False (the full search decides).
+    """
+    im = lam.imag
+    down = (im < 0).nonzero()[0]
+    # each member below the axis must follow its exact conjugate (the order of a computed spectrum)
+    if down.size and not (down[0] > 0 and np.count_nonzero(lam.take(down - 1) == lam.take(down).conj()) == down.size):
+        return False
+    w = lam[im >= 0]
+    size = np.abs(w)
+    a = np.sort(size)
+    if a.size == 0 or not np.isfinite(a[-1]):
+        return False
+    limit = (cluster_tol * _FAR_MARGIN) * np.maximum(a, scale)  # at least |lam_i - lam_j| for every candidate pair
+    if a.size > 1 and np.count_nonzero(a[1:] - a[:-1] <= limit[1:]) != 0:
+        return False
+    self_gap = 2.0 * np.abs(w.imag)
+    near = (self_gap > 0) & (self_gap <= (cluster_tol * _FAR_MARGIN) * np.maximum(size, scale))
+    return np.count_nonzero(near) == 0

@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -85,22 +86,27 @@ def frobenius(A) -> float:
 
     (the plain sum of squares where it is within :data:`SQUARES_WINDOW`).
     """
-    A = np.asarray(A)
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        return _frobenius(np.asarray(A))
+
+
+def _frobenius(A: np.ndarray) -> float:
+    """:func:`frobenius` with floating-point warnings already silenced by the caller."""
     if A.size and A.dtype.kind == "f":
         flat = A.ravel()
-        with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-            q = float(np.dot(flat, flat))
+        q = float(np.dot(flat, flat))
         if SQUARES_WINDOW[0] < q < SQUARES_WINDOW[1]:
-            return float(np.sqrt(q))
+            return math.sqrt(q)
     s = float(np.max(np.abs(A))) if A.size else 0.0
-    if s == 0 or not np.isfinite(s):
+    if s == 0 or not math.isfinite(s):
         return s
     return float(s * np.linalg.norm(A / s))
 
 
 def coefficient_norms(M, C, K) -> tuple[float, float, float]:
     """Frobenius norms (||M||, ||C||, ||K||): the weights of eta and kappa (SPEC section 4)."""
-    return frobenius(M), frobenius(C), frobenius(K)
+    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
+        return _frobenius(np.asarray(M)), _frobenius(np.asarray(C)), _frobenius(np.asarray(K))
 
 
 def fan_lin_van_dooren(norm_M: float, norm_C: float, norm_K: float) -> Scaling:
@@ -119,28 +125,28 @@ def fan_lin_van_dooren(norm_M: float, norm_C: float, norm_K: float) -> Scaling:
         change units).
     """
     norms = (norm_M, norm_C, norm_K)
-    if not (norm_M > 0 and all(np.isfinite(x) and x >= 0 for x in norms)):
+    if not (norm_M > 0 and all(math.isfinite(x) and x >= 0 for x in norms)):
         raise ComputationError(
             f"the coefficient norms (||M||, ||C||, ||K||) = ({norm_M:.3g}, {norm_C:.3g}, {norm_K:.3g}) must be "
             f"finite with ||M|| > 0"
         )
     if norm_K > 0:
-        log_gamma = 0.5 * (np.log(norm_K) - np.log(norm_M))
+        log_gamma = 0.5 * (math.log(norm_K) - math.log(norm_M))
     elif norm_C > 0:
-        log_gamma = np.log(norm_C) - np.log(norm_M)
+        log_gamma = math.log(norm_C) - math.log(norm_M)
     else:
         log_gamma = 0.0
     # delta = 2 / (||K|| + gamma ||C||), or 2 / (gamma^2 ||M||) = 1 / ||M|| when K = C = 0 (then gamma = 1)
     log_size = max(
-        np.log(norm_K) if norm_K > 0 else -np.inf,
-        log_gamma + np.log(norm_C) if norm_C > 0 else -np.inf,
-        2 * log_gamma + np.log(norm_M) if norm_K == 0 and norm_C == 0 else -np.inf,
+        math.log(norm_K) if norm_K > 0 else -math.inf,
+        log_gamma + math.log(norm_C) if norm_C > 0 else -math.inf,
+        2 * log_gamma + math.log(norm_M) if norm_K == 0 and norm_C == 0 else -math.inf,
     )
-    for what, value in (("gamma^2", 2 * log_gamma), ("delta", np.log(2.0) - log_size), ("the weight", log_size)):
+    for what, value in (("gamma^2", 2 * log_gamma), ("delta", math.log(2.0) - log_size), ("the weight", log_size)):
         if not LOG_TINY + RANGE_MARGIN < value < LOG_MAX - RANGE_MARGIN:
             raise ComputationError(
                 f"the eigenvalue scale of this problem is out of double range ({what} about "
-                f"10^{value / np.log(10):.0f}, gamma = sqrt(||K||/||M||) about 10^{log_gamma / np.log(10):.0f} rad/s "
+                f"10^{value / math.log(10):.0f}, gamma = sqrt(||K||/||M||) about 10^{log_gamma / math.log(10):.0f} rad/s "
                 f"from the norms ({norm_M:.3g}, {norm_C:.3g}, {norm_K:.3g})); rescale the system (units, for "
                 f"example mm and g instead of m and kg)"
             )

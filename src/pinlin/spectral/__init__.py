@@ -22,8 +22,10 @@ One concept per module, in the order of :func:`modal_analysis`:
 - :mod:`.stability_rules` -- the rules of the verdict, tried in order;
 - :mod:`.stability` -- :func:`decide_stability`, :func:`stability_from_structure` (the
   verdict's margin computed on first access);
+- :mod:`.deferred` -- what :class:`Modes` keeps to form its condition numbers, structural
+  facts, verdict and notes on first access;
 - :mod:`.modes` -- the result object :class:`Modes` (condition numbers, modal
-  constants and participation formed on first access);
+  constants, participation, structural facts, verdict and notes formed on first access);
 - :mod:`.participation` -- each coordinate's share of a mode's kinetic plus potential energy;
 - :mod:`.analysis` -- :func:`modal_analysis`, which ties them together.
 """

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.accuracy import ETA_FLOOR, backward_errors, column_norms, homogeneous
+from ..numerics.accuracy import ETA_FLOOR, backward_errors, column_norms, homogeneous, residual_figures
 from .problem import QuadraticProblem
 from .qualitative import quadratic_forms
 
@@ -90,7 +90,7 @@ class PairFigures:
     quadratic: np.ndarray
 
 
-def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None) -> PairFigures:
+def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=None, weight=None) -> PairFigures:
     """Normalize the vectors and compute eta, kappa and the first-order bound for each pair.
 
     Parameters
@@ -107,24 +107,29 @@ def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None) -> PairFig
     eta : (k,) float, optional
         The backward errors when the solver path measured them already (they do
         not depend on the scaling of X); computed here otherwise.
+    norm_x, weight : (k,) float, optional
+        ||x|| of the columns of X and w(lam), when the solver path formed them
+        with ``eta`` (:func:`pinlin.numerics.accuracy.residual_figures`).
     """
     lam = np.asarray(lam, dtype=complex)
-    P = P / column_norms(P[0])
+    if eta is None or norm_x is None or weight is None:
+        eta, norm_x, weight = residual_figures(lam, *P, problem.norms) if eta is None else (
+            eta, column_norms(P[0]), problem.weight(lam))
+    P = P / norm_x
     X = P[0]
     Y = X if Y is None else Y / column_norms(Y)
-    if eta is None:
-        eta = backward_errors(lam, X, P[1], P[2], P[3], problem.norms)
     yP = np.einsum("ij,kij->kj", Y, P[1:])
     quad = quadratic_forms(X, P[1:])
     deriv = 2 * lam * yP[0] + yP[1]
     size = np.abs(deriv)
-    ok = size > 0
-    if ok.all():  # the common case: every derivative nonzero
-        sens = problem.weight(lam) / size
+    if np.count_nonzero(size) == size.size:  # the common case: every derivative nonzero
+        ok = np.ones(size.shape, dtype=bool)
+        sens = weight / size
         left = Y / deriv
     else:
+        ok = size > 0
         with np.errstate(divide="ignore", invalid="ignore"):
-            sens = np.where(ok, problem.weight(lam) / np.where(ok, size, 1.0), np.inf)
+            sens = np.where(ok, weight / np.where(ok, size, 1.0), np.inf)
         left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
     bound = np.maximum(eta, ETA_FLOOR) * sens
     return PairFigures(X, left, ok, deriv, eta, bound, sens, Y, yP, quad)

@@ -6,6 +6,7 @@ path and :mod:`pinlin.spectral.structured` for the paths themselves.
 
 from __future__ import annotations
 
+import functools
 import time
 import warnings
 
@@ -15,17 +16,17 @@ from ..errors import ComputationError, ParameterError
 from ..numerics.accuracy import ETA_FLOOR, column_norms
 from ..numerics.checks import check_tolerance, check_uncertainty
 from ..numerics.clustering import CLUSTER_TOL, find_clusters
-from ..numerics.definiteness import DEFAULT_UNCERTAINTY
+from ..numerics.definiteness import DEFAULT_UNCERTAINTY, symmetric_definiteness
 from ..numerics.floating import EPS
 from ..numerics.rank import JORDAN_RANK_TOL
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
-from .modes import DeferredFigures, Method, Modes
+from .deferred import DeferredFigures, DeferredVerdict
+from .modes import Method, Modes
 from .multiplicity import Cluster, analyse_cluster
 from .ordering import mirrored_figures, mode_kinds, order_spectrum
 from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
 from .problem import QuadraticProblem, as_problem
-from .qualitative import structural_facts
-from .stability import STABILITY_SAFETY, decide_stability
+from .stability import STABILITY_SAFETY
 from .structured import PATHS
 
 __all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL", "BIORTHOGONAL_RCOND"]
@@ -97,8 +98,10 @@ def modal_analysis(
         and the per-mode kinds.
     eigh_tol : float
         Largest backward error accepted from the Cholesky-based ``eigh`` of the
-        symmetric path (its error grows like eps cond(M)); above it the same
-        n-size problem is solved by QZ, which is backward stable.
+        symmetric and proportional paths (its error grows like eps cond(M)):
+        pairs above it get Newton steps (:mod:`pinlin.spectral.refine`); when
+        cond(M) predicts that they cannot reach it, or they stay above it, the
+        same n-size problem is solved by QZ, which is backward stable.
     definiteness_tol : float, optional
         The name of pinlin 0.2 for ``uncertainty`` (deprecated; a relative
         eigenvalue threshold then, the same role now).
@@ -106,6 +109,9 @@ def modal_analysis(
     Returns
     -------
     Modes
+        The structural facts, the verdict and the notes, the condition numbers,
+        the modal constants and the participation are formed on first access
+        (:mod:`pinlin.spectral.deferred`); everything that can raise is checked here.
 
     Raises
     ------
@@ -130,8 +136,8 @@ def modal_analysis(
         method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
         uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
     )
-    facts = structural_facts(problem, tolerances["uncertainty"])
-    cond_M = _mass_condition(facts)
+    on_M = _mass_decision(problem, method, tolerances["uncertainty"])
+    cond_M = _mass_condition(on_M)
     name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"], cond_M)
     raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"], cond_M)
     if raw.second is not None:  # pairs sharing a real vector: figures on one member of each
@@ -140,8 +146,8 @@ def modal_analysis(
     else:
         raw = order_spectrum(raw)
         lam, block = raw.lam, raw.block
-        _check_range(problem, lam)
-        fig = pair_figures(problem, lam, raw.P, raw.Y, raw.eta)
+        _check_range(problem, lam, raw.weight)
+        fig = pair_figures(problem, lam, raw.P, raw.Y, raw.eta, raw.norm_x, raw.weight)
     clusters, notes = _clusters(problem, lam, fig, tolerances)
     left, left_ok, model, more = _cluster_figures(problem, lam, fig, clusters)
     notes += more
@@ -155,36 +161,28 @@ def modal_analysis(
         with np.errstate(divide="ignore", invalid="ignore"):
             zeta = -lam.real / freq  # NaN exactly where lam = 0 (undefined)
     bound = model.bound(0.0)
-    if np.isnan(bound).any() or np.isnan(fig.backward_error).any():
+    if np.count_nonzero(np.isnan(bound)) or np.count_nonzero(np.isnan(fig.backward_error)):
         raise ComputationError(
             "an eigenvalue error figure is not a number: the coefficients (norms "
             f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "
             "figures can be formed in; rescale the system (units)"
         )
-    notes += _mass_notes(facts, lam, bound)
-    # a coordinate on which neither K nor C acts drifts exactly: x(t) = t e_j
-    drift = bool(np.any(~np.any(problem.K, axis=0) & ~np.any(problem.C, axis=0)))
-    stability = decide_stability(
-        facts, lam, model, clusters, K_is_zero=not np.any(problem.K), exact_drift=drift,
-        safety=tolerances["safety"], uncertainty=tolerances["uncertainty"],
-    )
-    stability = _with_contact_notes(stability, problem.system)
     r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
+    lam, bound = _owned(lam), _owned(bound)
+    clusters = tuple(clusters)
     return Modes(
-        eigenvalues=_owned(lam),
+        eigenvalues=lam,
         right=_owned(fig.right),
         left=_owned(left),
         left_normalized=_owned(left_ok),
         backward_error=_owned(fig.backward_error),
-        error_bound=_owned(bound),
+        error_bound=bound,
         natural_frequency=_owned(freq),
         damping_ratio=_owned(zeta),
         kind=mode_kinds(lam, tolerances["safety"] * r, clusters),
         multiplicity=_owned(multiplicity),
-        clusters=tuple(clusters),
+        clusters=clusters,
         is_simple=all(c.semisimple for c in clusters),
-        structure=facts,
-        stability=stability,
         method=Method(name, reason),
         scaling=used_scaling,
         block=_owned(block),
@@ -192,9 +190,11 @@ def modal_analysis(
         system=problem.system,
         matrices=(problem.M, problem.C, problem.K),
         elapsed=time.perf_counter() - t0,
-        notes=tuple(notes),
         deferred=DeferredFigures(
             fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
+        ),
+        verdict=DeferredVerdict(
+            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], on_M, tuple(notes)
         ),
     )
 
@@ -207,9 +207,22 @@ def _owned(a: np.ndarray) -> np.ndarray:
     return a
 
 
-def _mass_condition(facts) -> float:
-    """cond_2(M) from the definiteness decision of M (1 for tuple input, inf when M is not proven definite)."""
-    on_M = facts.definiteness_M
+def _mass_decision(problem: QuadraticProblem, method: str, uncertainty: float):
+    """The definiteness decision about M when the path may need cond(M) (symmetric, proportional), else None.
+
+    Only a LinearizedSystem with G = N = 0 can take those paths; the decision is the one
+    :func:`~pinlin.spectral.qualitative.structural_facts` makes (and later reuses).
+    """
+    if problem.system is None or method not in ("auto", "symmetric", "proportional"):
+        return None
+    zero = problem.zero
+    if not (zero["G"] and zero["N"]):
+        return None
+    return symmetric_definiteness(problem.M, uncertainty)
+
+
+def _mass_condition(on_M) -> float:
+    """cond_2(M) from the definiteness decision of M (1 when not made, inf when M is not proven definite)."""
     if on_M is None:
         return 1.0
     if on_M.min_eigenvalue <= 0:
@@ -217,8 +230,10 @@ def _mass_condition(facts) -> float:
     return float(on_M.max_eigenvalue / on_M.min_eigenvalue)
 
 
-def _check_range(problem: QuadraticProblem, lam: np.ndarray) -> None:
+def _check_range(problem: QuadraticProblem, lam: np.ndarray, weight: np.ndarray | None = None) -> None:
     """Every eigenvalue finite, with |lam|^2 ||M|| + |lam| ||C|| + ||K|| representable (SPEC section 4's weight).
+
+    ``weight``: that weight when the solver path formed it already.
 
     Raises
     ------
@@ -226,33 +241,41 @@ def _check_range(problem: QuadraticProblem, lam: np.ndarray) -> None:
         Otherwise: a heavily damped problem of extreme scales has eigenvalues
         beyond the range in which its residuals and error figures exist.
     """
-    with np.errstate(over="ignore", invalid="ignore"):
-        w = problem.weight(lam)
-    bad = ~(np.isfinite(lam) & np.isfinite(w))
-    if np.any(bad):
-        k = int(np.flatnonzero(bad)[0])
-        raise ComputationError(
-            f"the eigenvalue {complex(lam[k]):.3g} is beyond double range for its error figures "
-            f"(|lam|^2 ||M|| + |lam| ||C|| + ||K|| overflows; norms {problem.norm_M:.3g}, {problem.norm_C:.3g}, "
-            f"{problem.norm_K:.3g}); rescale the system (units)"
-        )
-
-
-def _mass_notes(facts, lam, bound) -> list[str]:
-    """Issue 13: an M positive definite only within rounding is said, with the eigenvalues it spoils."""
-    on_M = facts.definiteness_M
-    if on_M is None or on_M.kind == "positive_definite":
-        return []
-    lost = int(np.sum(bound >= np.abs(lam)))
-    return [
-        f"M is positive definite only within rounding: its smallest eigenvalue {on_M.min_eigenvalue:.3g} is "
-        f"within {on_M.threshold:.2g} (c n eps ||M|| + uncertainty ||M||) of zero, so a perturbation of M at that "
-        f"level makes it singular; {lost} of the {lam.shape[0]} eigenvalues have an error bound at least their "
-        f"modulus (they lose their meaning)"
-    ]
+    if weight is None:
+        with np.errstate(over="ignore", invalid="ignore"):
+            weight = problem.weight(lam)
+    # w(lam) is finite only where lam is (a NaN or an infinite lam gives NaN or inf)
+    if np.count_nonzero(np.isfinite(weight)) == weight.size:
+        return
+    bad = ~(np.isfinite(lam) & np.isfinite(weight))
+    k = int(np.flatnonzero(bad)[0])
+    raise ComputationError(
+        f"the eigenvalue {complex(lam[k]):.3g} is beyond double range for its error figures "
+        f"(|lam|^2 ||M|| + |lam| ||C|| + ||K|| overflows; norms {problem.norm_M:.3g}, {problem.norm_C:.3g}, "
+        f"{problem.norm_K:.3g}); rescale the system (units)"
+    )
 
 
 def _check_options(method, scaling, **tolerances) -> dict[str, float]:
+    """The validated tolerances of :func:`modal_analysis` (method and scaling checked too), a fresh dict.
+
+    Options of plain types (str, bool, float) are validated once per distinct value
+    (:func:`_checked_options`); others (numpy scalars, anything unhashable) every time.
+    """
+    key = (method, scaling, *sorted(tolerances.items()))
+    if all(type(v) in (str, bool, float) for v in (method, scaling, *tolerances.values())):
+        return dict(_checked_options(key))
+    return _validated_options(method, scaling, **tolerances)
+
+
+@functools.lru_cache(maxsize=16)
+def _checked_options(key: tuple) -> tuple[tuple[str, float], ...]:
+    """:func:`_validated_options` of a hashable key (method, scaling, *sorted tolerance items), as items."""
+    method, scaling, *items = key
+    return tuple(_validated_options(method, scaling, **dict(items)).items())
+
+
+def _validated_options(method, scaling, **tolerances) -> dict[str, float]:
     """The validated tolerances of :func:`modal_analysis` (method and scaling checked too).
 
     Raises
@@ -308,10 +331,12 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
     left vectors, kappa = inf and the bound spread + scale eta^(1/p)
     (:class:`~pinlin.spectral.accuracy.DefectiveBound`, :func:`defective_scale`).
     """
+    eta = np.maximum(fig.backward_error, ETA_FLOOR)
+    if not clusters:  # the figures' own arrays (fresh from pair_figures, owned by this analysis)
+        return fig.left, fig.left_normalized, _model(eta, fig.sensitivity, ()), []
     left = fig.left.copy()
     left_ok = fig.left_normalized.copy()
     sens = fig.sensitivity.copy()
-    eta = np.maximum(fig.backward_error, ETA_FLOOR)
     defective = []
     notes: list[str] = []
     for c in clusters:
@@ -339,14 +364,11 @@ def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters)
                 DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
                                c.index)
             )
-    return left, left_ok, ErrorModel(eta, sens, tuple(defective)), notes
+    return left, left_ok, _model(eta, sens, tuple(defective)), notes
 
 
-def _with_contact_notes(stability, system):
-    """The verdict's reason quotes a contact that the equilibrium violates (the ground would have to pull, or
-    friction exceed mu): the linearization treats contacts as bilateral, so such a verdict holds only while
-    the contact is held (SPEC section 10, issue 11)."""
-    notes = [n for n in getattr(system, "notes", ()) if n.startswith("contact '")]
-    if not notes:
-        return stability
-    return stability.replace(reason=f"{stability._basis}; but {'; '.join(notes)}")
+def _model(eta: np.ndarray, sensitivity: np.ndarray, defective: tuple) -> ErrorModel:
+    """The error model with its arrays made read-only (the verdict formed later reads them; nobody writes them)."""
+    eta.flags.writeable = False
+    sensitivity.flags.writeable = False
+    return ErrorModel(eta, sensitivity, defective)

@@ -13,37 +13,16 @@ from ..linearization.system import LinearizedSystem
 from ..numerics.accuracy import condition_numbers
 from ..numerics.scaling import Scaling
 from ..results import Result, readonly, to_jsonable
+from .deferred import DeferredFigures, DeferredVerdict
 from .multiplicity import Cluster
 from .participation import DOMINANT_COUNT, DOMINANT_SHARE, participation
 from .qualitative import ModeConstants, StructuralFacts, constants_of
 from .stability import Stability
 
-__all__ = ["Modes", "Method", "MODE_KINDS", "DeferredFigures"]
+__all__ = ["Modes", "Method", "MODE_KINDS", "DeferredFigures", "DeferredVerdict"]
 
 #: Per-eigenvalue kinds, see :attr:`Modes.kind`.
 MODE_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable")
-
-@dataclass(frozen=True, eq=False)
-class DeferredFigures:
-    """What :class:`Modes` keeps to form its condition numbers on first access (picklable).
-
-    Attributes
-    ----------
-    products : (3, 2n) complex
-        y^T M x, y^T C x, y^T K x of the unit right and left vectors.
-    quadratic : (3, 2n) complex
-        x^H M x, x^H C x, x^H K x of the unit right vectors (from the solver's products).
-    norms : tuple of float
-        (||M||, ||C||, ||K||), Frobenius.
-    defective : tuple of int
-        Members of defective clusters (condition inf).
-    """
-
-    products: np.ndarray
-    quadratic: np.ndarray
-    norms: tuple[float, float, float]
-    defective: tuple[int, ...] = ()
-
 
 class Method(str):
     """The solver path taken: a string equal to its name, with the reason attached.
@@ -139,10 +118,13 @@ class Modes(Result):
         Definiteness, inertia and determinant signs used by the verdict, each
         decided against the rounding bound of the data and the uncertainty
         (``structure.definiteness_M``, ``_D``, ``_S`` carry the numbers; the
-        command-line report shows these very decisions).
+        command-line report shows these very decisions).  Formed on first access
+        (the definiteness of M is decided by the analysis itself when its path
+        needs cond(M)).
     stability : Stability
         The verdict (``.kind``, ``.reason``, ``.margin``: how large a relative
-        perturbation of the data it survives).
+        perturbation of the data it survives).  Formed on first access (the
+        margin on first access of the verdict's ``margin``, ``reason`` or ``error``).
     method : Method
         Solver path ("symmetric", "squared", "proportional", "general") with
         ``.reason`` (in ``to_dict()``: ``method`` and ``method_reason``).
@@ -163,6 +145,9 @@ class Modes(Result):
     elapsed : float
         Seconds spent in :func:`modal_analysis` [s].
     notes : tuple of str
+        What the analysis found worth saying (clusters it could not resolve, left
+        vectors it could not biorthogonalize, an M definite only within rounding).
+        Formed on first access (the last of them needs the structural facts).
     error : float
         The largest backward error eta of the eigenpairs, ``max(backward_error)``
         (relative, SPEC section 4); the per-pair figures are ``backward_error``,
@@ -170,9 +155,26 @@ class Modes(Result):
 
     ``to_dict()`` leaves out ``system`` and ``matrices`` (the input); it
     includes ``condition`` and ``constants``.
+
+    The parts formed on first access (``condition``, ``constants``,
+    ``participation``, ``structure``, ``stability``, ``notes``) are pure
+    functions of data the result keeps (:mod:`pinlin.spectral.deferred`): they
+    are computed by the same code from the same inputs as an eager analysis
+    would, so their values do not depend on when, in which order or from which
+    thread they are read, and a pickled result forms them the same way.  Every
+    check that can raise runs in :func:`~pinlin.spectral.modal_analysis` itself.
+    ``elapsed`` is the time of the call, without the parts formed later.
     """
 
-    _dict_exclude = ("system", "matrices", "deferred")
+    _dict_exclude = ("system", "matrices", "deferred", "verdict")
+
+    #: The fields in ``to_dict()`` in the order of pinlin 0.2 (structure, stability and notes are formed on
+    #: first access, so they are no dataclass fields).
+    _dict_fields = (
+        "eigenvalues", "right", "left", "left_normalized", "backward_error", "error_bound", "natural_frequency",
+        "damping_ratio", "kind", "multiplicity", "clusters", "is_simple", "structure", "stability", "method",
+        "scaling", "block", "tolerances", "elapsed", "notes",
+    )
 
     eigenvalues: np.ndarray
     right: np.ndarray
@@ -186,8 +188,6 @@ class Modes(Result):
     multiplicity: np.ndarray
     clusters: tuple[Cluster, ...]
     is_simple: bool
-    structure: StructuralFacts
-    stability: Stability
     method: Method
     scaling: Scaling | None
     block: np.ndarray
@@ -195,8 +195,8 @@ class Modes(Result):
     system: LinearizedSystem | None
     matrices: tuple[np.ndarray, np.ndarray, np.ndarray]
     elapsed: float
-    notes: tuple[str, ...] = field(default=())
     deferred: DeferredFigures | None = field(default=None, repr=False)
+    verdict: DeferredVerdict | None = field(default=None, repr=False)
 
     def __post_init__(self):
         for name in (
@@ -216,6 +216,21 @@ class Modes(Result):
                 object.__setattr__(self, name, readonly(value))  # an array nobody else can write is kept
 
     # ------------------------------------------------------------------ figures formed on first access
+
+    @functools.cached_property
+    def structure(self) -> StructuralFacts:
+        """Definiteness, inertia and determinant signs (see the class docstring)."""
+        return self.verdict.facts()
+
+    @functools.cached_property
+    def stability(self) -> Stability:
+        """The stability verdict (see the class docstring)."""
+        return self.verdict.stability(self.structure)
+
+    @functools.cached_property
+    def notes(self) -> tuple[str, ...]:
+        """What the analysis found worth saying (see the class docstring)."""
+        return self.verdict.all_notes(self.structure)
 
     @functools.cached_property
     def condition(self) -> np.ndarray:

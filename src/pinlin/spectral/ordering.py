@@ -7,16 +7,14 @@ functions work on whole arrays (no loop over eigenvalues).
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from .accuracy import PairFigures, pair_figures
 from .multiplicity import Cluster
 from .problem import QuadraticProblem
-from .qep import RawSpectrum
+from .raw import RawSpectrum
 
-__all__ = ["order_spectrum", "mode_kinds", "mirrored_figures"]
+__all__ = ["order_spectrum", "spectrum_order", "mode_kinds", "mirrored_figures"]
 
 
 def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -26,10 +24,16 @@ def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     other arrangement is matched by exact conjugate value.  A member whose exact
     conjugate is missing stands alone.
     """
-    pos = np.flatnonzero(lam.imag > 0)
-    neg = np.flatnonzero(lam.imag < 0)
-    real = np.flatnonzero(lam.imag == 0)
-    if pos.size == neg.size and np.array_equal(neg, pos + 1) and np.array_equal(lam[neg], np.conj(lam[pos])):
+    im = lam.imag
+    pos = (im > 0).nonzero()[0]
+    neg = (im < 0).nonzero()[0]
+    real = (im == 0).nonzero()[0]
+    adjacent = pos.size == neg.size and (
+        pos.size == 0
+        or (np.count_nonzero(neg - pos == 1) == pos.size and np.count_nonzero(lam.take(neg) == lam.take(pos).conj())
+            == pos.size)
+    )
+    if adjacent:
         mates = neg
         alone = np.zeros(0, dtype=int)
     else:
@@ -47,30 +51,52 @@ def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return leaders, mates
 
 
-def order_spectrum(raw: RawSpectrum) -> RawSpectrum:
-    """Sort by |lam|, conjugate pairs adjacent (Im > 0 first), and make pair vectors exact conjugates."""
-    lam = raw.lam
+def spectrum_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(perm, at): ``lam[perm]`` is in the order of the module doc; ``at`` holds the new positions of the
+    Im > 0 members of the conjugate pairs (their mates follow at ``at + 1``)."""
     leaders, mates = _pairs(lam)
-    first = lam[leaders]
+    first = lam.take(leaders)
     keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
-    leaders, mates = leaders[keys], mates[keys]
-    perm = np.column_stack([leaders, mates]).ravel()
-    perm = perm[perm >= 0]
-    sizes = 1 + (mates >= 0)
-    at = (np.cumsum(sizes) - sizes)[mates >= 0]  # new position of each pair's Im > 0 member
-    P = raw.P[..., perm]
-    P[..., at + 1] = np.conj(P[..., at])
+    leaders, mates = leaders.take(keys), mates.take(keys)
+    paired = mates >= 0
+    sizes = 1 + paired
+    start = np.cumsum(sizes) - sizes  # new position of each leader
+    at = start[paired]
+    perm = np.empty(lam.shape[0], dtype=int)
+    perm[start] = leaders
+    perm[at + 1] = mates[paired]
+    return perm, at
+
+
+def order_spectrum(raw: RawSpectrum) -> RawSpectrum:
+    """Sort by |lam|, conjugate pairs adjacent (Im > 0 first), and make pair vectors exact conjugates.
+
+    A spectrum its solver path already ordered (``raw.ordered``) is returned as it is.
+    """
+    if raw.ordered:
+        return raw
+    lam = raw.lam
+    perm, at = spectrum_order(lam)
+    P = raw.P.take(perm, axis=-1)
+    P[..., at + 1] = P[..., at].conj()
     Y = None
     if raw.Y is not None:
-        Y = raw.Y[:, perm]
-        Y[:, at + 1] = np.conj(Y[:, at])
-    block = raw.block[perm]
+        Y = raw.Y.take(perm, axis=-1)
+        Y[:, at + 1] = Y[:, at].conj()
+    block = raw.block.take(perm)
     block[at + 1] = block[at]
-    eta = None
-    if raw.eta is not None:
-        eta = raw.eta[perm]
-        eta[at + 1] = eta[at]
-    return replace(raw, lam=lam[perm], P=P, Y=Y, block=block, eta=eta)
+    eta = _permuted(raw.eta, perm, at)
+    return RawSpectrum(lam.take(perm), P, Y, block, eta, raw.note, raw.second, _permuted(raw.norm_x, perm, at),
+                       _permuted(raw.weight, perm, at), ordered=True)
+
+
+def _permuted(a: np.ndarray | None, perm: np.ndarray, at: np.ndarray) -> np.ndarray | None:
+    """A per-pair figure in the new order, the second member of each conjugate pair given the first's value."""
+    if a is None:
+        return None
+    out = a.take(perm)
+    out[at + 1] = out[at]
+    return out
 
 
 def _interleave(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -133,9 +159,13 @@ def mode_kinds(lam: np.ndarray, r: np.ndarray, clusters: tuple[Cluster, ...] | l
         typical = lam.copy()
         for c in clusters:
             typical[list(c.indices)] = c.center
-    kinds = np.where(
-        np.abs(typical) <= r,
-        "rigid_body",
-        np.where(typical.real > r, "unstable", np.where(np.abs(typical.imag) > r, "underdamped", "overdamped")),
-    )
-    return tuple(kinds.tolist())
+    # codes into _KINDS, the later tests taking precedence as in SPEC section 5's order
+    code = np.full(typical.shape[0], 2)  # "overdamped"
+    code[np.abs(typical.imag) > r] = 1  # "underdamped"
+    code[typical.real > r] = 3  # "unstable"
+    code[np.abs(typical) <= r] = 0  # "rigid_body"
+    return tuple([_KINDS[c] for c in code.tolist()])
+
+
+#: The per-eigenvalue kinds by code (the order of :data:`pinlin.spectral.modes.MODE_KINDS`).
+_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable")

@@ -22,6 +22,7 @@ non-finite and non-square input with the same messages.
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,7 +79,7 @@ class QuadraticProblem:
         sys = self.system
         if sys is None:
             return {}
-        return {name: not np.any(getattr(sys, name)) for name in ("D", "G", "N")}
+        return {name: not getattr(sys, name).any() for name in ("D", "G", "N")}
 
     @functools.cached_property
     def symmetric(self) -> bool:
@@ -113,14 +114,14 @@ class QuadraticProblem:
         return self._factors_of(self.scaling)
 
     def _factors_of(self, s: Scaling) -> tuple[float, float, float] | None:
-        with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # inf * 0 is out of range too
-            g, d = np.float64(s.gamma), np.float64(s.delta)
-            factors = (g * g * d, g * d, d)
-            for f, norm in zip(factors, self.norms):
-                size = f * np.float64(norm)
-                if not np.isfinite(f) or f == 0 or (norm > 0 and not (np.isfinite(size) and size > TINY)):
-                    return None
-        return tuple(float(f) for f in factors)  # type: ignore[return-value]
+        # Python floats: a product that overflows is inf and one that underflows 0, without warnings
+        g, d = float(s.gamma), float(s.delta)
+        factors = (g * g * d, g * d, d)
+        for f, norm in zip(factors, self.norms):
+            size = f * norm
+            if not math.isfinite(f) or f == 0 or (norm > 0 and not (math.isfinite(size) and size > TINY)):
+                return None
+        return factors
 
     def scaled(self, scaling: Scaling | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(M_s, C_s, K_s) = (gamma^2 delta M, gamma delta C, delta K).

@@ -38,8 +38,9 @@ from scipy.linalg import lapack
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import ComputationError
-from ..numerics.accuracy import backward_errors
+from ..numerics.accuracy import residual_figures
 from ..numerics.scaling import Scaling
+from .ordering import spectrum_order
 from .problem import QuadraticProblem
 from .raw import RawSpectrum
 
@@ -81,33 +82,42 @@ def companion_pencil(M, C, K) -> tuple[np.ndarray, np.ndarray]:
     return A, B
 
 
-def complex_columns(R: np.ndarray, alphai: np.ndarray, conjugate: bool = False) -> np.ndarray:
+def complex_columns(R: np.ndarray, alphai: np.ndarray, conjugate: bool = False, first=None) -> np.ndarray:
     """LAPACK's real storage of eigenvectors -> complex columns (the last axis; leading axes are batches).
 
     A conjugate pair (alphai[j] > 0) is stored as columns j (real part) and j+1
     (imaginary part): v_j = R_j + i R_{j+1}, v_{j+1} = conj(v_j).  With
-    ``conjugate`` the conjugates of those vectors are returned.
+    ``conjugate`` the conjugates of those vectors are returned.  ``first``, the
+    indices j (``(alphai > 0).nonzero()[0]``), may be passed when known.
     """
     out = R.astype(complex)
-    first = np.flatnonzero(alphai > 0)
+    if first is None:
+        first = (alphai > 0).nonzero()[0]
     if first.size:
-        re, im = R[..., first], R[..., first + 1]
+        second = first + 1
+        re, im = R.take(first, axis=-1), R.take(second, axis=-1)
         if conjugate:
             im = -im
-        out[..., first] = re + 1j * im
-        out[..., first + 1] = re - 1j * im
+        out.imag[..., first] = im
+        out.real[..., second] = re
+        out.imag[..., second] = -im
     return out
 
 
-def exact_pairs(alphar: np.ndarray, alphai: np.ndarray, beta: np.ndarray) -> np.ndarray:
+def exact_pairs(alphar: np.ndarray, alphai: np.ndarray, beta: np.ndarray, first=None) -> np.ndarray:
     """(alphar + i alphai) / beta with each pair (alphai[j] > 0, j + 1) made exactly conjugate.
 
     LAPACK's two betas of a pair may differ in the last bits; the vectors of a
     pair are conjugate by construction, so the eigenvalues must be too.
+    ``first`` as in :func:`complex_columns`.
     """
-    lam = (alphar + 1j * alphai) / beta
-    first = np.flatnonzero(alphai > 0)
-    lam[first + 1] = np.conj(lam[first])
+    lam = np.empty(alphar.shape, dtype=complex)
+    np.divide(alphar, beta, out=lam.real)
+    np.divide(alphai, beta, out=lam.imag)
+    if first is None:
+        first = (alphai > 0).nonzero()[0]
+    if first.size:
+        lam[first + 1] = lam.take(first).conj()
     return lam
 
 
@@ -240,7 +250,8 @@ def _merge(problem: QuadraticProblem, plus: Scaling, minus: Scaling) -> RawSpect
             Y = np.where(take, other.Y[:, partner], cur.Y)
         cur_eta = np.where(take, other_eta[partner], cur_eta)
         cur = replace(cur, lam=np.where(take, other.lam[partner], cur.lam), P=np.where(take, other.P[..., partner], cur.P),
-                      Y=Y, block=np.where(take, other.block[partner], cur.block), eta=cur_eta)
+                      Y=Y, block=np.where(take, other.block[partner], cur.block), eta=cur_eta, norm_x=None, weight=None,
+                      ordered=False)
         source = np.where(take, k, source)
     tau = problem.norm_C / (np.sqrt(problem.norm_M) * np.sqrt(problem.norm_K))
     counts = [int(np.sum(source == k)) for k in range(3)]
@@ -270,8 +281,9 @@ def scaled_companion(problem: QuadraticProblem, s: Scaling) -> tuple[np.ndarray,
     np.multiply(problem.C, -f[1], out=A[:n, :n])
     np.multiply(problem.K, -f[2], out=A[:n, n:])
     np.multiply(problem.M, f[0], out=B[:n, :n])
-    np.fill_diagonal(A[n:, :n], 1.0)
-    np.fill_diagonal(B[n:, n:], 1.0)
+    # the identity blocks: entries (n + i, i) of A and (n + i, n + i) of B, i < n, in the flat C-order arrays
+    A.reshape(-1)[2 * n * n :: 2 * n + 1] = 1.0
+    B.reshape(-1)[2 * n * n + n :: 2 * n + 1] = 1.0
     return A, B
 
 
@@ -297,13 +309,15 @@ def _solve_scaled(
     # L(lam)^T = L(lam) when M, C, K are symmetric: the left vectors are the right ones
     symmetric = problem.symmetric
     alphar, alphai, beta, vl, vr = _dggev(A, B, left=not symmetric)
-    if beta.all():
-        lam = exact_pairs(alphar, alphai, beta)
+    first = (alphai > 0).nonzero()[0]
+    if np.count_nonzero(beta) == beta.size:
+        lam = exact_pairs(alphar, alphai, beta, first)
         lam *= s.gamma
         finite = np.isfinite(lam)
+        all_finite = np.count_nonzero(finite) == finite.size
     else:
         finite = beta != 0
-    all_finite = bool(finite.all())
+        all_finite = False
     if not all_finite:
         if not allow_infinite:
             raise ComputationError(
@@ -315,18 +329,23 @@ def _solve_scaled(
             lam = s.gamma * exact_pairs(alphar, alphai, np.where(finite, beta, 1.0))
         lam[~finite] = np.inf
     # right (both blocks of z = (mu x, x)) and left vectors to complex columns in one conversion
-    Z = complex_columns(vr if symmetric else np.concatenate((vr, vl[:n])), alphai)
+    Z = complex_columns(vr if symmetric else np.concatenate((vr, vl[:n])), alphai, first=first)
+    if all_finite:  # in the order of the result from here on (every later step works column by column)
+        perm, at = spectrum_order(lam)
+        lam, Z = lam.take(perm), Z.take(perm, axis=1)
     # the two blocks side by side, (n, 4n), and their products with M, C, K from one real product
     # (a real matrix acts on the real and imaginary parts: the complex columns viewed as pairs)
     both = np.empty((4, n, 4 * n), dtype=complex)
     both[0, :, : 2 * n] = Z[:n]
     both[0, :, 2 * n :] = Z[n : 2 * n]
     both[1:] = (problem.stacked @ both[0].view(float)).view(complex).reshape(3, n, 4 * n)
+    lam2 = np.concatenate((lam, lam))
     if all_finite:
-        eta = backward_errors(np.concatenate((lam, lam)), *both, problem.norms).reshape(2, 2 * n)
+        eta, nx, w = residual_figures(lam2, *both, problem.norms)
     else:
         with np.errstate(invalid="ignore", over="ignore"):  # lam = inf (allow_infinite): eta is set to inf below
-            eta = backward_errors(np.concatenate((lam, lam)), *both, problem.norms).reshape(2, 2 * n)
+            eta, nx, w = residual_figures(lam2, *both, problem.norms)
+    eta, nx = eta.reshape(2, 2 * n), nx.reshape(2, 2 * n)
     use1 = eta[0] < eta[1]
     blocks = both.reshape(4, n, 2, 2 * n)  # [quantity, row, block, column]
     P = np.where(use1, blocks[:, :, 0], blocks[:, :, 1])
@@ -334,4 +353,12 @@ def _solve_scaled(
     best = np.where(use1, eta[0], eta[1])
     if not all_finite:
         best = np.where(finite, best, np.inf)
-    return RawSpectrum(lam, P, Y, np.where(use1, 1, 2), best), best
+    block, norm_x, w = np.where(use1, 1, 2), np.where(use1, nx[0], nx[1]), w[: 2 * n]
+    if all_finite:  # a pair's second member: the conjugate vectors and the first's figures, exactly
+        P[..., at + 1] = P[..., at].conj()
+        if Y is not None:
+            Y[:, at + 1] = Y[:, at].conj()
+        for a in (block, best, norm_x, w):
+            a[at + 1] = a[at]
+    raw = RawSpectrum(lam, P, Y, block, best, norm_x=norm_x, weight=w, ordered=all_finite)
+    return raw, best

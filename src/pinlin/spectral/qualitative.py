@@ -242,7 +242,9 @@ def _general(dM: Nonsingularity, dK: Nonsingularity) -> StructuralFacts:
     return facts
 
 
-def structural_facts(problem: QuadraticProblem, uncertainty: float = DEFAULT_UNCERTAINTY) -> StructuralFacts:
+def structural_facts(
+    problem: QuadraticProblem, uncertainty: float = DEFAULT_UNCERTAINTY, mass: Definiteness | None = None
+) -> StructuralFacts:
     """Definiteness, inertia and determinant signs of the coefficients (O(n^3), no spectrum).
 
     For a LinearizedSystem the definiteness of M, D and S comes from
@@ -250,6 +252,10 @@ def structural_facts(problem: QuadraticProblem, uncertainty: float = DEFAULT_UNC
     det K = det S from the inertia of S; otherwise determinant signs come from
     :func:`pinlin.numerics.nonsingularity` (one SVD).  All against the rounding
     bound and the relative data ``uncertainty``.
+
+    ``mass``, when given, is the decision ``symmetric_definiteness(M, uncertainty)``
+    already made (the symmetric paths need it to choose eigh or QZ): it is used
+    as is instead of being made again.
 
     Raises
     ------
@@ -264,6 +270,8 @@ def structural_facts(problem: QuadraticProblem, uncertainty: float = DEFAULT_UNC
     circ = not zero["N"]
     det_K = nonsingularity(sys.K, u) if circ else None
     return _mechanical(
-        symmetric_definiteness(sys.M, u), symmetric_definiteness(sys.D, u), symmetric_definiteness(sys.S, u),
+        symmetric_definiteness(sys.M, u) if mass is None else mass,
+        symmetric_definiteness(sys.D, u),
+        symmetric_definiteness(sys.S, u),
         not zero["G"], circ, not zero["D"], det_K,
     )

@@ -44,6 +44,14 @@ class RawSpectrum:
         bound (``lam`` and ``second`` are -lam or conj(lam) of each other); see
         :func:`pinlin.spectral.ordering.mirrored_figures`.  None: every pair is
         stored in full.
+    norm_x, weight : (2n,) float or None
+        ||x|| of the columns of ``X`` as stored and w(lam) = |lam|^2 ||M|| +
+        |lam| ||C|| + ||K||, when the path formed them with ``eta`` (the figures
+        reuse them); None otherwise.
+    ordered : bool
+        True when the path stored the spectrum in the order of
+        :func:`pinlin.spectral.ordering.order_spectrum` already (conjugate pairs
+        adjacent with exactly conjugate vectors, their figures equal).
     """
 
     lam: np.ndarray
@@ -53,6 +61,9 @@ class RawSpectrum:
     eta: np.ndarray | None = None
     note: str = ""
     second: np.ndarray | None = None
+    norm_x: np.ndarray | None = None
+    weight: np.ndarray | None = None
+    ordered: bool = False
 
     def expanded(self) -> RawSpectrum:
         """The same spectrum with both members of every pair stored (columns (a, b) interleaved)."""
