@@ -82,6 +82,8 @@ TIMED_H = {"forward": 1e-7, "central": 1e-5}
 MUJOCO_EPS = (1e-4, 1e-6, 1e-8)
 #: Issue 14's targets: linearize within this factor of the floor, and faster than bare central differences.
 FLOOR_TARGET = 3.0
+#: Points per linearize_many call timed (its cost is reported per point).
+BATCH = 10
 
 
 # ----------------------------------------------------------------------------- differences
@@ -717,14 +719,17 @@ def _case_row(case: Case, sweep, repeats: int) -> dict:
     sys = pinlin.linearize(scene, q, balancing=bal)
     ref, ref_name, ref_err, rich_err = _reference(case)
     err_lin = matrix_error(sys.M, sys.C, sys.K, ref)
+    qs = np.tile(q, (BATCH, 1))
     fns = {
         "linearize": lambda: pinlin.linearize(scene, q, balancing=bal),
+        "linearize_many": lambda: pinlin.linearize_many(scene, qs, balancing=bal),
         "floor": pinocchio_floor(scene, q, sys.calls),
         "central": bare_differences(scene, q, TIMED_H["central"], "central"),
         "forward": bare_differences(scene, q, TIMED_H["forward"], "forward"),
         "central (pinlin residual)": lambda: fd_linearization(scene, q, TIMED_H["central"], "central"),
     }
     times = dict(zip(fns, interleaved_medians(list(fns.values()), repeats=repeats, min_time=0.01, clock=time.thread_time)))
+    times["linearize_many"] /= BATCH  # per point
     errs = {scheme: [matrix_error(*bare_differences(scene, q, h, scheme)(), ref) for h in sweep] for scheme in ("forward", "central")}
     best = {scheme: (min(v), sweep[int(np.argmin(v))]) for scheme, v in errs.items()}
     return {
@@ -742,7 +747,8 @@ def _tables(rows: dict, sweep) -> tuple[list[Table], dict]:
         timing.append([label, n, " + ".join(r["sys"].calls), t["floor"] * 1e6, t["linearize"] * 1e6, lin_floor,
                        "yes" if lin_floor <= FLOOR_TARGET else "no", t["central"] * 1e6, cd_lin,
                        "yes" if cd_lin > 1 else "no", t["forward"] * 1e6, t["forward"] / t["linearize"],
-                       t["central (pinlin residual)"] * 1e6, t["central (pinlin residual)"] / t["central"]])  # fmt: skip
+                       t["central (pinlin residual)"] * 1e6, t["central (pinlin residual)"] / t["central"],
+                       t["linearize_many"] * 1e6, t["linearize_many"] / t["floor"]])  # fmt: skip
         accuracy.append([label, n, r["err_lin"], r["best"]["forward"][0], r["best"]["forward"][1], r["best"]["central"][0],
                          r["best"]["central"][1], r["acc_ratio"], r["ref"], r["ref_err"], r["rich_err"]])  # fmt: skip
         for scheme in ("forward", "central"):
@@ -750,7 +756,8 @@ def _tables(rows: dict, sweep) -> tuple[list[Table], dict]:
                 sweep_rows.append([label, scheme, h, e, e / max(r["err_lin"], 1e-300)])
         summary[label] = (
             f"linearize {t['linearize'] * 1e6:.1f} us = {lin_floor:.1f}x the floor ({t['floor'] * 1e6:.1f} us, "
-            f"{' + '.join(r['sys'].calls)}); bare central differences {cd_lin:.1f}x linearize's time; error "
+            f"{' + '.join(r['sys'].calls)}); linearize_many {t['linearize_many'] * 1e6:.1f} us per point = "
+            f"{t['linearize_many'] / t['floor']:.1f}x the floor; bare central differences {cd_lin:.1f}x linearize's time; error "
             f"{r['err_lin']:.1e} vs best central {r['best']['central'][0]:.1e}: {r['acc_ratio']:.1e}x more accurate "
             f"(reference: {r['ref']})"
         )
@@ -759,7 +766,8 @@ def _tables(rows: dict, sweep) -> tuple[list[Table], dict]:
         ["scene", "n", "floor: Pinocchio calls the scene needs", "floor [us]", "linearize [us]", "linearize / floor",
          f"within {FLOOR_TARGET:g}x", "bare central FD [us]", "bare central FD / linearize", "linearize faster",
          "bare forward FD [us]", "bare forward FD / linearize", "central FD of pinlin's residual [us]",
-         "pinlin residual / bare (the old baseline's flattery)"],
+         "pinlin residual / bare (the old baseline's flattery)", f"linearize_many per point [us] ({BATCH} points)",
+         "linearize_many per point / floor"],
         timing,
         note=(
             "Thread CPU times (time.thread_time), medians of samples taken in turn in one process (interleaved), "
@@ -768,7 +776,9 @@ def _tables(rows: dict, sweep) -> tuple[list[Table], dict]:
             "computeGeneralizedGravity or rnea with the follower wrenches' fext) and the springs' and dampers' "
             "forces in plain numpy (benchmarks.bench_linearize.BareResidual), steps through pin.integrate, M by "
             "crba: 4n (central) or 2n + 1 (forward) residual evaluations. The last columns time central "
-            "differences of pinlin's own residual (assemble without derivatives), the first suite's baseline."
+            "differences of pinlin's own residual (assemble without derivatives), the first suite's baseline. "
+            f"linearize_many: one call on {BATCH} configurations (the same q repeated), its time divided by "
+            f"{BATCH}: the per-point cost of the batched linearization (checks and splits shared)."
         ),
     )  # fmt: skip
     t2 = Table(

@@ -89,6 +89,7 @@ from .frf import (
     residues,
 )
 from .interop import StateSpaceModel, state_space
+from .linearization.batch import linearize_many
 from .linearization.closure import ClosureResult, close_loops
 from .linearization.constrained import constraint_stiffness
 from .linearization.equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
@@ -160,6 +161,7 @@ __all__ = [
     "find_equilibrium",
     "equilibrium_residual",
     "linearize",
+    "linearize_many",
     "generalized_force",
     "LinearizedSystem",
     # constraints: closed loops and contacts (SPEC section 10)

@@ -13,6 +13,9 @@ One concept per module:
 - :mod:`.equilibrium` -- Newton on the configuration manifold;
 - :mod:`.linearize` -- :func:`linearize`: restriction to the free coordinates,
   symmetric and skew parts;
+- :mod:`.batch` -- :func:`linearize_many`: one scene at many configurations, the
+  checks and splits shared; :mod:`.batch_static` its path for joint-space scenes at
+  rest (the element work vectorized over the points);
 - :mod:`.system` -- :class:`LinearizedSystem`, the frozen result;
 - constraints (SPEC section 10): :mod:`.constraint_set` (Phi, J_c, rank and
   multipliers at one q), :mod:`.closure` (the assembly step, :func:`close_loops`),
@@ -22,6 +25,7 @@ One concept per module:
   the constraint stiffness K_lambda).
 """
 
+from .batch import linearize_many
 from .closure import ClosureResult, close_loops
 from .constrained import constraint_stiffness
 from .equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
@@ -36,6 +40,7 @@ __all__ = [
     "find_equilibrium",
     "equilibrium_residual",
     "linearize",
+    "linearize_many",
     "generalized_force",
     "LinearizedSystem",
     "close_loops",

@@ -37,17 +37,26 @@ from .workspace import Evaluation, Workspace, symmetric_from_upper
 __all__ = ["Assembly", "assemble", "external_forces", "fro"]
 
 
+#: Arrays of at most this many entries have their norm taken by ``math.hypot`` of a Python
+#: list: for a 2 x 2 or 4 x 4 matrix that is a third of a numpy reduction's fixed cost.
+SMALL_NORM = 32
+
+
 def fro(a: np.ndarray) -> float:
     """Frobenius norm, overflow-safe (cheaper than ``np.linalg.norm`` on small arrays).
 
-    The sum of squares overflows for entries beyond about 1e154; then (numpy has
-    warned about the overflow) the norm is computed again from the scaled array.
+    Up to :data:`SMALL_NORM` entries, ``math.hypot`` (overflow-safe and accurate by
+    itself); else the square root of one dot product, and when its sum of squares
+    overflows (entries beyond about 1e154; numpy has warned) again from the scaled
+    array.  Infinite or NaN entries give a non-finite norm either way.
     """
+    if a.size <= SMALL_NORM:
+        return math.hypot(*a.ravel().tolist())
     square = np.vdot(a, a)  # flattens; one call
     if square < math.inf:  # False for inf and NaN
         return math.sqrt(square)
     flat = a.ravel()
-    big = float(np.max(np.abs(flat))) if flat.size else 0.0
+    big = float(np.max(np.abs(flat)))
     if not math.isfinite(big) or big == 0.0:
         return big
     with np.errstate(over="ignore"):
@@ -70,7 +79,8 @@ class Assembly:
         when nothing is loaded in the generalized sense at equilibrium (a load
         along a bar, or a wrench alone balancing a spring, where tau vanishes).
     M, C, K : (nv, nv) ndarray or None
-        dr/da, dr/dv, dr/dq when asked for.
+        dr/da, dr/dv, dr/dq when asked for.  At rest, C may be the scene plan's
+        constant element damping (a read-only view): do not modify it in place.
     rounding_scale_C, rounding_scale_K : float
         Norm of the parts of C and K that carry rounding breaking their exact
         (skew-)symmetry: what Pinocchio computed, plus the elements whose
@@ -156,8 +166,9 @@ def assemble(
     used whenever v = 0.  Pinocchio writes into ``ws`` (default: the calling
     thread's workspace for the scene).
     """
+    plan = scene.linearization_plan
     if v is None:
-        v0, at_rest = scene.v0, not scene.linearization_plan.moving
+        v0, at_rest = scene.v0, not plan.moving
     else:
         v0 = np.asarray(v, dtype=float)
         at_rest = not np.count_nonzero(v0)
@@ -166,12 +177,17 @@ def assemble(
     tau, K, C, M = _dynamics(ev, external_forces(scene, ev), stiffness, stiffness or damping or mass)
     coriolis_D = None
     scale_C = 0.0
+    each_damping = damping  # the groups add their damping at this point
     if C is not None:
         scale_C = fro(C)
         if damping:
-            coriolis_D = (C + C.T) * 0.5
-    elif damping:
-        C = np.zeros((nv, nv))
+            coriolis_D = C + C.T.copy()  # (C + C^T) / 2; the contiguous copy makes the sum cheaper
+            coriolis_D *= 0.5
+    elif damping:  # at rest: C is the elements' damping alone
+        if plan.rest_damping is None:
+            C = np.zeros((nv, nv))
+        else:  # constant: added up once per scene, bitwise the same sum (read-only)
+            C, each_damping = plan.rest_damping.C.view(), False
     if mass and M is None:
         M = ev.mass_matrix()
     scale_K = fro(K) if stiffness else 0.0
@@ -180,13 +196,13 @@ def assemble(
         group.add_force(ev, Q)
         if stiffness:
             group.add_stiffness(ev, K)
-        if damping:
+        if each_damping:
             group.add_damping(ev, C)
     if stiffness:
         for wrench in scene.varying_wrenches:
             wrench.add_stiffness(ev, K)
     K_norm = fro(K) if stiffness else 0.0
-    if stiffness and not scene.linearization_plan.symmetric_elements:
+    if stiffness and not plan.symmetric_elements:
         scale_K += K_norm
     return Assembly(
         residual=tau - Q,

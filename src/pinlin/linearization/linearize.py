@@ -307,9 +307,10 @@ def _split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) 
     carry rounding breaking their exact symmetry (Pinocchio's, and the elements'
     whose stiffness is not exactly symmetric).
     """
-    N = K - K.T
+    S = K.T.copy()  # K^T, contiguous: cheaper sums than with the transposed view
+    N = K - S
     size = 0.5 * fro(N) / max(rounding, _TINY)  # ||(K - K^T) / 2||, exactly (a power-of-two scaling)
-    S = K + K.T
+    S += K  # K^T + K: the same sum as K + K^T (addition commutes exactly), in place
     S *= 0.5
     if size <= tol:
         if size:
@@ -330,20 +331,23 @@ def _split_damping(
     symmetric part (``coriolis_D``) is dropped from D when at rounding level, and
     G when it is, both against the norm of Pinocchio's part.
     """
-    G = C - C.T
+    if base.coriolis_D is None and not plan.moving and plan.rest_damping is not None:
+        return plan.rest_damping.split(tol, dropped)  # constant: split once per scene
+    T = C.T.copy()  # contiguous: cheaper sums than with the transposed view, the same values
+    G = C - T
     if base.coriolis_D is None:  # C from the elements alone
         if not np.count_nonzero(G):
             return C, G  # exactly symmetric (G is zero)
         G *= 0.5
         size = fro(G) / max(fro(C), _TINY)
-        D = C + C.T
+        D = C + T
         D *= 0.5
         if size <= tol:
             dropped["G (element rounding)"] = size
             G = np.zeros(C.shape)
         return D, G
     G *= 0.5
-    D = C + C.T
+    D = C + T
     D *= 0.5
     D_rnea = base.coriolis_D if plan.everything else base.coriolis_D[plan.block]
     size = fro(D_rnea) / max(base.rounding_scale_C, _TINY)

@@ -6,7 +6,9 @@ decides without looking at q is decided once, on first use, and kept as
 Pinocchio derivative algorithm (see :mod:`.assembly`), whether the elements'
 stiffness is exactly symmetric, the default structure tolerance, and which
 prescribed joints are proved not to enter the equations
-(:mod:`.time_invariance`) and which need the numerical check at every call.
+(:mod:`.time_invariance`) and which need the numerical check at every call,
+and, when every element group's damping is constant (joint dampers), the
+elements' damping matrix and its split into D and G (:class:`RestDamping`).
 """
 
 from __future__ import annotations
@@ -14,19 +16,76 @@ from __future__ import annotations
 import numpy as np
 
 from ..model.scene import Scene
+from ..results import readonly
+from .assembly import fro
 from .time_invariance import InvarianceProof, invariance_proofs
 
-__all__ = ["LinearizationPlan", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
+__all__ = ["LinearizationPlan", "RestDamping", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
 
 #: Default structure_tol is STRUCTURE_EPS_FACTOR n eps: Pinocchio's recursive algorithms
 #: accumulate a few rounding errors per joint, so an exactly (skew-)symmetric part that
 #: should vanish comes out at a small multiple of n eps of the computed part's norm.
 STRUCTURE_EPS_FACTOR = 100.0
 
+_TINY = float(np.finfo(float).tiny)
+
 
 def default_structure_tol(n: int) -> float:
     """STRUCTURE_EPS_FACTOR n eps: the default ``structure_tol`` of an n-coordinate system."""
     return STRUCTURE_EPS_FACTOR * n * float(np.finfo(float).eps)
+
+
+class RestDamping:
+    """The elements' damping when it is the same at every point, with its split (once per scene).
+
+    At rest (v = 0) C is the elements' damping alone; when every element group
+    adds a constant matrix (``group.constant_damping``) it is added up here, in
+    the order :func:`~pinlin.linearization.assembly.assemble` adds it, so the
+    values are bitwise those of a per-call assembly.  Arrays are read-only and
+    handed out as views (a view of a read-only array cannot be made writable):
+    the plan is shared by threads.
+
+    Attributes
+    ----------
+    C : (nv, nv) ndarray
+        The elements' -dQ_e/dv.
+    D, G : (n, n) ndarray
+        (C + C^T) / 2 and (C - C^T) / 2 on the free coordinates (D is C on them when
+        C is exactly symmetric, G is then None: the zero array ``zero`` stands for it).
+    size : float
+        ||G|| / ||C||: 0 when C is exactly symmetric (the usual case).
+    """
+
+    __slots__ = ("C", "D", "G", "size", "zero")
+
+    def __init__(self, scene: Scene, block):
+        nv = scene.model.nv
+        C = np.zeros((nv, nv))
+        for group in scene.groups:
+            group.add_damping(None, C)
+        Cf = C[block]
+        G = Cf - Cf.T
+        G *= 0.5
+        D = Cf + Cf.T
+        D *= 0.5
+        symmetric = not np.count_nonzero(G)
+        self.C = readonly(C)
+        if symmetric:  # D is C on the free block (the same array when every coordinate is free); G is zero
+            self.D = self.C if Cf.shape == C.shape else readonly(Cf)
+            self.G = None
+        else:
+            self.D, self.G = readonly(D), readonly(G)
+        self.zero = readonly(np.zeros(G.shape))
+        self.size = 0.0 if symmetric else fro(G) / max(fro(Cf), _TINY)
+
+    def split(self, tol: float, dropped: dict) -> tuple[np.ndarray, np.ndarray]:
+        """(D, G) as read-only views, G set to zero when at rounding level (reported in ``dropped``)."""
+        if self.size == 0.0:
+            return self.D.view(), self.zero.view()
+        if self.size <= tol:
+            dropped["G (element rounding)"] = self.size
+            return self.D.view(), self.zero.view()
+        return self.D.view(), self.G.view()
 
 
 class LinearizationPlan:
@@ -64,6 +123,10 @@ class LinearizationPlan:
     largest_departure : float
         The largest departure from exact symmetry among the proofs (0 when none):
         with a ``periodic_tol`` at least this large every proof applies.
+    rest_damping : RestDamping or None
+        The elements' constant damping and its split, when every group's damping
+        is constant (``group.constant_damping``); None otherwise.  Used at rest,
+        where C is the elements' damping alone.
     """
 
     __slots__ = (
@@ -80,6 +143,7 @@ class LinearizationPlan:
         "unproved",
         "proof_notes",
         "largest_departure",
+        "rest_damping",
     )
 
     def __init__(self, scene: Scene):
@@ -100,6 +164,8 @@ class LinearizationPlan:
         self.unproved = tuple(name for name in scene.prescribed if name not in self.proofs)
         self.proof_notes = tuple(p.note for p in self.proofs.values())
         self.largest_departure = max((p.departure for p in self.proofs.values()), default=0.0)
+        constant = all(g.constant_damping for g in scene.groups)
+        self.rest_damping = RestDamping(scene, self.block) if constant else None
 
     def __repr__(self) -> str:
         proved = ", ".join(self.proofs) or "none"

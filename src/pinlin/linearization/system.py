@@ -284,21 +284,24 @@ class LinearizedSystem(Result):
         basis_names: tuple[str, ...] = (),
         basis_condition: float | None = None,
         constraint_forces: tuple = (),
+        frozen: bool = False,
     ) -> LinearizedSystem:
         """Wrap matrices that are valid by construction, without re-validating them.
 
         For builders (such as :func:`pinlin.linearize`) that produce M, D, S
         exactly symmetric and G, N exactly skew, with M already checked positive
         definite and every entry finite, and ``dof_names`` of the right length.
-        The arrays are taken over (not copied) and made read-only.  Everyone else
-        should call the constructor, which validates.
+        The arrays are taken over (not copied) and made read-only; ``frozen=True``
+        says M, D, G, S, N, q and basis are read-only already (views of read-only
+        arrays, as :func:`pinlin.linearize_many` hands over).  Everyone else should
+        call the constructor, which validates.
         """
         obj = object.__new__(cls)
-        for a in (M, D, G, S, N, q, balancing, basis):
+        for a in (balancing,) if frozen else (M, D, G, S, N, q, balancing, basis):
             if a is not None:
-                a.setflags(write=False)
+                a.setflags(False)  # write=False; positional: a third of the keyword call's cost
         if v is not None and v.flags.writeable:  # a scene's v0 is read-only already: no copy, no flag
-            v.setflags(write=False)
+            v.setflags(False)
         object.__setattr__(obj, "__dict__", {
             "M": M, "D": D, "G": G, "S": S, "N": N, "dof_names": tuple(dof_names), "q": q, "v": v,
             "residual": residual, "balancing": balancing, "elapsed": elapsed, "calls": tuple(calls),

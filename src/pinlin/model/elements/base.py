@@ -27,7 +27,16 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...linearization.workspace import Evaluation
     from ..robot import Robot
 
-__all__ = ["Element", "ElementGroup", "WrenchElement", "as_matrix", "check_psd", "check_vector3"]
+__all__ = [
+    "Element",
+    "ElementGroup",
+    "WrenchElement",
+    "DiagonalIndex",
+    "as_matrix",
+    "check_psd",
+    "check_vector3",
+    "contiguous",
+]
 
 
 def as_matrix(value, size: int, label: str) -> np.ndarray:
@@ -89,6 +98,73 @@ def check_vector3(value, label: str) -> np.ndarray:
     return readonly(arr)
 
 
+def contiguous(indices: np.ndarray) -> slice | np.ndarray:
+    """``indices`` as a slice when they are consecutive and increasing (a cheaper index), else unchanged.
+
+    ``x[contiguous(i)]`` selects the same entries as ``x[i]``; a slice gives a view
+    (in-place updates through it need no fancy-index write-back).
+    """
+    if len(indices) and np.array_equal(indices, np.arange(indices[0], indices[0] + len(indices))):
+        return slice(int(indices[0]), int(indices[0]) + len(indices))
+    return indices
+
+
+class DiagonalIndex:
+    """The diagonal positions (iv[i], iv[i]) of an (nv x nv) matrix, for updates in one call.
+
+    ``add(A, values)`` does ``A[iv, iv] += values`` as one flat-index update of
+    ``A.flat`` (any memory layout; a third of the cost of the fancy index on small
+    matrices).  With repeated indices every value is added in turn (``np.add.at``),
+    so the result is the element-by-element sum, bitwise.  Immutable (shared by
+    the threads that share a scene).
+
+    Parameters
+    ----------
+    iv : sequence of int
+        Velocity indices.
+    nv : int
+        Size of the matrices updated.
+    """
+
+    __slots__ = ("iv", "flat", "unique", "span")
+
+    def __init__(self, iv, nv: int):
+        iv = np.asarray(iv, dtype=np.intp).reshape(-1)
+        object.__setattr__(self, "iv", readonly(iv))
+        object.__setattr__(self, "flat", readonly(iv * (nv + 1)))
+        object.__setattr__(self, "unique", len(set(iv.tolist())) == len(iv))
+        # consecutive indices: the diagonal run as a strided slice of the flattened matrix
+        run = contiguous(iv)
+        span = slice(run.start * (nv + 1), run.stop * (nv + 1), nv + 1) if isinstance(run, slice) else None
+        object.__setattr__(self, "span", span)
+
+    def __setattr__(self, name, value):
+        raise AttributeError(f"DiagonalIndex is immutable: cannot set {name!r}")
+
+    def __len__(self) -> int:
+        return len(self.iv)
+
+    def add(self, A: np.ndarray, values: np.ndarray) -> None:
+        """``A[iv, iv] += values`` in place, repeated indices summed in order."""
+        if self.span is not None and A.flags.c_contiguous:
+            run = A.ravel()[self.span]  # a view of A (ravel copies only non-contiguous arrays)
+            run += values  # in place: no write-back
+        elif self.unique:
+            A.flat[self.flat] += values
+        else:
+            np.add.at(A, (self.iv, self.iv), values)
+
+    def add_many(self, A: np.ndarray, values: np.ndarray) -> None:
+        """``A[p, iv, iv] += values`` for every matrix of a C-contiguous stack A (P, nv, nv), in place."""
+        if self.span is not None:
+            run = A.reshape(len(A), -1)[:, self.span]  # a view: A is contiguous
+            run += values
+        elif self.unique:
+            A.reshape(len(A), -1)[:, self.flat] += values
+        else:
+            np.add.at(A, (slice(None), self.iv, self.iv), values)
+
+
 class ElementGroup:
     """All elements of one class in a scene, evaluated together.
 
@@ -102,11 +178,27 @@ class ElementGroup:
     symmetric_stiffness : bool
         True when :meth:`add_stiffness` adds an exactly symmetric matrix (it then
         adds no rounding to the skew part N).
+    constant_damping : bool
+        True when :meth:`add_damping` adds the same matrix at every point and does
+        not read its evaluation (it may then be called with ``ev=None``): the
+        linearization plan adds it up once per scene
+        (:class:`~pinlin.linearization.plan.LinearizationPlan`).  False for the
+        default group, which asks each element at each point; groups that know
+        better (joint springs and dampers) say so.
+    batched : bool
+        True when the group implements ``add_force_many(qs, Q)`` and
+        ``add_stiffness_many(qs, K)``: its forces at rest (v = 0) and stiffness at P
+        configurations at once (Q (P, nv), K (P, nv, nv)), for
+        :func:`pinlin.linearize_many`; each point's values are bitwise those of
+        :meth:`add_force` and :meth:`add_stiffness`.  False for the default group.
     """
+
+    batched = False
 
     def __init__(self, elements: tuple[Element, ...]):
         self.elements = elements
         self.symmetric_stiffness = all(type(e).symmetric_stiffness for e in elements)
+        self.constant_damping = False
 
     def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
         """Add the elements' generalized forces Q_e(q, v) to Q (nv,)."""

@@ -7,7 +7,8 @@ from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
 
-from .base import Element, ElementGroup, as_matrix, check_psd
+from ...results import readonly
+from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 
 if TYPE_CHECKING:  # pragma: no cover
     from ...linearization.workspace import Evaluation
@@ -46,7 +47,7 @@ class JointDamper(Element):
     def generalized_force(self, ev: Evaluation) -> np.ndarray:
         j = ev.robot.joint(self.joint)
         Q = np.zeros(ev.model.nv)
-        Q[j.v_slice] = -as_matrix(self.damping, j.nv, "damping") @ ev.v[j.v_slice]
+        Q[j.v_slice] = -np.dot(as_matrix(self.damping, j.nv, "damping"), ev.v[j.v_slice])
         return Q
 
     def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
@@ -59,28 +60,55 @@ class JointDamper(Element):
 
 
 class DamperGroup(ElementGroup):
-    """Dampers on 1-DOF joints as arrays; the others one by one."""
+    """Joint dampers with their matrices prepared once per scene.
+
+    Dampers on 1-DOF joints with a scalar coefficient are arrays (C[iv, iv] += c
+    as one flat-index update of the diagonal); the others keep their joint's
+    velocity slice and damping matrix (read-only, :attr:`prepared`).  At rest
+    (v = 0) the force is zero and :meth:`add_force` returns at once.  Results
+    are those of the elements' own methods, bitwise.
+    """
 
     def __init__(self, elements: tuple[JointDamper, ...], robot: Robot):
         simple = [e for e in elements if robot.joint(e.joint).nv == 1 and e.damping.ndim < 2]
         super().__init__(tuple(e for e in elements if e not in simple))
-        self.iv = np.array([robot.joint(e.joint).idx_v for e in simple], dtype=int)
-        self.c = np.array([float(np.ravel(e.damping)[0]) for e in simple])
+        self.iv = readonly(np.array([robot.joint(e.joint).idx_v for e in simple], dtype=int))
+        self.c = readonly(np.array([float(np.ravel(e.damping)[0]) for e in simple]))
         self.unique = len(set(self.iv.tolist())) == len(self.iv)
+        self.v_index = contiguous(self.iv)  # a slice when consecutive: cheaper indexing
+        self.diagonal = DiagonalIndex(self.iv, robot.nv)
+        self.prepared = tuple(
+            (j.v_slice, readonly(as_matrix(e.damping, j.nv, "damping")))
+            for e, j in ((e, robot.joint(e.joint)) for e in self.elements)
+        )
         self.symmetric_stiffness = True
+        self.constant_damping = True  # add_damping reads only the prepared matrices
 
     def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
-        if len(self.iv) and not ev.at_rest:
-            if self.unique:
-                Q[self.iv] -= self.c * ev.v[self.iv]
-            else:
-                np.subtract.at(Q, self.iv, self.c * ev.v[self.iv])
-        super().add_force(ev, Q)
-
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+        if ev.at_rest:  # Q = -C v = 0
+            return
+        v = ev.v
         if len(self.iv):
             if self.unique:
-                C[self.iv, self.iv] += self.c
+                Q[self.v_index] -= self.c * v[self.v_index]
             else:
-                np.add.at(C, (self.iv, self.iv), self.c)
-        super().add_damping(ev, C)
+                np.subtract.at(Q, self.iv, self.c * v[self.iv])
+        for vs, Cm in self.prepared:
+            view = Q[vs]  # a view: updated in place, no write-back
+            view -= np.dot(Cm, v[vs])
+
+    batched = True
+
+    def add_force_many(self, qs: np.ndarray, Q: np.ndarray) -> None:
+        """Forces at rest (v = 0) at each row of ``qs``: none."""
+
+    def add_stiffness_many(self, qs: np.ndarray, K: np.ndarray) -> None:
+        """Dampers add no stiffness."""
+
+    def add_damping(self, ev: Evaluation | None, C: np.ndarray) -> None:
+        """Add the dampers' matrices (the same at every point; ``ev`` is not read and may be None)."""
+        if len(self.iv):
+            self.diagonal.add(C, self.c)
+        for vs, Cm in self.prepared:
+            view = C[vs, vs]
+            view += Cm

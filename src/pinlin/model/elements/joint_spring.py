@@ -10,7 +10,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...results import readonly
-from .base import Element, ElementGroup, as_matrix, check_psd
+from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 
 if TYPE_CHECKING:  # pragma: no cover
     from ...linearization.workspace import Evaluation
@@ -100,14 +100,14 @@ class JointSpring(Element):
         j = ev.robot.joint(self.joint)
         Q = np.zeros(ev.model.nv)
         e, _ = self.deflection(ev)
-        Q[j.v_slice] = -self.matrix(j) @ e
+        Q[j.v_slice] = -np.dot(self.matrix(j), e)
         return Q
 
     def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         j = ev.robot.joint(self.joint)
         _, jac = self.deflection(ev)
         Ks = self.matrix(j)
-        K[j.v_slice, j.v_slice] += Ks if jac is None else Ks @ jac
+        K[j.v_slice, j.v_slice] += Ks if jac is None else np.dot(Ks, jac)
 
     def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         """The spring's matrix K_s: psd, the elastic stiffness in Rayleigh's beta K_e."""
@@ -120,39 +120,102 @@ class JointSpring(Element):
 
 
 class SpringGroup(ElementGroup):
-    """Springs on joints with nq = nv = 1 as arrays; the others one by one.
+    """Joint springs with everything that does not depend on q prepared once per scene.
 
-    Q[iv] -= k (q[iq] - rest) and K[iv, iv] += k in a few array operations.
+    Springs on joints with nq = nv = 1 and a scalar stiffness are arrays:
+    Q[iv] -= k (q[iq] - rest) and K[iv, iv] += k as one flat-index update of the
+    diagonal.  Every other spring (multi-DOF joints, continuous joints, matrix
+    stiffness) keeps its joint's slices, rest configuration, Lie group and
+    stiffness matrix (read-only, prepared here, :attr:`prepared`), so a point
+    costs only the group's ``difference`` (force) or ``dDifference`` (stiffness)
+    and one product.  The results are those of the elements' own methods,
+    bitwise.
     """
 
     def __init__(self, elements: tuple[JointSpring, ...], robot: Robot):
         simple = [e for e in elements if robot.joint(e.joint).nq == 1 and e.stiffness.ndim < 2]
         super().__init__(tuple(e for e in elements if e not in simple))
         joints = [robot.joint(e.joint) for e in simple]
-        self.iq = np.array([j.idx_q for j in joints], dtype=int)
-        self.iv = np.array([j.idx_v for j in joints], dtype=int)
-        self.k = np.array([float(np.ravel(e.stiffness)[0]) for e in simple])
-        self.rest = np.array([0.0 if e.rest is None else float(np.ravel(e.rest)[0]) for e in simple])
+        self.iq = readonly(np.array([j.idx_q for j in joints], dtype=int))
+        self.iv = readonly(np.array([j.idx_v for j in joints], dtype=int))
+        self.k = readonly(np.array([float(np.ravel(e.stiffness)[0]) for e in simple]))
+        self.rest = readonly(np.array([0.0 if e.rest is None else float(np.ravel(e.rest)[0]) for e in simple]))
         self.unique = len(set(self.iv.tolist())) == len(self.iv)
+        #: iq and iv as slices when consecutive (every joint of a chain sprung): cheaper indexing.
+        self.q_index, self.v_index = contiguous(self.iq), contiguous(self.iv)
+        self.v_slice = isinstance(self.v_index, slice)
+        self.diagonal = DiagonalIndex(self.iv, robot.nv)
+        self.prepared = tuple(_prepare(e, robot) for e in self.elements)
         self.symmetric_stiffness = all(robot.joint(e.joint).nv == 1 for e in self.elements)
+        self.constant_damping = True  # springs add no damping
 
     def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+        q = ev.q
         if len(self.iv):
-            if self.unique:
-                Q[self.iv] -= self.k * (ev.q[self.iq] - self.rest)
+            force = self.k * (q[self.q_index] - self.rest)
+            if self.v_slice:  # a view: updated in place, no write-back
+                view = Q[self.v_index]
+                view -= force
+            elif self.unique:
+                Q[self.iv] -= force
             else:
-                np.subtract.at(Q, self.iv, self.k * (ev.q[self.iq] - self.rest))
-        super().add_force(ev, Q)
+                np.subtract.at(Q, self.iv, force)
+        for qs, vs, rest, group, Ks, _ in self.prepared:
+            view = Q[vs]
+            view -= np.dot(Ks, q[qs] - rest if group is None else group.difference(rest, q[qs]))
 
     def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         if len(self.iv):
-            if self.unique:
-                K[self.iv, self.iv] += self.k
-            else:
-                np.add.at(K, (self.iv, self.iv), self.k)
-        super().add_stiffness(ev, K)
+            self.diagonal.add(K, self.k)
+        q = ev.q
+        for qs, vs, rest, group, Ks, derivative in self.prepared:
+            view = K[vs, vs]
+            view += np.dot(Ks, group.dDifference(rest, q[qs], pin.ARG1)) if derivative else Ks
+
+    batched = True
+
+    def add_force_many(self, qs: np.ndarray, Q: np.ndarray) -> None:
+        """:meth:`add_force` at each row of ``qs`` (P, nq), into the rows of Q (P, nv)."""
+        if len(self.iv):
+            force = self.k * (qs[:, self.q_index] - self.rest)
+            if self.v_slice:
+                view = Q[:, self.v_index]
+                view -= force
+            elif self.unique:
+                Q[:, self.iv] -= force
+            else:  # repeated joints: in order, as element by element
+                np.subtract.at(Q.T, self.iv, force.T)
+        for qs_j, vs, rest, group, Ks, _ in self.prepared:
+            for q, row in zip(qs, Q):
+                view = row[vs]
+                view -= np.dot(Ks, q[qs_j] - rest if group is None else group.difference(rest, q[qs_j]))
+
+    def add_stiffness_many(self, qs: np.ndarray, K: np.ndarray) -> None:
+        """:meth:`add_stiffness` at each row of ``qs`` (P, nq), into K (P, nv, nv), C-contiguous."""
+        if len(self.iv):
+            self.diagonal.add_many(K, self.k)
+        for qs_j, vs, rest, group, Ks, derivative in self.prepared:
+            for q, Kp in zip(qs, K):
+                view = Kp[vs, vs]
+                view += np.dot(Ks, group.dDifference(rest, q[qs_j], pin.ARG1)) if derivative else Ks
+
+    def add_damping(self, ev: Evaluation | None, C: np.ndarray) -> None:
+        """Springs add no damping."""
 
     def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         if len(self.iv):
             np.add.at(K, (self.iv, self.iv), self.k)
-        super().add_elastic_stiffness(ev, K)
+        for _, vs, _, _, Ks, _ in self.prepared:
+            K[vs, vs] += Ks
+
+
+def _prepare(spring: JointSpring, robot: Robot) -> tuple:
+    """(q slice, v slice, rest, Lie group or None, stiffness matrix, whether de/dq is not the identity).
+
+    The Lie group is None on a 1-DOF joint with nq = 1 (e = q_j - rest); de/dq is
+    the identity there and on SO(2) (a continuous joint), else ``dDifference``.
+    """
+    j = robot.joint(spring.joint)
+    rest = readonly(spring.rest_configuration(robot))
+    group = None if j.nq == 1 else robot.model.joints[j.id].lieGroup()
+    return (j.q_slice, j.v_slice, rest, group, readonly(spring.matrix(j)), j.nv > 1)
