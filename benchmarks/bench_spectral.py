@@ -228,7 +228,10 @@ def lean_tables(quick: bool) -> tuple[list[Table], dict]:
          "max eta", "how"],
         sym_rows,
         note=("eigh's own backward error grows like eps cond(M) (1e-12 ... 1e-9 here); Newton steps on the pairs "
-              "still above eigh_tol = 1e-15 bring them to rounding (a pair already below it is kept)."),
+              "still above eigh_tol = 1e-15 bring them to rounding (a pair already below it is kept). M is factorized "
+              "once: its Cholesky factor gives LAPACK's cond(M) estimate for the eigh-or-QZ prediction and the "
+              "reduction of the pencil (dsygst, dsyevd, dtrsm: dsygvd's steps); the definiteness of M and S "
+              "(an eigvalsh each) is the verdict's, in the '.stability' column."),
     )
     return [t1, t2], summary
 

@@ -96,9 +96,10 @@ def column_norms(A: np.ndarray) -> np.ndarray:
     else:
         total = np.einsum("...ij,...ij->...j", A, A)
     lo, hi = _SQUARES_WINDOW
-    ok = (total > lo) & (total < hi)
-    if np.count_nonzero(ok) == ok.size:
+    # every sum in the window (a NaN is not: the reductions propagate it and the comparisons fail)
+    if not total.size or (lo < np.minimum.reduce(total, axis=None) and np.maximum.reduce(total, axis=None) < hi):
         return np.sqrt(total)
+    ok = (total > lo) & (total < hi)
     s = np.max(np.abs(A), axis=-2)
     safe = np.where((s > 0) & np.isfinite(s), s, 1.0)
     # real divisions: a complex one may go through 1/s, which overflows for a subnormal s
@@ -129,12 +130,13 @@ def residual_figures(lam, X, MX, CX, KX, norms: Norms) -> tuple[np.ndarray, np.n
     lam = np.asarray(lam, dtype=complex)
     lam2 = lam * lam
     shape = (2,) + np.shape(MX)  # X, M X, C X, K X: arrays of one shape
-    if _real_residual(lam, lam2, X, MX, CX, KX):
+    real_lam = np.count_nonzero(lam.imag) == 0
+    if _real_residual(real_lam, lam2, X, MX, CX, KX):
         # real vectors and products, lam^2 real and no imaginary C x lam term: L(lam) x is real, and formed
         # in real arithmetic it has the same real part (the complex form adds exact zeros) and no imaginary one
         RX = np.empty(shape)
         R = np.multiply(MX, lam2.real, out=RX[0])
-        if np.count_nonzero(lam.imag) == 0:
+        if real_lam:
             R += CX * lam.real
         R += KX
     else:
@@ -155,11 +157,16 @@ def residual_figures(lam, X, MX, CX, KX, norms: Norms) -> tuple[np.ndarray, np.n
     return np.where(nx == 0, np.inf, eta), nx, w
 
 
-def _real_residual(lam, lam2, X, MX, CX, KX) -> bool:
-    """L(lam) x = lam^2 M x + lam C x + K x is real: real X and products, lam^2 real, and lam real or C x = 0."""
-    if any(np.iscomplexobj(a) for a in (X, MX, CX, KX)) or np.count_nonzero(lam2.imag):
+def _real_residual(real_lam: bool, lam2, X, MX, CX, KX) -> bool:
+    """L(lam) x = lam^2 M x + lam C x + K x is real: real X and products, lam^2 real, and lam real or C x = 0.
+
+    ``real_lam``: every lam is real.
+    """
+    if np.iscomplexobj(X) or np.iscomplexobj(MX) or np.iscomplexobj(CX) or np.iscomplexobj(KX):
         return False
-    return np.count_nonzero(lam.imag) == 0 or not np.any(CX)
+    if np.count_nonzero(lam2.imag):
+        return False
+    return real_lam or not np.count_nonzero(CX)
 
 
 def condition_numbers(lam, yMx, yCx, yKx, norms: Norms) -> np.ndarray:

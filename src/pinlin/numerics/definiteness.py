@@ -208,8 +208,14 @@ def _decide(w: np.ndarray, norm: float, rounding: float, u: float, chol: float |
     rho = rounding * norm
     thr = rho + u * norm
     lo, hi = float(w[0]), float(w[-1])
-    neg = int(np.count_nonzero(w < -thr)) if lo < -thr else 0
-    pos = int(np.count_nonzero(w > thr)) if hi > thr else 0
+    # w ascending: all beyond the threshold on one side when its first (last) member is
+    if lo > thr:
+        neg, pos = 0, n
+    elif hi < -thr:
+        neg, pos = n, 0
+    else:
+        neg = int(np.count_nonzero(w < -thr)) if lo < -thr else 0
+        pos = int(np.count_nonzero(w > thr)) if hi > thr else 0
     zero = n - neg - pos
     certificate = "eigenvalues"
     # certified lower bound on min |lambda| when the inertia is decided, from the eigenvalues
@@ -340,7 +346,7 @@ def symmetric_definiteness(A: np.ndarray, u: float, rounding_factor: float = EIG
     """
     n = A.shape[0]
     rounding = float(rounding_factor * n * EPS)
-    if not A.any():
+    if not np.count_nonzero(A):
         return _with_block(
             Definiteness("zero", 0, n, 0, 0.0, 0.0, rounding + u, 0.0, 0.0, rounding, u, 0.0, "exactly zero"), None
         )
@@ -355,9 +361,9 @@ def symmetric_definiteness(A: np.ndarray, u: float, rounding_factor: float = EIG
     out = _decide(w, norm, rounding, u, chol)
     block = None
     if out.kind == "positive_semidefinite":
-        live = np.flatnonzero(np.any(A != 0, axis=0))
+        live = A.any(axis=0).nonzero()[0]
         if live.size < n:  # exact zero rows and columns: is the rest positive definite?
-            block = symmetric_definiteness(A[np.ix_(live, live)], u, rounding_factor)
+            block = symmetric_definiteness(A[live[:, None], live], u, rounding_factor)
     return _with_block(out, block)
 
 

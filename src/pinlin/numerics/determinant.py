@@ -19,7 +19,7 @@ from .checks import check_uncertainty
 from .definiteness import DEFAULT_UNCERTAINTY, EIGENVALUE_ROUNDING, det_sign, square_matrix
 from .floating import EPS
 
-__all__ = ["Nonsingularity", "nonsingularity", "det_sign"]
+__all__ = ["Nonsingularity", "nonsingularity", "validated_nonsingularity", "det_sign"]
 
 
 @dataclass(frozen=True)
@@ -73,8 +73,14 @@ def nonsingularity(
     ParameterError
         A not a finite real square matrix; ``uncertainty`` not in [0, 1).
     """
-    A = square_matrix(A)
-    u = check_uncertainty(uncertainty)
+    return validated_nonsingularity(square_matrix(A), check_uncertainty(uncertainty), rounding_factor)
+
+
+def validated_nonsingularity(A: np.ndarray, u: float, rounding_factor: float = EIGENVALUE_ROUNDING) -> Nonsingularity:
+    """:func:`nonsingularity` of a matrix known to be a finite real (n, n) float array, ``u`` known valid.
+
+    For callers whose matrices are validated already (a LinearizedSystem's K): no input checks.
+    """
     n = A.shape[0]
     if not A.any():
         return Nonsingularity(0, 0.0, u, 0)

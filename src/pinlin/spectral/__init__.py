@@ -9,7 +9,8 @@ One concept per module, in the order of :func:`modal_analysis`:
 - :mod:`.qep` -- the general solver (scaled companion form, QZ, vector recovery);
 - :mod:`.structured` -- cheaper exact paths for structured mechanical systems;
 - :mod:`.refine` -- eigh with Newton refinement for the symmetric-definite pencils
-  of those paths (backward errors at rounding level whatever cond(M));
+  of those paths (backward errors at rounding level whatever cond(M)), from one
+  Cholesky factor of M that also predicts eigh's accuracy (:func:`~pinlin.spectral.refine.mass_factor`);
 - :mod:`.ordering` -- the order of the spectrum and the per-eigenvalue kinds (vectorized);
 - :mod:`.accuracy` -- eta, kappa, sensitivities and the error model (bounds as
   functions of the data uncertainty) of the computed pairs (formulas in

@@ -119,7 +119,8 @@ def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=Non
     X = P[0]
     Y = X if Y is None else Y / column_norms(Y)
     yP = np.einsum("ij,kij->kj", Y, P[1:])
-    quad = quadratic_forms(X, P[1:])
+    # with y = x real, x^H A x = y^T A x: the same products, not formed twice
+    quad = yP if Y is X and X.dtype.kind == "f" else quadratic_forms(X, P[1:])
     deriv = 2 * lam * yP[0] + yP[1]
     size = np.abs(deriv)
     if np.count_nonzero(size) == size.size:  # the common case: every derivative nonzero

@@ -16,7 +16,7 @@ from ..errors import ComputationError, ParameterError
 from ..numerics.accuracy import ETA_FLOOR, column_norms
 from ..numerics.checks import check_tolerance, check_uncertainty
 from ..numerics.clustering import CLUSTER_TOL, find_clusters
-from ..numerics.definiteness import DEFAULT_UNCERTAINTY, symmetric_definiteness
+from ..numerics.definiteness import DEFAULT_UNCERTAINTY
 from ..numerics.floating import EPS
 from ..numerics.rank import JORDAN_RANK_TOL
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
@@ -136,10 +136,8 @@ def modal_analysis(
         method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
         uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
     )
-    on_M = _mass_decision(problem, method, tolerances["uncertainty"])
-    cond_M = _mass_condition(on_M)
-    name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"], cond_M)
-    raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"], cond_M)
+    name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
+    raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
     if raw.second is not None:  # pairs sharing a real vector: figures on one member of each
         lam, block, fig = mirrored_figures(problem, raw)
         _check_range(problem, lam)
@@ -155,13 +153,14 @@ def modal_analysis(
     for c in clusters:
         multiplicity[list(c.indices)] = c.algebraic
     freq = np.abs(lam)
-    if freq.all():
+    if np.count_nonzero(freq) == freq.size:
         zeta = -lam.real / freq
     else:
         with np.errstate(divide="ignore", invalid="ignore"):
             zeta = -lam.real / freq  # NaN exactly where lam = 0 (undefined)
     bound = model.bound(0.0)
-    if np.count_nonzero(np.isnan(bound)) or np.count_nonzero(np.isnan(fig.backward_error)):
+    # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
+    if np.isnan(np.add.reduce(bound) + np.add.reduce(fig.backward_error)):
         raise ComputationError(
             "an eigenvalue error figure is not a number: the coefficients (norms "
             f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "
@@ -194,7 +193,7 @@ def modal_analysis(
             fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
         ),
         verdict=DeferredVerdict(
-            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], on_M, tuple(notes)
+            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes)
         ),
     )
 
@@ -205,29 +204,6 @@ def _owned(a: np.ndarray) -> np.ndarray:
         a = a.copy()
     a.flags.writeable = False
     return a
-
-
-def _mass_decision(problem: QuadraticProblem, method: str, uncertainty: float):
-    """The definiteness decision about M when the path may need cond(M) (symmetric, proportional), else None.
-
-    Only a LinearizedSystem with G = N = 0 can take those paths; the decision is the one
-    :func:`~pinlin.spectral.qualitative.structural_facts` makes (and later reuses).
-    """
-    if problem.system is None or method not in ("auto", "symmetric", "proportional"):
-        return None
-    zero = problem.zero
-    if not (zero["G"] and zero["N"]):
-        return None
-    return symmetric_definiteness(problem.M, uncertainty)
-
-
-def _mass_condition(on_M) -> float:
-    """cond_2(M) from the definiteness decision of M (1 when not made, inf when M is not proven definite)."""
-    if on_M is None:
-        return 1.0
-    if on_M.min_eigenvalue <= 0:
-        return float("inf")
-    return float(on_M.max_eigenvalue / on_M.min_eigenvalue)
 
 
 def _check_range(problem: QuadraticProblem, lam: np.ndarray, weight: np.ndarray | None = None) -> None:

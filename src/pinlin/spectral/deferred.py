@@ -70,8 +70,9 @@ class DeferredVerdict:
     uncertainty, safety : float
         The validated options of the analysis.
     mass : Definiteness or None
-        The decision about M when the analysis already made it (the symmetric
-        paths choose eigh or QZ by cond(M)); made on first access otherwise.
+        The decision about M when the caller made it already; made on first
+        access otherwise (:func:`~pinlin.spectral.modal_analysis` leaves it to
+        the first access: its symmetric paths predict from a Cholesky factor of M).
     notes : tuple of str
         The notes of the analysis that do not depend on the facts (clusters,
         biorthogonalization), in the order the analysis found them.
@@ -95,9 +96,10 @@ class DeferredVerdict:
         """The verdict of :func:`~pinlin.spectral.stability.decide_stability` (its margin still deferred)."""
         problem = self.problem
         # a coordinate on which neither K nor C acts drifts exactly: x(t) = t e_j
-        drift = bool(np.any(~np.any(problem.K, axis=0) & ~np.any(problem.C, axis=0)))
+        K, C = problem.K, problem.C
+        drift = bool(np.count_nonzero(K.any(axis=0) | C.any(axis=0)) < K.shape[1])
         stability = decide_stability(
-            facts, self.lam, self.model, self.clusters, K_is_zero=not np.any(problem.K), exact_drift=drift,
+            facts, self.lam, self.model, self.clusters, K_is_zero=not np.count_nonzero(K), exact_drift=drift,
             safety=self.safety, uncertainty=self.uncertainty,
         )
         return with_contact_notes(stability, problem.system)

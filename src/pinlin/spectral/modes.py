@@ -119,8 +119,8 @@ class Modes(Result):
         decided against the rounding bound of the data and the uncertainty
         (``structure.definiteness_M``, ``_D``, ``_S`` carry the numbers; the
         command-line report shows these very decisions).  Formed on first access
-        (the definiteness of M is decided by the analysis itself when its path
-        needs cond(M)).
+        (the symmetric paths predict eigh's accuracy from a Cholesky factor of M
+        and LAPACK's condition estimate, not from this decision).
     stability : Stability
         The verdict (``.kind``, ``.reason``, ``.margin``: how large a relative
         perturbation of the data it survives).  Formed on first access (the

@@ -46,8 +46,9 @@ def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             found.append(partners.pop() if partners else -1)
         mates = np.array(found, dtype=int)
         alone = np.array([i for rest in free.values() for i in rest], dtype=int)
-    leaders = np.concatenate([pos, real, alone]).astype(int)
-    mates = np.concatenate([mates, np.full(real.size + alone.size, -1)]).astype(int)
+    # (integer index arrays throughout: nonzero's, and the int arrays above)
+    leaders = np.concatenate([pos, real, alone])
+    mates = np.concatenate([mates, np.full(real.size + alone.size, -1)])
     return leaders, mates
 
 
@@ -130,8 +131,10 @@ def mirrored_figures(problem: QuadraticProblem, raw: RawSpectrum) -> tuple[np.nd
     yMx, yCx = half.products[0], half.products[1]
     deriv_b = 2 * lb * yMx + yCx
     ok = half.left_normalized
-    left_b = half.right / np.where(ok, deriv_b, 1.0) if ok.all() else np.where(ok, half.right / np.where(
-        ok, deriv_b, 1.0), half.right)
+    if np.count_nonzero(ok) == ok.size:
+        left_b = half.right / deriv_b
+    else:
+        left_b = np.where(ok, half.right / np.where(ok, deriv_b, 1.0), half.right)
     right = np.repeat(half.right.astype(complex), 2, axis=-1)
     fig = PairFigures(
         right,

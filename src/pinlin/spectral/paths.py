@@ -15,7 +15,7 @@ from ..numerics.floating import EPS
 from ..numerics.scaling import Scaling
 from .problem import QuadraticProblem
 from .qep import solve_general
-from .refine import EIGH_PREDICTION_LIMIT, eigh_predicted_ok
+from .refine import EIGH_PREDICTION_LIMIT, eigh_predicted_ok, mass_factor
 from .structured import PATHS, proportionality_defect, solve_proportional, solve_squared, solve_symmetric
 
 __all__ = ["choose_path", "solve_path", "STRUCTURE_TOL", "EIGH_TOL"]
@@ -32,11 +32,12 @@ STRUCTURE_TOL = 1e-10
 EIGH_TOL = 1e-15
 
 
-def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, eigh_tol: float, cond_M: float = 1.0):
+def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, eigh_tol: float):
     """(path name, reason, raw spectrum or None) for the requested method.
 
-    ``cond_M`` (the 2-norm condition number of M) predicts whether eigh can meet
-    ``eigh_tol`` (:func:`pinlin.spectral.refine.eigh_predicted_ok`).
+    The proportional path factorizes M once (:func:`pinlin.spectral.refine.mass_factor`): the
+    condition estimate predicts whether eigh can meet ``eigh_tol``
+    (:func:`pinlin.spectral.refine.eigh_predicted_ok`), and eigh continues from the factor.
 
     Raises
     ------
@@ -78,9 +79,13 @@ def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, ei
         raw = None
         defect = np.inf
         how = ""
+        cond_M = 1.0
         if comm <= structure_tol:
+            mass = mass_factor(problem.M)
+            cond_M = mass.condition
             raw, defect, how = solve_proportional(
-                problem, structure_tol=structure_tol, eigh_tol=eigh_tol, eigh_ok=eigh_predicted_ok(cond_M)
+                problem, structure_tol=structure_tol, eigh_tol=eigh_tol, eigh_ok=eigh_predicted_ok(cond_M),
+                factor=mass.lower,
             )
         if raw is not None:
             return (
@@ -106,13 +111,14 @@ def choose_path(problem: QuadraticProblem, method: str, structure_tol: float, ei
     return "general", f"nonzero {'+'.join(nonzero)}: no cheaper exact path; scaled companion QZ (size 2n)", None
 
 
-def solve_path(problem: QuadraticProblem, name: str, reason: str, raw, scaling: bool, eigh_tol: float,
-               cond_M: float = 1.0):
+def solve_path(problem: QuadraticProblem, name: str, reason: str, raw, scaling: bool, eigh_tol: float):
     """Run the chosen path: (raw spectrum, reason completed, scaling used or None).
 
     The symmetric path takes eigh with Newton refinement when eps cond(M) lets
     it reach ``eigh_tol`` (:mod:`pinlin.spectral.refine`), and otherwise -- predicted
-    from ``cond_M``, or measured after refinement -- QZ of the same n-size pencil.
+    from LAPACK's estimate of cond(M) from one Cholesky factorization of M
+    (:func:`~pinlin.spectral.refine.mass_factor`), or measured after refinement --
+    QZ of the same n-size pencil; eigh continues from that factor.
 
     Raises
     ------
@@ -128,14 +134,16 @@ def solve_path(problem: QuadraticProblem, name: str, reason: str, raw, scaling: 
         if raw.note:
             reason += f"; {raw.note}"
     elif name == "symmetric":
+        mass = mass_factor(problem.M)
+        cond_M = mass.condition
         if not eigh_predicted_ok(cond_M):
             raw = solve_squared(problem)
             reason += (
-                f"; M is too ill-conditioned for eigh (eps cond(M) = {EPS * cond_M:.1e} > "
+                f"; M is too ill-conditioned for eigh (eps cond(M) = {EPS * cond_M:.1e}, LAPACK's estimate, > "
                 f"{EIGH_PREDICTION_LIMIT:g}), so (S - mu M) was solved by QZ (size n, right vectors only)"
             )
         else:
-            raw, pencil = solve_symmetric(problem, eigh_tol)
+            raw, pencil = solve_symmetric(problem, eigh_tol, mass.lower)
             worst = float(pencil.eta.max())
             if worst > eigh_tol:
                 raw = solve_squared(problem)

@@ -79,7 +79,7 @@ class QuadraticProblem:
         sys = self.system
         if sys is None:
             return {}
-        return {name: not getattr(sys, name).any() for name in ("D", "G", "N")}
+        return {name: not np.count_nonzero(getattr(sys, name)) for name in ("D", "G", "N")}
 
     @functools.cached_property
     def symmetric(self) -> bool:

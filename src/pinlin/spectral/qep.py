@@ -355,10 +355,11 @@ def _solve_scaled(
         best = np.where(finite, best, np.inf)
     block, norm_x, w = np.where(use1, 1, 2), np.where(use1, nx[0], nx[1]), w[: 2 * n]
     if all_finite:  # a pair's second member: the conjugate vectors and the first's figures, exactly
-        P[..., at + 1] = P[..., at].conj()
+        mate = at + 1
+        P[..., mate] = P[..., at].conj()
         if Y is not None:
-            Y[:, at + 1] = Y[:, at].conj()
+            Y[:, mate] = Y[:, at].conj()
         for a in (block, best, norm_x, w):
-            a[at + 1] = a[at]
+            a[mate] = a[at]
     raw = RawSpectrum(lam, P, Y, block, best, norm_x=norm_x, weight=w, ordered=all_finite)
     return raw, best

@@ -27,7 +27,7 @@ from ..numerics.definiteness import (
     Definiteness,
     symmetric_definiteness,
 )
-from ..numerics.determinant import Nonsingularity, nonsingularity
+from ..numerics.determinant import Nonsingularity, nonsingularity, validated_nonsingularity
 from .problem import QuadraticProblem
 
 #: The smallest positive normal double.
@@ -268,7 +268,7 @@ def structural_facts(
     u = check_uncertainty(uncertainty)
     zero = problem.zero
     circ = not zero["N"]
-    det_K = nonsingularity(sys.K, u) if circ else None
+    det_K = validated_nonsingularity(sys.K, u) if circ else None  # K of a system: finite, real, square
     return _mechanical(
         symmetric_definiteness(sys.M, u) if mass is None else mass,
         symmetric_definiteness(sys.D, u),

@@ -27,7 +27,11 @@ the pairs to refine the full step is cheaper (its products are shared).
 
 When eps cond(M) exceeds :data:`EIGH_PREDICTION_LIMIT`, eigh's start is too
 poor for Newton's method and the caller takes QZ directly (backward stable
-whatever M's conditioning) instead of running eigh and discarding it.
+whatever M's conditioning) instead of running eigh and discarding it.  cond(M)
+is LAPACK's estimate from the Cholesky factor (:func:`mass_factor`: ``dpotrf``
+and ``dpocon``, n^3/3 flops), and eigh reuses that factor: ``dsygst``, ``dsyevd``
+and ``dtrsm``, the very steps of LAPACK's ``dsygvd`` after its own Cholesky
+factorization (so the same results, bitwise, without factorizing M twice).
 """
 
 from __future__ import annotations
@@ -36,11 +40,18 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
+from scipy.linalg.blas import dtrsm as _dtrsm
+from scipy.linalg.lapack import dpocon as _dpocon
+from scipy.linalg.lapack import dpotrf as _dpotrf
+from scipy.linalg.lapack import dsyevd as _dsyevd
+from scipy.linalg.lapack import dsygst as _dsygst
 from scipy.linalg.lapack import dsygvd as _dsygvd
 
 from ..numerics.floating import EPS
 
 __all__ = [
+    "MassFactor",
+    "mass_factor",
     "RefinedPencil",
     "refined_eigh",
     "pencil_backward_errors",
@@ -95,6 +106,36 @@ class RefinedPencil:
     steps: int
 
 
+@dataclass(frozen=True, eq=False)
+class MassFactor:
+    """The Cholesky factor of a symmetric M and the condition estimate that predicts eigh's accuracy.
+
+    Attributes
+    ----------
+    lower : (n, n) float or None
+        L with M = L L^T in the lower triangle (the upper one is not referenced); None
+        when the factorization failed (M not numerically positive definite).
+    condition : float
+        LAPACK's estimate of cond_1(M) = ||M||_1 ||M^-1||_1 (``dpocon``: a lower bound on
+        it, in practice within a factor of 3, and cond_2(M) <= cond_1(M) <= n cond_2(M) for
+        symmetric M); inf when the factorization failed.
+    """
+
+    lower: np.ndarray | None
+    condition: float
+
+
+def mass_factor(M: np.ndarray) -> MassFactor:
+    """:class:`MassFactor` of a finite symmetric M: ``dpotrf`` and ``dpocon`` (n^3/3 + O(n^2) flops)."""
+    L, info = _dpotrf(M, lower=1, clean=0)
+    if info != 0:
+        return MassFactor(None, float("inf"))
+    rcond, info = _dpocon(L, float(np.abs(M).sum(axis=0).max()), uplo="L")
+    if info != 0 or not rcond > 0:
+        return MassFactor(L, float("inf"))
+    return MassFactor(L, float(1.0 / rcond))
+
+
 def eigh_predicted_ok(cond_M: float, limit: float = EIGH_PREDICTION_LIMIT) -> bool:
     """Whether eigh's start can be refined to rounding: eps cond(M) <= ``limit``."""
     return bool(np.isfinite(cond_M) and EPS * cond_M <= limit)
@@ -137,21 +178,37 @@ def _newton_columns(X, MX, AX, J) -> np.ndarray:
     (M and A symmetric), and the diagonal estimates w~_i = x_i^T A x_i / x_i^T M x_i of every pair.
     """
     XJ = X[:, J]
-    m = J.size
+    diagonal = (J, np.arange(J.size))  # entries (j, column of j) of the n x m blocks
     R = -0.5 * (X.T @ MX[:, J] + MX.T @ XJ)
-    R[J, np.arange(m)] += 1.0
+    d = R[diagonal] + 1.0
+    R[diagonal] = d
     T = 0.5 * (X.T @ AX[:, J] + AX.T @ XJ)
     wt = np.einsum("ij,ij->j", X, AX) / np.einsum("ij,ij->j", X, MX)
-    d = R[J, np.arange(m)]
+    wJ = wt[J][None, :]
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        E = (T + R * wt[J][None, :]) / (wt[J][None, :] - wt[:, None])
+        E = (T + R * wJ) / (wJ - wt[:, None])
     close = ~(np.abs(E) <= REFINE_COUPLING)
     np.copyto(E, 0.5 * R, where=close)
-    E[J, np.arange(m)] = 0.5 * d
+    E[diagonal] = 0.5 * d
     return XJ + X @ E
 
 
-def refined_eigh(A, M, norm_A: float, norm_M: float, tol: float, max_steps: int = REFINE_STEPS) -> RefinedPencil:
+def _eigh(A, M, factor):
+    """(w, X, info) of LAPACK's ``dsygvd`` (itype 1, lower), from M's lower Cholesky factor when given."""
+    if factor is None:
+        return _dsygvd(A, M, itype=1, jobz="V", uplo="L")
+    reduced, info = _dsygst(A, factor, itype=1, lower=1)
+    if info != 0:
+        return None, None, info
+    w, Z, info = _dsyevd(reduced, compute_v=1, lower=1, overwrite_a=1)
+    if info != 0:
+        return None, None, info
+    return w, _dtrsm(1.0, factor, Z, lower=1, trans_a=1, overwrite_b=1), 0
+
+
+def refined_eigh(
+    A, M, norm_A: float, norm_M: float, tol: float, max_steps: int = REFINE_STEPS, factor: np.ndarray | None = None
+) -> RefinedPencil:
     """(A - w M) x = 0 by ``eigh`` and up to ``max_steps`` Newton steps, until every backward error <= ``tol``.
 
     Each step refines the pairs whose backward error is above ``tol`` (all of them, by the
@@ -168,13 +225,16 @@ def refined_eigh(A, M, norm_A: float, norm_M: float, tol: float, max_steps: int 
         The backward error the pairs must reach; refinement stops there.
     max_steps : int
         Newton steps allowed.
+    factor : (n, n) float, optional
+        The lower Cholesky factor of M (:attr:`MassFactor.lower`) when the caller has it:
+        eigh then continues from it (the steps of ``dsygvd`` after its factorization).
 
     Returns
     -------
     RefinedPencil
         The caller checks ``eta`` against ``tol`` (refinement may stop short of it).
     """
-    w, X, info = _dsygvd(A, M, itype=1, jobz="V", uplo="L")
+    w, X, info = _eigh(A, M, factor)
     if info != 0:  # LAPACK's divide and conquer failed: scipy's driver (it raises a LinAlgError on a real failure)
         w, X = sla.eigh(A, M, check_finite=False)
     MX, AX = M @ X, A @ X

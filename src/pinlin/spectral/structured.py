@@ -48,12 +48,16 @@ def _mirrored(lam_a, lam_b, X, MX, CX, KX) -> RawSpectrum:
     return RawSpectrum(lam_a, np.stack([X, MX, CX, KX]), None, np.zeros(lam_a.shape[0], dtype=int), second=lam_b)
 
 
-def solve_symmetric(problem: QuadraticProblem, eigh_tol: float) -> tuple[RawSpectrum, RefinedPencil]:
+def solve_symmetric(
+    problem: QuadraticProblem, eigh_tol: float, factor: np.ndarray | None = None
+) -> tuple[RawSpectrum, RefinedPencil]:
     """D = G = N = 0: (S - mu M) phi = 0 by eigh and Newton refinement, lam = +-sqrt(-mu), x = y = phi.
 
     mu > 0 gives the conjugate pair +-i sqrt(mu) (an undamped mode); mu < 0 the
     real pair -+sqrt(-mu) (divergence); mu = 0 a double zero (rigid-body mode).
     L(lam) = lam^2 M + S is symmetric: the left vectors are the right ones.
+    ``factor``: M's lower Cholesky factor when the caller has it (see
+    :func:`~pinlin.spectral.refine.refined_eigh`).
 
     Returns
     -------
@@ -65,7 +69,7 @@ def solve_symmetric(problem: QuadraticProblem, eigh_tol: float) -> tuple[RawSpec
     """
     sys = problem.system
     M, S = sys.M, sys.S
-    pencil = refined_eigh(S, M, problem.norm_K, problem.norm_M, eigh_tol)
+    pencil = refined_eigh(S, M, problem.norm_K, problem.norm_M, eigh_tol, factor=factor)
     mu = pencil.w
     root = np.sqrt(np.abs(mu))
     pos = mu > 0
@@ -143,7 +147,8 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
 
 
 def solve_proportional(
-    problem: QuadraticProblem, *, structure_tol: float, eigh_tol: float, eigh_ok: bool = True
+    problem: QuadraticProblem, *, structure_tol: float, eigh_tol: float, eigh_ok: bool = True,
+    factor: np.ndarray | None = None,
 ) -> tuple[RawSpectrum | None, float, str]:
     """G = N = 0 with proportional damping: modal decoupling.
 
@@ -158,6 +163,7 @@ def solve_proportional(
     refinement (:func:`pinlin.spectral.refine.refined_eigh`); when their backward
     error stays above ``eigh_tol``, or ``eigh_ok`` is False (M too ill-conditioned
     for eigh, predicted by the caller), from QZ of the same n-size pencil instead.
+    ``factor``: M's lower Cholesky factor when the caller has it.
 
     Returns
     -------
@@ -178,7 +184,7 @@ def solve_proportional(
     norm_M, norm_A = frobenius(M), frobenius(A)
     Phi = None
     if eigh_ok:
-        pencil = refined_eigh(A, M, norm_A, norm_M, eigh_tol)
+        pencil = refined_eigh(A, M, norm_A, norm_M, eigh_tol, factor=factor)
         if pencil.eta.max() <= eigh_tol:
             Phi, MP = pencil.X, pencil.MX
             how = "eigh" if pencil.steps == 0 else "eigh + Newton"
