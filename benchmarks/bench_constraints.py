@@ -139,9 +139,14 @@ def run(quick: bool = False) -> Report:
     summary["machine load (1-minute load average, before / after the timing)"] = f"{load} / {load_average()}"
     accuracy, acc_summary = _accuracy(quick)
     summary.update(acc_summary)
-    return Report(
+    report = Report(
         name="constraints",
         tables=[timing, _equilibria(), accuracy],
         summary=summary,
         text=__doc__.split("\n\n", 1)[1],
     )
+    for key, ratio in summary.items():
+        if key.startswith("solo12") and key.endswith("constrained / unconstrained"):
+            report.target(11, "linearize of solo12 standing on four contacts at most 3x the unconstrained one",
+                          f"{ratio:.2f}x", bool(ratio <= 3.0), "unconstrained linearize, same robot and q")
+    return report
