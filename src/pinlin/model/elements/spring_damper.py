@@ -8,13 +8,13 @@ from typing import TYPE_CHECKING, ClassVar
 import numpy as np
 
 from ...errors import ConfigurationError, ParameterError
+from ...results import readonly
 from .base import Element, ElementGroup, check_vector3
 from .frame_pairs import (
     FramePairElement,
     ancestor_mask,
     cross,
     cross_motion,
-    fixed_wrench_stiffness,
     support_mask,
 )
 
@@ -23,6 +23,14 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..robot import Robot
 
 __all__ = ["LinearSpringDamper", "SpringDamperGroup", "COINCIDENT_RTOL"]
+
+#: omega x p = M(p) omega with M(p) = (p @ _TURN).reshape(3, 3): row k of _TURN is the Levi-Civita
+#: slice eps[:, :, k] (M(p)[i, j] = sum_k eps_ijk p_k), so all the frames' M come from one product.
+_TURN = np.zeros((3, 3, 3))
+_TURN[[0, 1, 2], [1, 2, 0], [2, 0, 1]] = 1.0
+_TURN[[0, 1, 2], [2, 0, 1], [1, 2, 0]] = -1.0
+_TURN = _TURN.transpose(2, 0, 1).reshape(3, 9)
+_TURN.flags.writeable = False
 
 #: Below this length, relative to the size of the points' positions (and 1 m), the
 #: line between them is rounding noise and has no direction.
@@ -113,22 +121,22 @@ class LinearSpringDamper(FramePairElement):
 class _Line:
     """The geometry of every spring of a group at one evaluation.
 
-    Arrays put the 3 components first: end points ``p_a``, ``p_b`` and the
-    springs' ``u``, ``F`` are (3, E); what is attached to frames is summed per
-    distinct frame (U of them) through the incidence matrix B (E x U, +1 at
-    the target's frame, -1 at the frame's), so that no (3, E, nv) array is formed:
-    J_rel = B C (C the frames' point Jacobians, (3, U, nv)).
+    End points, the springs' ``u`` and ``F`` are (3, E) (components first);
+    the frames' point Jacobians C are (U + 1, 3, nv), the extra frame a zero one
+    standing for the world (a fixed target point does not move).  Each spring's
+    relative Jacobian J_rel = C_b - C_a (E, 3, nv) is gathered once from C with
+    prepared index arrays; no sum over springs is a loop.
     """
 
     def __init__(self, group: SpringDamperGroup, ev: Evaluation, velocity: bool):
         self.p_f = ev.frame_positions(group.frame_ids).T  # (3, U)
         p_a = self.p_f[:, group.ia]
-        p_b = np.where(group.world_b, group.world_points, self.p_f[:, group.ib])
+        p_b = np.where(group.world_b, group.world_points, self.p_f[:, group.ib_frame])
         d = p_b - p_a
         self.l = np.sqrt(np.einsum("ie,ie->e", d, d))
         size = np.maximum(np.abs(p_a).max(axis=0), np.abs(p_b).max(axis=0))
         self.zero = self.l <= COINCIDENT_RTOL * np.maximum(size, 1.0)
-        bad = self.zero & ((group.l0 != 0) | (group.c != 0))
+        bad = self.zero & group.directed
         if bad.any():
             e = group.elements[int(np.flatnonzero(bad)[0])]
             raise ConfigurationError(
@@ -137,20 +145,31 @@ class _Line:
                 f"and damping = {e.damping:g} N s/m need one; move the points apart or use rest_length = 0 "
                 f"without damping"
             )
-        self.safe_l = np.where(self.zero, 1.0, self.l)
-        self.u = np.where(self.zero, 0.0, d / self.safe_l)
-        self.J0 = ev.world_jacobian()
-        self.r = np.zeros_like(d)  # relative velocity pdot_b - pdot_a [m/s]
+        self.any_zero = bool(self.zero.any())
+        self.safe_l = np.where(self.zero, 1.0, self.l) if self.any_zero else self.l
+        self.u = np.where(self.zero, 0.0, d / self.safe_l) if self.any_zero else d / self.l
+        J0 = self.J0 = ev.world_jacobian()
+        # point Jacobians of the frames' origins, v_k + omega_k x p on their supports; row U stays zero (the world)
+        U = len(group.frame_ids)
+        self.C = np.zeros((U + 1, 3, J0.shape[1]))
+        C = self.C[:U]  # a contiguous view, filled in place
+        np.matmul((self.p_f.T @ _TURN).reshape(3 * U, 3), J0[3:], out=C.reshape(3 * U, -1))  # omega_k x p_f
+        C += J0[:3]
+        C *= group.m_f[:, None, :]
+        self.Jrel = np.take(self.C, group.ib, axis=0) - np.take(self.C, group.ia, axis=0)  # (E, 3, nv)
+        self.uT = np.ascontiguousarray(self.u.T)  # (E, 3)
+        self.g = np.matmul(self.uT[:, None, :], self.Jrel)[:, 0]  # u^T J_rel: rates of the lengths (E, nv)
         if velocity:
-            Z = self.J0 @ (group.m_f * ev.v).T  # (6, U) spatial twists of the frames' bodies
-            self.r = (Z[:3] + cross(Z[3:], self.p_f)) @ group.B.T
-        self.ldot = np.einsum("ie,ie->e", self.u, self.r)
-        self.T = group.k * (self.l - group.l0) + group.c * self.ldot
+            self.r = (self.Jrel @ ev.v).T  # relative velocities pdot_b - pdot_a [m/s] (3, E)
+            self.ldot = self.g @ ev.v
+            self.T = group.k * (self.l - group.l0) + group.c * self.ldot
+        else:
+            self.r = None
+            self.ldot = np.zeros_like(self.l)
+            self.T = group.k * (self.l - group.l0)
         self.F = self.T * self.u  # force on the frame [N], world axes, (3, E)
         self.F_f = -self.F @ group.B  # total force on each frame (3, U)
-        self._C: np.ndarray | None = None
         self._W: np.ndarray | None = None
-        self._g: np.ndarray | None = None
 
     def wrench_columns(self, group: SpringDamperGroup) -> np.ndarray:
         """(6, nv): per dof, the spatial wrenches of the springs on the bodies it supports."""
@@ -158,109 +177,135 @@ class _Line:
             self._W = np.concatenate([self.F_f, cross(self.p_f, self.F_f)]) @ group.m_f
         return self._W
 
-    def point_jacobians(self, group: SpringDamperGroup) -> np.ndarray:
-        """(3, U, nv): linear Jacobians of the frames' origins in world axes, v_k + omega_k x p."""
-        if self._C is None:
-            J0 = self.J0
-            self._C = (J0[:3, None, :] + cross(J0[3:, None, :], self.p_f[:, :, None])) * group.m_f
-        return self._C
-
-    def axial_rows(self, group: SpringDamperGroup) -> np.ndarray:
-        """(E, nv): u^T J_rel, the rates of change of the lengths per joint velocity."""
-        if self._g is None:
-            self._g = self.rows(self.u, group, self.point_jacobians(group))
-        return self._g
-
-    @staticmethod
-    def rows(weights: np.ndarray, group: SpringDamperGroup, C: np.ndarray) -> np.ndarray:
-        """(E, nv): w_e^T J_rel_e for a (3, E) array of vectors w (u^T J_rel: the rates of the lengths)."""
-        E, U = group.B.shape
-        WB = (weights[:, :, None] * group.B).transpose(1, 0, 2).reshape(E, 3 * U)
-        return WB @ C.reshape(3 * U, -1)
+    def rel(self, group: SpringDamperGroup, X: np.ndarray) -> np.ndarray:
+        """(E, 3, nv): X_b - X_a per spring for a per-frame array X (U, 3, nv); zero on the world."""
+        return X[group.ib_frame] * group.on_b[:, None, None] - X[group.ia]
 
 
 class SpringDamperGroup(ElementGroup):
-    """All the spring-dampers of a scene as arrays: small products, no loop over springs.
+    """All the spring-dampers of a scene as arrays: gathers and products, no loop over springs.
 
-    Positions are read once per evaluation for all distinct frames; Jacobians
-    come from the world Jacobian (one copy of Pinocchio's ``data.J``) and the
-    frames' support masks; sums over springs are products with the incidence
-    matrix B (the transverse stiffness is sum_i C_i^T B^T diag(T / l) B C_i).
+    Built once per scene (immutable, read-only arrays: the group is shared by
+    threads).  Positions are read once per evaluation for the distinct frames;
+    Jacobians come from the world Jacobian (one copy of Pinocchio's ``data.J``)
+    and the frames' support masks.  The stiffness of the lines is
+    sum_e J_rel_e^T Y_e with Y_e = A_e J_rel_e (3 x nv, A_e the spring's 3 x 3
+    stiffness), formed for all springs at once and summed in one product
+    (:meth:`_quadratic`); the damping and elastic stiffness are products of
+    the length rates g = u^T J_rel; the dead-force term is two (nv x nv)
+    products whatever the number of springs (:meth:`_dead_force_stiffness`).
     """
 
     def __init__(self, elements: tuple[LinearSpringDamper, ...], robot: Robot):
         super().__init__(elements)
         model = robot.model
         self.symmetric_stiffness = False
+        E = len(elements)
         fa = [robot.frame_id(e.frame) for e in elements]
         fb = [robot.frame_id(e.target) if isinstance(e.target, str) else -1 for e in elements]
         self.frame_ids = tuple(sorted(set(fa) | {f for f in fb if f >= 0}))
-        self.ia = np.array([self.frame_ids.index(f) for f in fa], dtype=int)
-        self.ib = np.array([self.frame_ids.index(f) if f >= 0 else 0 for f in fb], dtype=int)
-        self.world_b = np.array([f < 0 for f in fb])
-        self.world_points = np.zeros((3, len(elements)))
-        for i, e in enumerate(elements):
-            if not isinstance(e.target, str):
-                self.world_points[:, i] = e.target
-        self.B = np.zeros((len(elements), len(self.frame_ids)))
-        np.add.at(self.B, (np.arange(len(elements)), self.ia), -1.0)
-        np.add.at(self.B, (np.arange(len(elements))[~self.world_b], self.ib[~self.world_b]), 1.0)
-        self.m_f = np.array([support_mask(model, model.frames[f].parentJoint) for f in self.frame_ids])
-        self.T = ancestor_mask(model)
-        self.k = np.array([e.stiffness for e in elements])
-        self.c = np.array([e.damping for e in elements])
-        self.l0 = np.array([e.rest_length for e in elements])
+        U = len(self.frame_ids)
+        index = {f: i for i, f in enumerate(self.frame_ids)}
+        world_b = np.array([f < 0 for f in fb], dtype=bool).reshape(E)
+        self.ia = readonly(np.array([index[f] for f in fa], dtype=np.intp))
+        # the target's frame, U (the zero row of the point Jacobians) for a world point
+        self.ib = readonly(np.array([index[f] if f >= 0 else U for f in fb], dtype=np.intp))
+        self.ib_frame = readonly(np.where(world_b, 0, self.ib))  # a valid frame index for gathers from (3, U)
+        self.world_b = readonly(world_b)
+        self.on_b = readonly((~world_b).astype(float))
+        self.world_points = readonly(
+            np.array([np.zeros(3) if isinstance(e.target, str) else e.target for e in elements]).reshape(E, 3).T
+        )
+        B = np.zeros((E, U))
+        B[np.arange(E), self.ia] -= 1.0
+        B[np.arange(E)[~world_b], self.ib[~world_b]] += 1.0
+        self.B = readonly(B)  # incidence: -1 at the frame, +1 at the target's frame (E x U)
+        self.m_f = readonly(np.array([support_mask(model, model.frames[f].parentJoint) for f in self.frame_ids]))
+        self.T = readonly(ancestor_mask(model))
+        self.k = readonly(np.array([e.stiffness for e in elements], dtype=float))
+        self.c = readonly(np.array([e.damping for e in elements], dtype=float))
+        self.l0 = readonly(np.array([e.rest_length for e in elements], dtype=float))
+        self.damped = bool(self.c.any())
+        self.directed = readonly((self.l0 != 0) | (self.c != 0))  # springs that need the line's direction
+        # dof pairs (k, l) where joint(k) strictly supports joint(l): the dead-force term's second mask
+        self.T_below = readonly(self.T.T * (1.0 - self.T))
 
     def _line(self, ev: Evaluation) -> _Line:
         """The geometry at ``ev``, computed once for the force, stiffness and damping of one evaluation
         (kept on the evaluation, which one caller owns: the group is shared with the scene)."""
-        return ev.memo(self, lambda: _Line(self, ev, velocity=not ev.at_rest and bool(self.c.any())))
+        return ev.memo(self, lambda: _Line(self, ev, velocity=self.damped and not ev.at_rest))
 
-    def _laplacian(self, C: np.ndarray, w: np.ndarray) -> np.ndarray:
-        """sum_e w_e J_rel_e^T J_rel_e (nv x nv) = sum_i C_i^T (B^T diag(w) B) C_i."""
-        L = self.B.T @ (w[:, None] * self.B)
-        flat = C.reshape(-1, C.shape[2])
-        return flat.T @ np.matmul(L, C).reshape(flat.shape)
+    @staticmethod
+    def _quadratic(line: _Line, Y: np.ndarray) -> np.ndarray:
+        """sum_e J_rel_e^T Y_e (nv x nv) for Y (E, 3, nv): one product over all springs.
+
+        (Summing Y per frame first, sum_f C_f^T (sum_e B_ef Y_e), costs 3U nv (E + nv)
+        multiplications against 3E nv^2: no cheaper while the U frames are about as many
+        as the degrees of freedom.)
+        """
+        nv = Y.shape[2]
+        return line.Jrel.reshape(-1, nv).T @ Y.reshape(-1, nv)
 
     def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
         line = self._line(ev)
         Q += np.einsum("ik,ik->k", line.J0, line.wrench_columns(self))
 
     def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
-        if not self.c.any():
+        if not self.damped:
             return
-        g = self._line(ev).axial_rows(self)
+        g = self._line(ev).g
         C += g.T @ (self.c[:, None] * g)
 
     def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         line = self._line(ev)
-        g = line.axial_rows(self)
-        K += g.T @ (self.k[:, None] * g)
-        if line.zero.any():  # zero-length spring (l0 = 0): its energy k |d|^2 / 2 is isotropic
-            K += self._laplacian(line.point_jacobians(self), np.where(line.zero, self.k, 0.0))
+        K += line.g.T @ (self.k[:, None] * line.g)
+        if line.any_zero:  # zero-length spring (l0 = 0): its energy k |d|^2 / 2 is isotropic
+            K += self._quadratic(line, np.where(line.zero, self.k, 0.0)[:, None, None] * line.Jrel)
 
     def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         line = self._line(ev)
-        Cf = line.point_jacobians(self)
-        g = line.axial_rows(self)
         # J_rel^T [k u u^T + (T / l)(I - u u^T)] J_rel; a zero-length spring: k I
-        tl = np.where(line.zero, self.k, line.T / line.safe_l)
-        K += self._laplacian(Cf, tl) + g.T @ ((self.k - tl)[:, None] * g)
-        if not ev.at_rest and self.c.any():  # d(ldot)/dq: the line turns, and the relative velocity changes
-            h = line.rows(line.r - line.ldot * line.u, self, Cf)
-            dr = line.rows(line.u, self, self._velocity_derivative(ev, line))
-            K += g.T @ ((self.c / line.safe_l)[:, None] * h + self.c[:, None] * dr)
-        # the dead-force term: d(sum J_f^T F_f)/dq with the frames' forces F_f held in world axes
-        dead = fixed_wrench_stiffness(line.J0, self.T, line.wrench_columns(self))
-        FxC = cross(line.F_f[:, :, None], Cf)  # (3, U, nv)
-        for i in range(3):
-            dead -= line.J0[3 + i][:, None] * (self.m_f.T @ FxC[i])
-        K -= dead
+        tl = np.where(line.zero, self.k, line.T / line.safe_l) if line.any_zero else line.T / line.l
+        rows = (self.k - tl)[:, None] * line.g
+        if line.r is not None:  # d(ldot)/dq: the line turns, and the relative velocity changes
+            h = np.einsum("ie,ein->en", line.r - line.ldot * line.u, line.Jrel)
+            dr = np.einsum("ie,ein->en", line.u, line.rel(self, self._velocity_derivative(ev, line)))
+            rows += (self.c / line.safe_l)[:, None] * h + self.c[:, None] * dr
+        Y = tl[:, None, None] * line.Jrel
+        Y += line.uT[:, :, None] * rows[:, None, :]
+        K += self._quadratic(line, Y)
+        K += self._dead_force_stiffness(line)
+
+    def _dead_force_stiffness(self, line: _Line) -> np.ndarray:
+        """-d(sum_f J_f^T F_f)/dq with the frames' forces F_f held in world axes (nv x nv).
+
+        With J_f's column l = m_fl (v_l + omega_l x p_f), the turning of the twists
+        (:func:`.frame_pairs.fixed_wrench_stiffness`) and the motion of the points p_f give
+
+        .. math::  X_{kl} = \\sum_f m_{fk} m_{fl}\\,\\big[\\omega_k\\cdot(F_f\\times v_l)
+                   + (\\omega_k\\cdot\\omega_l)(F_f\\cdot p_f) - (\\omega_k\\cdot p_f)(F_f\\cdot\\omega_l)\\big]
+                   - T_{kl}\\,(\\xi_k\\times^* W_k)\\cdot\\xi_l.
+
+        On a tree m_fk m_fl = 1 exactly when f lies below the deeper of the two joints,
+        so the sums over frames are per-dof sums (like W) taken at k where joint(l)
+        supports joint(k) (T_kl = 1) and at l where joint(k) strictly supports joint(l):
+        two (nv x nv) products, no sum over frames per pair.  The omega_k x f_k parts of
+        the two terms cancel.
+        """
+        J0, F_f, p_f = line.J0, line.F_f, line.p_f
+        W = line.wrench_columns(self)  # (f_k, tau_k): sums over the frames below dof k
+        f, tau, v, w = W[:3], W[3:], J0[:3], J0[3:]
+        s2 = np.einsum("iu,iu->u", F_f, p_f) @ self.m_f  # sum of F_f . p_f below dof k (nv,)
+        S3 = ((p_f[:, None] * F_f[None]).reshape(9, -1) @ self.m_f).reshape(3, 3, -1)  # sum of p_f F_f^T below k
+        at_k = s2 * w - np.einsum("jin,jn->in", S3, w) - cross(v, f) - cross(w, tau)  # (3, nv)
+        at_l = cross(f, v) + s2 * w - np.einsum("ijn,jn->in", S3, w)
+        return self.T * (at_k.T @ w) + self.T_below * (w.T @ at_l)
 
     def _velocity_derivative(self, ev: Evaluation, line: _Line) -> np.ndarray:
-        """d(pdot)/dq at fixed v of each frame's origin (3, U, nv)."""
+        """d(pdot)/dq at fixed v of each frame's origin (U, 3, nv)."""
         J0 = line.J0
         weights = self.m_f * ev.v  # (U, nv)
         Z = J0 @ weights.T  # (6, U) spatial twists of the bodies
         dZ = cross_motion(J0[:, None, :], (J0[:, None, :] * weights[None]) @ self.T)  # (6, U, nv)
-        return dZ[:3] - cross(line.p_f[:, :, None], dZ[3:]) + cross(Z[3:, :, None], line.point_jacobians(self))
+        dp = dZ[:3] - cross(line.p_f[:, :, None], dZ[3:]) + cross(Z[3:, :, None], line.C[:-1].transpose(1, 0, 2))
+        return dp.transpose(1, 0, 2)
