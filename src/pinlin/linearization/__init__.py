@@ -11,8 +11,8 @@ One concept per module:
 - :mod:`.time_invariance` -- do the equations depend on a prescribed joint's position?
   Proofs once per scene, the numerical check elsewhere;
 - :mod:`.equilibrium` -- Newton on the configuration manifold;
-- :mod:`.linearize` -- :func:`linearize`: restriction to the free coordinates,
-  symmetric and skew parts;
+- :mod:`.linearize` -- :func:`linearize`: restriction to the free coordinates and
+  the checks; :mod:`.split` the symmetric and skew parts;
 - :mod:`.batch` -- :func:`linearize_many`: one scene at many configurations, the
   checks and splits shared; :mod:`.batch_static` its path for joint-space scenes at
   rest (the element work vectorized over the points);

@@ -50,8 +50,8 @@ def fro(a: np.ndarray) -> float:
     overflows (entries beyond about 1e154; numpy has warned) again from the scaled
     array.  Infinite or NaN entries give a non-finite norm either way.
     """
-    if a.size <= SMALL_NORM:
-        return math.hypot(*a.ravel().tolist())
+    if a.size <= SMALL_NORM:  # a vector's tolist is flat already: no ravel
+        return math.hypot(*(a.tolist() if a.ndim == 1 else a.ravel().tolist()))
     square = np.vdot(a, a)  # flattens; one call
     if square < math.inf:  # False for inf and NaN
         return math.sqrt(square)
@@ -87,7 +87,9 @@ class Assembly:
         stiffness is not exactly symmetric.
     coriolis_D : (nv, nv) ndarray or None
         Symmetric part of Pinocchio's dtau/dv (zero in exact arithmetic for a
-        time-invariant steady motion; rounding otherwise).
+        time-invariant steady motion; rounding otherwise); C itself when the
+        elements add no damping (``plan.undamped``): its symmetric part is then
+        the one the split forms from C, entry for entry (not formed twice).
     calls : list of str
         The Pinocchio algorithms run.
     """
@@ -181,8 +183,11 @@ def assemble(
     if C is not None:
         scale_C = fro(C)
         if damping:
-            coriolis_D = C + C.T.copy()  # (C + C^T) / 2; the contiguous copy makes the sum cheaper
-            coriolis_D *= 0.5
+            if plan.undamped:  # C stays Pinocchio's alone: the split's D of C is this part, bitwise
+                coriolis_D = C
+            else:
+                coriolis_D = C + C.T.copy()  # (C + C^T) / 2; the contiguous copy makes the sum cheaper
+                coriolis_D *= 0.5
     elif damping:  # at rest: C is the elements' damping alone
         if plan.rest_damping is None:
             C = np.zeros((nv, nv))

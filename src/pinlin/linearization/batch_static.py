@@ -104,7 +104,7 @@ def linearize_at_rest(scene: Scene, points: list[np.ndarray], equilibrium_tol: f
     rel = _norms(r) / np.where(force_scale > 0, force_scale, 1.0)
     rel[force_scale <= 0] = 0.0
     _check_points(scene, r, force_scale, rel, M, equilibrium_tol, balancing)
-    S = K.transpose(0, 2, 1).copy()  # as linearize's _split_stiffness, entry by entry
+    S = K.transpose(0, 2, 1).copy()  # as split.split_stiffness, entry by entry
     N = K - S
     sizes = 0.5 * _norms(N) / np.maximum(rounding, _TINY)
     S += K

@@ -27,6 +27,8 @@ from ..model.scene import Scene
 from .assembly import Assembly, assemble, fro
 from .constraint_set import CONSTRAINT_TOL, RANK_TOL
 from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan
+from .split import split_damping as _split_damping
+from .split import split_stiffness as _split_stiffness
 from .system import LinearizedSystem, null_motion
 from .time_invariance import PERIODIC_TEST_ANGLES, numeric_change
 from .workspace import Evaluation
@@ -57,7 +59,7 @@ def _massless_joints(scene: Scene) -> list[str]:
 
 
 def _check_mass(scene: Scene, M: np.ndarray) -> None:
-    if lapack.dpotrf(M, lower=1, clean=0)[1] == 0:  # Cholesky succeeded: positive definite
+    if lapack.dpotrf(M, 1, 0)[1] == 0:  # lower, no clean (positional: cheaper); Cholesky succeeded: PD
         return
     joints = _massless_joints(scene)
     if not joints:
@@ -298,69 +300,6 @@ def _prescribed_notes(
             f"after moving them by {list(PERIODIC_TEST_ANGLES)} (checked numerically)"
         )
     return notes, calls
-
-
-def _split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) -> tuple[np.ndarray, np.ndarray]:
-    """S = (K + K^T) / 2 and N = (K - K^T) / 2, N set to zero when it is at rounding level.
-
-    The reference of N's size is ``rounding``: the norm of the parts of K that
-    carry rounding breaking their exact symmetry (Pinocchio's, and the elements'
-    whose stiffness is not exactly symmetric).
-    """
-    S = K.T.copy()  # K^T, contiguous: cheaper sums than with the transposed view
-    N = K - S
-    size = 0.5 * fro(N) / max(rounding, _TINY)  # ||(K - K^T) / 2||, exactly (a power-of-two scaling)
-    S += K  # K^T + K: the same sum as K + K^T (addition commutes exactly), in place
-    S *= 0.5
-    if size <= tol:
-        if size:
-            dropped["N"] = size
-        return S, np.zeros(K.shape)
-    N *= 0.5
-    return S, N
-
-
-def _split_damping(
-    C: np.ndarray, base: Assembly, plan: LinearizationPlan, tol: float, dropped: dict
-) -> tuple[np.ndarray, np.ndarray]:
-    """D = (C + C^T) / 2 and G = (C - C^T) / 2 with the rounding-level parts set to zero.
-
-    At rest C is the elements' damping: G is their rounding (products that are
-    not symmetric in floating point) unless it exceeds ``tol`` of ||C||.  With a
-    prescribed velocity, Pinocchio's dtau/dv is skew in exact arithmetic: its
-    symmetric part (``coriolis_D``) is dropped from D when at rounding level, and
-    G when it is, both against the norm of Pinocchio's part.
-    """
-    if base.coriolis_D is None and not plan.moving and plan.rest_damping is not None:
-        return plan.rest_damping.split(tol, dropped)  # constant: split once per scene
-    T = C.T.copy()  # contiguous: cheaper sums than with the transposed view, the same values
-    G = C - T
-    if base.coriolis_D is None:  # C from the elements alone
-        if not np.count_nonzero(G):
-            return C, G  # exactly symmetric (G is zero)
-        G *= 0.5
-        size = fro(G) / max(fro(C), _TINY)
-        D = C + T
-        D *= 0.5
-        if size <= tol:
-            dropped["G (element rounding)"] = size
-            G = np.zeros(C.shape)
-        return D, G
-    G *= 0.5
-    D = C + T
-    D *= 0.5
-    D_rnea = base.coriolis_D if plan.everything else base.coriolis_D[plan.block]
-    size = fro(D_rnea) / max(base.rounding_scale_C, _TINY)
-    if size <= tol:  # the Coriolis part of C is skew in exact arithmetic
-        D = D - D_rnea
-        if size:
-            dropped["D (Coriolis rounding)"] = size
-    size = fro(G) / max(base.rounding_scale_C, _TINY)
-    if size <= tol:
-        if size:
-            dropped["G"] = size
-        G = np.zeros(C.shape)
-    return D, G
 
 
 def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:

@@ -127,6 +127,9 @@ class LinearizationPlan:
         The elements' constant damping and its split, when every group's damping
         is constant (``group.constant_damping``); None otherwise.  Used at rest,
         where C is the elements' damping alone.
+    undamped : bool
+        True when the elements add no damping at any point (their constant damping
+        is zero): with a prescribed velocity C is Pinocchio's dtau/dv alone.
     """
 
     __slots__ = (
@@ -144,6 +147,7 @@ class LinearizationPlan:
         "proof_notes",
         "largest_departure",
         "rest_damping",
+        "undamped",
     )
 
     def __init__(self, scene: Scene):
@@ -166,6 +170,7 @@ class LinearizationPlan:
         self.largest_departure = max((p.departure for p in self.proofs.values()), default=0.0)
         constant = all(g.constant_damping for g in scene.groups)
         self.rest_damping = RestDamping(scene, self.block) if constant else None
+        self.undamped = constant and not np.count_nonzero(self.rest_damping.C)
 
     def __repr__(self) -> str:
         proved = ", ".join(self.proofs) or "none"

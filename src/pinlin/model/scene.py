@@ -30,8 +30,9 @@ ANGLE_LIMIT = 2.0 * math.pi / float(np.finfo(float).eps)
 #: is a unit vector, and one this short is unset (typed zeros) rather than a rotation; its
 #: normalization would amplify its rounding by more than 1e8.
 UNIT_NORM_MIN = 1e-8
-#: Configurations up to this size are checked as Python floats (cheaper than numpy calls for few entries).
-_SMALL_NQ = 64
+#: Up to _SMALL_NQ entries q is checked as Python floats (cheaper than numpy calls for few); a norm
+#: of q up to _HALF_LIMIT puts every entry within ANGLE_LIMIT (half: far above the norm's rounding).
+_SMALL_NQ, _HALF_LIMIT, _F64 = 64, 0.5 * ANGLE_LIMIT, np.dtype(np.float64)
 #: Joint kinds whose configuration ends with a unit vector (quaternion, or (cos, sin)), and its size.
 _UNIT_BLOCKS = {"FreeFlyer": 4, "Spherical": 4, "RUBX": 2, "RUBY": 2, "RUBZ": 2, "RevoluteUnboundedUnaligned": 2, "Planar": 2}
 
@@ -342,8 +343,8 @@ class Scene:
             Wrong size, complex or non-finite entries, an angle beyond
             :data:`ANGLE_LIMIT`, or a zero quaternion or (cos, sin) pair (naming the joint).
         """
-        if type(q) is np.ndarray and q.dtype == np.float64:
-            q = q.copy()  # the result may be frozen read-only
+        if type(q) is np.ndarray and q.dtype is _F64:  # the common case; pin.normalize below copies too
+            q = q.copy() if self._unit_blocks is None else q  # the result may be frozen read-only
         else:  # numpy would drop an imaginary part with a warning
             try:
                 complex_entries = np.iscomplexobj(q)
@@ -359,10 +360,9 @@ class Scene:
                 f"{label} has shape {q.shape}; robot {self.robot.name!r} needs a full Pinocchio "
                 f"configuration of size nq = {self.robot.nq} (prescribed joints included)"
             )
-        # within ANGLE_LIMIT everywhere is the common case (NaN fails the comparisons); beyond it each
-        # entry is checked against its own limit (Python floats are cheaper than numpy for few entries)
+        # |q_i| <= ||q|| (rounding is monotone; NaN, inf: no norm): one norm, else each entry vs its limit
         values = q.tolist() if self._q_small else None
-        within = all(-ANGLE_LIMIT <= x <= ANGLE_LIMIT for x in values) if values else np.abs(q).max() <= ANGLE_LIMIT
+        within = math.hypot(*values) <= _HALF_LIMIT if values is not None else np.dot(q, q) <= _HALF_LIMIT**2
         if not within and not (np.abs(q) <= self._q_limit).all():
             self._refuse_configuration(q, label)
         if self._unit_blocks is None:  # a vector space: nothing to normalize
@@ -376,7 +376,7 @@ class Scene:
                     f"its length {length:.3g} is below {UNIT_NORM_MIN:g} (a unit quaternion or "
                     f"(cos, sin) pair is expected; pinlin does not take a zero one as the identity)"
                 )
-        return pin.normalize(self.model, q)
+        return pin.normalize(self.model, q)  # a fresh array
 
     def _refuse_configuration(self, q: np.ndarray, label: str) -> None:
         bad = np.flatnonzero(~np.isfinite(q))

@@ -1,0 +1,88 @@
+"""The symmetric and skew parts of C and K, rounding-level parts set to exactly zero (SPEC section 1).
+
+:func:`split_stiffness` (S, N) and :func:`split_damping` (D, G) for
+:func:`~pinlin.linearization.linearize`; what was set to zero and its relative
+size go to ``sys.dropped``.  The halving of a skew part is skipped when it is
+dropped: its size is half the difference's norm, exactly (a power-of-two scaling).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .assembly import Assembly, fro
+from .plan import LinearizationPlan
+
+__all__ = ["split_stiffness", "split_damping"]
+
+_TINY = float(np.finfo(float).tiny)
+
+
+def _halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """((A^T + A) / 2, A - A^T and ||A - A^T||_F): the arithmetic of the symmetric/skew split."""
+    T = A.T.copy()  # A^T, contiguous: cheaper sums than with the transposed view
+    difference = A - T
+    T += A  # A^T + A: the same sum as A + A^T (addition commutes exactly), in place
+    T *= 0.5
+    return T, difference, fro(difference)
+
+
+def split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) -> tuple[np.ndarray, np.ndarray]:
+    """S = (K + K^T) / 2 and N = (K - K^T) / 2, N set to zero when it is at rounding level.
+
+    The reference of N's size is ``rounding``: the norm of the parts of K that
+    carry rounding breaking their exact symmetry (Pinocchio's, and the elements'
+    whose stiffness is not exactly symmetric).
+    """
+    S, difference, norm = _halves(K)
+    size = 0.5 * norm / max(rounding, _TINY)  # ||(K - K^T) / 2||, exactly (a power-of-two scaling)
+    if size <= tol:
+        if size:
+            dropped["N"] = size
+        return S, np.zeros(K.shape)
+    difference *= 0.5
+    return S, difference
+
+
+def split_damping(
+    C: np.ndarray, base: Assembly, plan: LinearizationPlan, tol: float, dropped: dict
+) -> tuple[np.ndarray, np.ndarray]:
+    """D = (C + C^T) / 2 and G = (C - C^T) / 2 with the rounding-level parts set to zero.
+
+    At rest C is the elements' damping: G is their rounding (products that are
+    not symmetric in floating point) unless it exceeds ``tol`` of ||C||.  With a
+    prescribed velocity, Pinocchio's dtau/dv is skew in exact arithmetic: its
+    symmetric part (``coriolis_D``) is dropped from D when at rounding level, and
+    G when it is, both against the norm of Pinocchio's part.  Sizes of G are
+    half the difference's norm, exactly (a power-of-two scaling).
+    """
+    if base.coriolis_D is None and not plan.moving and plan.rest_damping is not None:
+        return plan.rest_damping.split(tol, dropped)  # constant: split once per scene
+    D, difference, norm = _halves(C)
+    if base.coriolis_D is None:  # C from the elements alone
+        if not norm and not np.count_nonzero(difference):
+            return C, np.zeros(C.shape)  # exactly symmetric
+        size = 0.5 * norm / max(fro(C), _TINY)
+        if size <= tol:
+            dropped["G (element rounding)"] = size
+            return D, np.zeros(C.shape)
+        difference *= 0.5
+        return D, difference
+    if plan.undamped:  # C is Pinocchio's alone (coriolis_D is C): D is its symmetric part
+        size = fro(D) / max(base.rounding_scale_C, _TINY)
+        if size <= tol:
+            D = np.zeros(C.shape)  # D - D: exactly zero, D being finite (checked before the split)
+    else:
+        D_rnea = base.coriolis_D if plan.everything else base.coriolis_D[plan.block]
+        size = fro(D_rnea) / max(base.rounding_scale_C, _TINY)
+        if size <= tol:  # the Coriolis part of C is skew in exact arithmetic
+            D -= D_rnea  # D is a fresh array
+    if size <= tol and size:
+        dropped["D (Coriolis rounding)"] = size
+    size = 0.5 * norm / max(base.rounding_scale_C, _TINY)
+    if size <= tol:
+        if size:
+            dropped["G"] = size
+        return D, np.zeros(C.shape)
+    difference *= 0.5
+    return D, difference
