@@ -265,6 +265,9 @@ def run(quick: bool = False) -> Report:
         "the fair per-element figure."
     )
     report = Report("frame_elements", [t1, t2, t3, t4], summary, figures, text=text)
+    report.target(12, f"a spring-damper at most {TARGET_RATIO:g}x a joint spring's cost per element",
+                  f"{ratio:.3g}x per element, marginal {slopes['spring-dampers'] / slopes['joint springs']:.3g}x",
+                  bool(ratio <= TARGET_RATIO), f"joint springs on the same {LINKS}-link chain")
     report.elapsed = time.perf_counter() - t_start
     return report
 
