@@ -29,3 +29,15 @@ def fd_jacobians(scene, q, v=None, h=1e-6):
 
 def rel_err(a, b):
     return float(np.linalg.norm(np.asarray(a) - np.asarray(b)) / max(np.linalg.norm(b), 1e-300))
+
+
+#: A hinge carrying a bar, and a second hinge carrying a link without mass or inertia ("ghost_joint"):
+#: its mass matrix is singular, and the error should name that joint.
+MASSLESS_LINK_URDF = """<robot name="x"><link name="base"/>
+      <link name="bar"><inertial><mass value="1"/><origin xyz="0 0 -0.5"/>
+        <inertia ixx="0.1" iyy="0.1" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+      <link name="ghost"/>
+      <joint name="hinge" type="revolute"><parent link="base"/><child link="bar"/><axis xyz="0 1 0"/>
+        <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+      <joint name="ghost_joint" type="revolute"><parent link="bar"/><child link="ghost"/><axis xyz="0 1 0"/>
+        <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""

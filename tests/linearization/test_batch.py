@@ -6,6 +6,7 @@ import pytest
 from numpy.testing import assert_array_equal
 
 import pinlin
+from helpers import MASSLESS_LINK_URDF
 from pinlin.errors import ConfigurationError, NotAnEquilibriumError, ParameterError, SingularMassError
 from pinlin.linearization import batch_static
 
@@ -127,14 +128,7 @@ def test_bad_input():
     q_eq = pinlin.find_equilibrium(scene, np.zeros(2)).q
     with pytest.raises(NotAnEquilibriumError, match="not an equilibrium"):
         pinlin.linearize_many(scene, [q_eq, q_eq + 0.3])
-    ghost = """<robot name="x"><link name="base"/>
-      <link name="bar"><inertial><mass value="1"/><origin xyz="0 0 -0.5"/>
-        <inertia ixx="0.1" iyy="0.1" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
-      <link name="ghost"/>
-      <joint name="hinge" type="revolute"><parent link="base"/><child link="bar"/><axis xyz="0 1 0"/>
-        <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-      <joint name="ghost_joint" type="revolute"><parent link="bar"/><child link="ghost"/><axis xyz="0 1 0"/>
-        <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""
+    ghost = MASSLESS_LINK_URDF
     massless = pinlin.Scene(pinlin.load_urdf_string(ghost))
     with pytest.raises(SingularMassError, match=r"joints \['ghost_joint'\].*lock them"):
         pinlin.linearize_many(massless, np.zeros((2, 2)))

@@ -5,6 +5,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import pinlin
+from helpers import MASSLESS_LINK_URDF
 
 
 @pytest.fixture(scope="module")
@@ -37,14 +38,7 @@ def test_wrong_configuration_size(chain):
 
 
 def test_singular_mass_names_the_massless_joint():
-    text = """<robot name="x"><link name="base"/>
-      <link name="bar"><inertial><mass value="1"/><origin xyz="0 0 -0.5"/>
-        <inertia ixx="0.1" iyy="0.1" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
-      <link name="ghost"/>
-      <joint name="hinge" type="revolute"><parent link="base"/><child link="bar"/><axis xyz="0 1 0"/>
-        <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
-      <joint name="ghost_joint" type="revolute"><parent link="bar"/><child link="ghost"/><axis xyz="0 1 0"/>
-        <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""
+    text = MASSLESS_LINK_URDF
     robot = pinlin.load_urdf_string(text)
     with pytest.raises(pinlin.SingularMassError, match=r"joints \['ghost_joint'\].*lock them") as info:
         pinlin.linearize(pinlin.Scene(robot), [0.0, 0.0])
