@@ -225,3 +225,18 @@ def test_few_springs_path_matches_hand_values_and_numpy_path(chain, count):
     group.add_force(ev, Q2)
     group.add_stiffness(ev, K2)
     assert Q2.tolist() == Q.tolist() and K2.tolist() == K.tolist()
+
+
+def test_structure_checks_hold_for_entries_near_the_top_of_double_range():
+    """Huge entries (1e300): the symmetry check's norms are rescaled, not overflowed to inf (which made the
+    check vacuous: an asymmetric M passed) and no spurious overflow warning reaches the user."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sys = pinlin.LinearizedSystem.from_matrices(1e300 * np.eye(3), None, 1e-300 * np.eye(3))
+    assert sys.n == 3
+    bad = 1e300 * np.array([[1.0, 0.5], [0.4, 1.0]])
+    zero = np.zeros((2, 2))
+    with pytest.raises(pinlin.ParameterError, match="M.*symmetric"):
+        pinlin.LinearizedSystem(bad, zero, zero, np.eye(2), zero)

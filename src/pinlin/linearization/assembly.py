@@ -47,7 +47,7 @@ def fro(a: np.ndarray) -> float:
 
     Up to :data:`SMALL_NORM` entries, ``math.hypot`` (overflow-safe and accurate by
     itself); else the square root of one dot product, and when its sum of squares
-    overflows (entries beyond about 1e154; numpy has warned) again from the scaled
+    overflows (entries beyond about 1e154; BLAS's dot does not warn) again from the scaled
     array.  Infinite or NaN entries give a non-finite norm either way.
     """
     if a.size <= SMALL_NORM:  # a vector's tolist is flat already: no ravel

@@ -14,6 +14,7 @@ import numpy as np
 
 from ..errors import ParameterError, SingularMassError
 from ..results import Result
+from .assembly import fro
 
 __all__ = ["LinearizedSystem", "MATRIX_NAMES", "null_motion", "NULL_MOTION_SHARE"]
 
@@ -50,7 +51,8 @@ def _frozen(a: np.ndarray) -> np.ndarray:
 
 
 def _fro(a: np.ndarray) -> float:
-    return float(np.linalg.norm(a))
+    """Frobenius norm without a spurious overflow warning (entries beyond 1e154: rescaled, see ``fro``)."""
+    return fro(a)
 
 
 @dataclass(frozen=True, repr=False, eq=False)
