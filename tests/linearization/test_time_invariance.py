@@ -22,11 +22,17 @@ from numpy.testing import assert_allclose
 import pinlin
 from pinlin.linearization.assembly import assemble
 from pinlin.linearization.time_invariance import (
+    BODY_FIXED_LOAD,
+    DEAD_LOAD,
+    JOINT_SPACE,
     PERIODIC_TEST_ANGLES,
     SYMMETRY_TOL,
+    UNKNOWN,
+    invariance_kind,
     invariance_proofs,
     numeric_change,
 )
+from pinlin.model.elements import ElementGroup
 
 OMEGA = 10.0
 #: A proof must agree with the numerical check to rounding: the equations at the moved
@@ -206,3 +212,137 @@ def test_matrices_do_not_depend_on_the_angle_of_a_proved_joint():
         for name in ("M", "C", "K"):
             assert_allclose(getattr(other, name), getattr(systems[0], name), rtol=1e-14, atol=1e-14)
     assert np.array_equal(systems[0].M, [[1.0 * 0.5**2 + 0.1 + 0.5 + 0.02]])
+
+
+# ----------------------------------------------------------------------------- declared kinds (issue 14)
+
+
+@pytest.mark.parametrize(
+    "element, kind",
+    [
+        (pinlin.JointSpring("swing", 2.0), JOINT_SPACE),
+        (pinlin.JointDamper("swing", 0.1), JOINT_SPACE),
+        (pinlin.RayleighDamping(alpha=0.1, beta=0.01), JOINT_SPACE),
+        (pinlin.FollowerWrench("rim", force=(1.0, 0.0, 0.0)), BODY_FIXED_LOAD),
+        (pinlin.DeadWrench("rim", force=(1.0, 0.0, 0.0)), DEAD_LOAD),
+        (pinlin.LinearSpringDamper("arm", (0.0, 0.0, -0.5), stiffness=1.0), UNKNOWN),
+        (pinlin.Bushing("rim", "arm", stiffness=np.ones(6)), UNKNOWN),
+    ],
+)
+def test_built_in_elements_declare_their_kind_on_their_own_class(element, kind):
+    assert type(element).__dict__["invariance"] == kind
+    assert invariance_kind(element) == kind
+
+
+class SpinTunedSpring(pinlin.JointSpring):
+    """A swing spring whose stiffness k (1 + cos(phi) / 2) reads the spin angle phi too, declaring nothing.
+
+    It inherits JointSpring's claim ``invariance = "joint-space"``, which is false for it: the
+    swing's K at the neutral swing is 2 (1 + cos(phi) / 2), a change of (1 - cos 1) = 0.46 N m/rad
+    between phi = 0 and the first test angle, against K's scale ||K|| + w^2 ||M|| (w^2 = ||K||/||M||
+    + Omega^2; C = 0, M does not change).
+    """
+
+    def _factor(self, ev) -> float:
+        spin = ev.robot.joint("spin")
+        c, s = ev.q[spin.idx_q : spin.idx_q + 2]
+        return 1.0 + math.cos(math.atan2(s, c)) / 2
+
+    def generalized_force(self, ev):
+        return super().generalized_force(ev) * self._factor(ev)
+
+    def add_stiffness(self, ev, K):
+        K_own = np.zeros_like(K)
+        super().add_stiffness(ev, K_own)
+        K += K_own * self._factor(ev)  # exact at the neutral swing, where the spin column vanishes
+
+    @classmethod
+    def group(cls, elements, robot):
+        return ElementGroup(elements)  # one by one: JointSpring's vectorized group reads no spin
+
+
+class CopiedSpring(pinlin.JointSpring):
+    """A subclass of JointSpring that changes nothing and declares nothing."""
+
+
+class TorsionSpring(pinlin.Element):
+    """A user-defined spring on one 1-DOF joint, Q = -k (q_j - rest), declaring it reads only its joint."""
+
+    invariance = "joint-space"
+
+    def __init__(self, joint: str, k: float):
+        self.joint, self.k = joint, k
+
+    def check(self, robot):
+        robot.joint(self.joint)
+
+    def generalized_force(self, ev):
+        j = ev.robot.joint(self.joint)
+        Q = np.zeros(ev.model.nv)
+        Q[j.idx_v] = -self.k * ev.q[j.idx_q]
+        return Q
+
+    def add_stiffness(self, ev, K):
+        j = ev.robot.joint(self.joint)
+        K[j.idx_v, j.idx_v] += self.k
+
+
+class UndeclaredTorsionSpring(TorsionSpring):
+    """The same force; the claim of its parent does not carry over."""
+
+
+def test_an_undeclared_subclass_of_joint_spring_is_checked_numerically():
+    """A copy of JointSpring passes the numerical check; a subclass reading the spin is caught by it."""
+    copied = pinlin.Scene(rotor_scene().robot, [CopiedSpring("swing", 2.0)], prescribed={"spin": OMEGA})
+    assert invariance_kind(copied.elements[0]) == UNKNOWN
+    assert copied.linearization_plan.unproved == ("spin",)
+    sys = pinlin.linearize(copied, copied.neutral())
+    assert sys.calls.count("computeRNEADerivatives") == 1 + len(PERIODIC_TEST_ANGLES)
+    assert any("checked numerically" in note for note in sys.notes)
+    proved = pinlin.linearize(rotor_scene(), copied.neutral())
+    assert np.array_equal(sys.M, proved.M) and np.array_equal(sys.K, proved.K)
+    tuned = pinlin.Scene(rotor_scene().robot, [SpinTunedSpring("swing", 2.0)], prescribed={"spin": OMEGA})
+    assert tuned.linearization_plan.unproved == ("spin",)
+    with pytest.raises(pinlin.TimePeriodicError, match="prescribed joint 'spin'") as info:
+        pinlin.linearize(tuned, tuned.neutral())
+    M0 = 1.0 * 0.5**2 + 0.1 + 0.5 * 1.0**2 + 0.02  # arm about the pivot, rotor's point mass and iyy
+    K0 = 2.0 * 1.5 + 9.81 * (1.0 * 0.5 + 0.5 * 1.0)  # the tuned spring at phi = 0 and gravity
+    expected = (1.0 - math.cos(1.0)) / (K0 + (K0 / M0 + OMEGA**2) * M0)  # K's change against its scale
+    assert info.value.variation == pytest.approx(expected, rel=1e-10)
+
+
+def test_a_user_element_declaring_joint_space_is_proved():
+    robot = pinlin.load_urdf_string(rotor_urdf())
+    declared = pinlin.Scene(robot, [TorsionSpring("swing", 2.0)], prescribed={"spin": OMEGA})
+    assert invariance_kind(declared.elements[0]) == JOINT_SPACE
+    assert declared.linearization_plan.proofs == rotor_scene().linearization_plan.proofs
+    sys = pinlin.linearize(declared, declared.neutral())
+    assert sys.calls == ("computeRNEADerivatives",)
+    assert sys.K[0, 0] == pytest.approx(2.0 + 9.81 * (1.0 * 0.5 + 0.5 * 1.0), rel=1e-14)  # spring and gravity
+    assert check_numerically(declared, declared.neutral()) < ROUNDING
+    undeclared = pinlin.Scene(robot, [UndeclaredTorsionSpring("swing", 2.0)], prescribed={"spin": OMEGA})
+    assert undeclared.linearization_plan.unproved == ("spin",)
+
+
+def test_a_user_element_declaring_an_unknown_kind_is_refused():
+    class Misspelled(TorsionSpring):
+        invariance = "joint_space"
+
+    robot = pinlin.load_urdf_string(rotor_urdf())
+    match = r"Misspelled\.invariance: expected one of .*'joint_space'"
+    with pytest.raises(pinlin.ParameterError, match=match):
+        pinlin.Scene(robot, [Misspelled("swing", 2.0)])
+
+
+class PlainFollower(pinlin.FollowerWrench):
+    """A subclass of FollowerWrench that declares nothing: a load the rotor proof does not know."""
+
+
+def test_only_declared_loads_off_the_rotor_keep_its_proof():
+    """A follower force on the arm keeps the rotor's proof; an undeclared subclass of it does not."""
+    on_arm = rotor_scene(extra=[pinlin.FollowerWrench("arm", force=(0.0, 0.0, 3.0))])
+    assert "axisymmetric rigid rotor" in on_arm.linearization_plan.proofs["spin"].note
+    assert check_numerically(on_arm, on_arm.neutral()) < ROUNDING
+    undeclared = rotor_scene(extra=[PlainFollower("arm", force=(0.0, 0.0, 3.0))])
+    assert invariance_kind(undeclared.elements[1]) == UNKNOWN
+    assert undeclared.linearization_plan.unproved == ("spin",)

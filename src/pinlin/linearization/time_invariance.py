@@ -10,13 +10,20 @@ of the joint is then a symmetry of the whole scene, at every configuration.
    (or without gravity), or sliding along any fixed axis: moving its whole subtree
    rigidly about (along) that world-fixed axis preserves the kinetic energy,
    gravity's potential up to a constant, and every element known to be invariant:
-   joint springs and dampers (they read their own joint's coordinates), Rayleigh
-   damping (M and the springs' K_e), follower wrenches (fixed in their body), dead
-   wrenches outside the subtree or along the axis.
+   joint-space elements (joint springs and dampers read their own joint's
+   coordinates, Rayleigh damping M and the springs' K_e), body-fixed loads
+   (follower wrenches: fixed in their body), dead loads outside the subtree or
+   along the axis.
 2. **A rotor**: a revolute joint whose subtree is one rigid body with its centre of
-   mass on the axis and an inertia symmetric about it, and no wrench on it: turning
-   it changes neither the kinetic energy nor the weight's potential.
+   mass on the axis and an inertia symmetric about it, no load on it and only
+   joint-space elements and loads elsewhere: turning it changes neither the
+   kinetic energy nor the weight's potential.
 3. A joint held still (velocity 0) does not move.
+
+What an element depends on is its class's own ``invariance`` declaration
+(:func:`invariance_kind`; the rule is in :class:`~pinlin.Element`): an element
+whose class declares nothing, a subclass of a built-in element included, is
+"unknown" and stops cases 1 and 2.
 
 Everything else (elements between frames, a tilted turntable, an unbalanced
 rotor) is checked numerically at each linearization (:func:`numeric_change`):
@@ -34,14 +41,20 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..errors import TimePeriodicError
-from ..model.elements import DeadWrench, FollowerWrench, JointDamper, JointSpring, RayleighDamping
+from ..errors import ParameterError, TimePeriodicError
+from ..model.elements import Element
 from ..model.scene import Scene
 from .assembly import Assembly, assemble, fro
 
 __all__ = [
     "InvarianceProof",
+    "invariance_kind",
     "invariance_proofs",
+    "INVARIANCE_KINDS",
+    "JOINT_SPACE",
+    "BODY_FIXED_LOAD",
+    "DEAD_LOAD",
+    "UNKNOWN",
     "numeric_change",
     "PERIODIC_TEST_ANGLES",
     "SYMMETRY_TOL",
@@ -59,9 +72,38 @@ PERIODIC_TEST_ANGLES = (1.0, 2.5)
 #: proof records its departure; linearize uses it only when periodic_tol is not smaller.
 SYMMETRY_TOL = 1e-12
 
-#: Element classes whose forces are known to be unchanged by the rigid motions of a proof
-#: (exact types: a subclass may read more).  Wrenches are judged by their frame and direction.
-_JOINT_SPACE = (JointSpring, JointDamper, RayleighDamping)
+#: The kinds an element class may declare as its ``invariance`` (:class:`~pinlin.Element`).
+JOINT_SPACE = "joint-space"
+BODY_FIXED_LOAD = "body-fixed load"
+DEAD_LOAD = "dead load"
+UNKNOWN = "unknown"
+INVARIANCE_KINDS = (JOINT_SPACE, BODY_FIXED_LOAD, DEAD_LOAD, UNKNOWN)
+_LOADS = (BODY_FIXED_LOAD, DEAD_LOAD)
+
+
+def invariance_kind(element: Element) -> str:
+    """What ``element``'s force depends on: the ``invariance`` its own class declares.
+
+    Only a declaration on ``type(element)`` itself counts, never an inherited one
+    (a subclass may read more than its parent); without one the kind is
+    :data:`UNKNOWN`.
+
+    Raises
+    ------
+    ParameterError
+        The class declares a value not in :data:`INVARIANCE_KINDS`.
+    """
+    return _declared_kind(type(element))
+
+
+def _declared_kind(cls: type) -> str:
+    """:func:`invariance_kind` of the elements of class ``cls``."""
+    kind = cls.__dict__.get("invariance", UNKNOWN)
+    if not (isinstance(kind, str) and kind in INVARIANCE_KINDS):
+        raise ParameterError(
+            f"{cls.__name__}.invariance", f"expected one of {INVARIANCE_KINDS}, got {kind!r}"
+        )
+    return kind
 
 
 @dataclass(frozen=True)
@@ -106,8 +148,10 @@ def _subtree_joints(model: pin.Model, jid: int) -> set[int]:
     return {int(j) for j in model.subtrees[jid]}
 
 
-def _root_proof(scene: Scene, name: str, jid: int, kind: str, axis: np.ndarray) -> InvarianceProof | None:
-    """Case 1 of the module docstring, or None."""
+def _root_proof(
+    scene: Scene, kinds: tuple[str, ...], name: str, jid: int, kind: str, axis: np.ndarray
+) -> InvarianceProof | None:
+    """Case 1 of the module docstring, or None; ``kinds`` are the elements' :func:`invariance_kind`."""
     model = scene.model
     if model.parents[jid] != 0:
         return None
@@ -116,10 +160,10 @@ def _root_proof(scene: Scene, name: str, jid: int, kind: str, axis: np.ndarray) 
     if kind == "rotation":
         departure = _across(scene.gravity, world_axis)
     inside = _subtree_joints(model, jid)
-    for element in scene.elements:
-        if type(element) in _JOINT_SPACE or type(element) is FollowerWrench:
+    for element, depends in zip(scene.elements, kinds):
+        if depends in (JOINT_SPACE, BODY_FIXED_LOAD):
             continue
-        if type(element) is not DeadWrench:
+        if depends != DEAD_LOAD:
             return None  # an element the proof does not know (between frames, user-defined)
         frame_joint = model.frames[scene.robot.frame_id(element.frame)].parentJoint
         if kind == "rotation" and frame_joint in inside:
@@ -137,15 +181,17 @@ def _root_proof(scene: Scene, name: str, jid: int, kind: str, axis: np.ndarray) 
     )
 
 
-def _rotor_proof(scene: Scene, name: str, jid: int, kind: str, axis: np.ndarray) -> InvarianceProof | None:
-    """Case 2 of the module docstring, or None."""
+def _rotor_proof(
+    scene: Scene, kinds: tuple[str, ...], name: str, jid: int, kind: str, axis: np.ndarray
+) -> InvarianceProof | None:
+    """Case 2 of the module docstring, or None; ``kinds`` are the elements' :func:`invariance_kind`."""
     model = scene.model
     if kind != "rotation" or _subtree_joints(model, jid) != {jid}:
         return None
-    for element in scene.elements:
-        if type(element) in _JOINT_SPACE:
+    for element, depends in zip(scene.elements, kinds):
+        if depends == JOINT_SPACE:
             continue
-        if not element.is_wrench or model.frames[scene.robot.frame_id(element.frame)].parentJoint == jid:
+        if depends not in _LOADS or model.frames[scene.robot.frame_id(element.frame)].parentJoint == jid:
             return None  # a load on the rotor turns with it; unknown elements are not proved
     body = model.inertias[jid]
     I = np.asarray(body.inertia, dtype=float)
@@ -176,7 +222,16 @@ def invariance_proofs(scene: Scene) -> dict[str, InvarianceProof]:
 
     Decided from the model and the elements alone (module docstring); a joint
     missing from the result is checked numerically by :func:`numeric_change`.
+
+    Raises
+    ------
+    ParameterError
+        An element's class declares an ``invariance`` not in :data:`INVARIANCE_KINDS`
+        (checked for every scene, with or without prescribed joints).
     """
+    classes = dict.fromkeys(type(element) for element in scene.elements)  # in order: the first bad one raises
+    declared = {cls: _declared_kind(cls) for cls in classes}
+    kinds = tuple(declared[type(element)] for element in scene.elements)
     out: dict[str, InvarianceProof] = {}
     for name, omega in scene.prescribed.items():
         if omega == 0:
@@ -188,7 +243,8 @@ def invariance_proofs(scene: Scene) -> dict[str, InvarianceProof]:
         motion = _motion_axis(scene.model, jid)
         if motion is None:
             continue
-        proof = _root_proof(scene, name, jid, *motion) or _rotor_proof(scene, name, jid, *motion)
+        proof = _root_proof(scene, kinds, name, jid, *motion)
+        proof = proof or _rotor_proof(scene, kinds, name, jid, *motion)
         if proof is not None:
             out[name] = proof
     return out

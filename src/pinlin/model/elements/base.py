@@ -227,6 +227,28 @@ class Element(ABC):
     Subclasses are frozen dataclasses that name a joint or frame; they are
     checked against a robot by :meth:`check` when a :class:`~pinlin.Scene` is
     built, and evaluated through an :class:`Evaluation`.
+
+    The class attribute :attr:`invariance` says what the element's force depends
+    on, for the proofs that a prescribed joint's position does not enter the
+    equations (:mod:`pinlin.linearization.time_invariance`):
+
+    - ``"joint-space"``: only joint coordinates and velocities, in a way the
+      proofs' rigid motions leave unchanged: its own joint's coordinates and
+      velocities (joint springs and dampers), or M(q) and the scene's elastic
+      stiffness (Rayleigh damping);
+    - ``"body-fixed load"``: a wrench constant in the axes of its frame ``frame``
+      (it turns with its body: follower wrenches);
+    - ``"dead load"``: a force ``force`` and a torque ``torque`` constant in world
+      axes at the origin of its frame ``frame`` (the proofs check their direction);
+    - ``"unknown"`` (the default): anything else (elements between frames,
+      bushings, user-defined elements); no proof is attempted and the joint is
+      checked numerically at each linearization.
+
+    A claim counts only when declared on the element's own class
+    (``"invariance" in type(element).__dict__``), never inherited: a subclass may
+    read more than its parent (a spring that also reads another joint), so a
+    subclass that does not declare its kind is ``"unknown"``.  Another value is a
+    :class:`~pinlin.ParameterError` when the scene is built.
     """
 
     #: Short label used in reports and scene files.
@@ -235,6 +257,9 @@ class Element(ABC):
     is_wrench: ClassVar[bool] = False
     #: True when the element's stiffness -dQ_e/dq is always exactly symmetric.
     symmetric_stiffness: ClassVar[bool] = False
+    #: What the force depends on, for the time-invariance proofs (class docstring): "joint-space",
+    #: "body-fixed load", "dead load" or "unknown"; counts only on the class that declares it.
+    invariance: ClassVar[str] = "unknown"
 
     @abstractmethod
     def check(self, robot: Robot) -> None:

@@ -98,6 +98,7 @@ class Bushing(FramePairElement):
     offset: np.ndarray | None = None
 
     kind: ClassVar[str] = "bushing"
+    invariance: ClassVar[str] = "unknown"  # between two frames: no proof
 
     def __post_init__(self):
         label = f"Bushing({self.frame!r})"

@@ -35,6 +35,7 @@ class JointDamper(Element):
     damping: float | np.ndarray
 
     kind: ClassVar[str] = "damper"
+    invariance: ClassVar[str] = "joint-space"
     symmetric_stiffness: ClassVar[bool] = True
 
     def __post_init__(self):

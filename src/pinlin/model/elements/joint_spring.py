@@ -54,6 +54,7 @@ class JointSpring(Element):
     rest: float | np.ndarray | None = None
 
     kind: ClassVar[str] = "spring"
+    invariance: ClassVar[str] = "joint-space"
 
     def __post_init__(self):
         object.__setattr__(self, "stiffness", check_psd(self.stiffness, f"JointSpring({self.joint!r}).stiffness"))

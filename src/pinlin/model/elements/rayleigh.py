@@ -40,6 +40,7 @@ class RayleighDamping(Element):
     beta: float = 0.0
 
     kind: ClassVar[str] = "rayleigh"
+    invariance: ClassVar[str] = "joint-space"
     symmetric_stiffness: ClassVar[bool] = True
 
     def __post_init__(self):

@@ -100,6 +100,7 @@ class LinearSpringDamper(FramePairElement):
     rest_length: float = 0.0
 
     kind: ClassVar[str] = "spring_damper"
+    invariance: ClassVar[str] = "unknown"  # between two frames: no proof
 
     def __post_init__(self):
         label = f"LinearSpringDamper({self.frame!r})"

@@ -44,6 +44,7 @@ class FollowerWrench(WrenchElement):
     torque: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
     kind: ClassVar[str] = "follower"
+    invariance: ClassVar[str] = "body-fixed load"
     symmetric_stiffness: ClassVar[bool] = True  # it adds nothing: Pinocchio differentiates it
     body_fixed: ClassVar[bool] = True
 
@@ -85,6 +86,7 @@ class DeadWrench(WrenchElement):
     torque: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
     kind: ClassVar[str] = "dead"
+    invariance: ClassVar[str] = "dead load"
 
     def __post_init__(self):
         object.__setattr__(self, "force", check_vector3(self.force, f"DeadWrench({self.frame!r}).force"))
