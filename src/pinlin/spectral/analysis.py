@@ -139,8 +139,8 @@ def modal_analysis(
     name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
     raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
     if raw.second is not None:  # pairs sharing a real vector: figures on one member of each
-        lam, block, fig = mirrored_figures(problem, raw)
-        _check_range(problem, lam)
+        lam, block, fig, weight = mirrored_figures(problem, raw)
+        _check_range(problem, lam, weight)
     else:
         raw = order_spectrum(raw)
         lam, block = raw.lam, raw.block

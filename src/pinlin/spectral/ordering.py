@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..numerics.accuracy import residual_figures
 from .accuracy import PairFigures, pair_figures
 from .multiplicity import Cluster
 from .problem import QuadraticProblem
@@ -107,7 +108,9 @@ def _interleave(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return out
 
 
-def mirrored_figures(problem: QuadraticProblem, raw: RawSpectrum) -> tuple[np.ndarray, np.ndarray, PairFigures]:
+def mirrored_figures(
+    problem: QuadraticProblem, raw: RawSpectrum
+) -> tuple[np.ndarray, np.ndarray, PairFigures, np.ndarray]:
     """Order a mirrored spectrum and compute its pair figures on one member of each pair (half the work).
 
     The structured paths give pairs (a, b) sharing one real vector x with
@@ -117,17 +120,29 @@ def mirrored_figures(problem: QuadraticProblem, raw: RawSpectrum) -> tuple[np.nd
     and the normalized left vector x / (x^T L'(lam_b) x) differ, and are formed
     for b.  The pairs are sorted by the keys :func:`order_spectrum` uses, then
     (a, b) interleaved: the same order and figures as the expanded spectrum.
+    The pairs are gathered in C order (``take``), or used as they are when the
+    path delivered them sorted already (an eigh of a stable undamped system:
+    ascending mu is ascending |lam|): the same C-ordered arrays either way, so
+    the figures do not depend on which happened.  The weights w(lam) are those
+    of the residual figures: |lam_b| = |lam_a| exactly (negation and
+    conjugation are exact), so w(lam_b) = w(lam_a).
 
     Returns
     -------
     lam : (2n,) complex
     block : (2n,) int
     fig : PairFigures
+    weight : (2n,) float
+        w(lam) = |lam|^2 ||M|| + |lam| ||C|| + ||K|| per eigenvalue.
     """
-    la, lb = raw.lam, raw.second
+    la, lb, P, block = raw.lam, raw.second, raw.P, raw.block
     keys = np.lexsort((-np.abs(la.imag), la.real, np.abs(la)))
-    la, lb, P = la[keys], lb[keys], raw.P[..., keys]
-    half = pair_figures(problem, la, P, None, None)
+    if np.count_nonzero(keys[1:] > keys[:-1]) != keys.size - 1:  # not the identity permutation
+        la, lb, P, block = la.take(keys), lb.take(keys), P.take(keys, axis=-1), block.take(keys)
+    elif not P.flags.c_contiguous:
+        P = np.ascontiguousarray(P)
+    eta, norm_x, weight = residual_figures(la, *P, problem.norms)
+    half = pair_figures(problem, la, P, None, eta, norm_x, weight)
     yMx, yCx = half.products[0], half.products[1]
     deriv_b = 2 * lb * yMx + yCx
     ok = half.left_normalized
@@ -148,7 +163,7 @@ def mirrored_figures(problem: QuadraticProblem, raw: RawSpectrum) -> tuple[np.nd
         np.repeat(half.products, 2, axis=-1),
         np.repeat(half.quadratic, 2, axis=-1),
     )
-    return _interleave(la, lb), np.repeat(raw.block[keys], 2), fig
+    return _interleave(la, lb), np.repeat(block, 2), fig, np.repeat(weight, 2)
 
 
 def mode_kinds(lam: np.ndarray, r: np.ndarray, clusters: tuple[Cluster, ...] | list[Cluster]) -> tuple[str, ...]:
