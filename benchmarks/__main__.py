@@ -174,6 +174,9 @@ def write_readme(run: dict) -> None:
         "",
         f"- command: `{run['command']}`, finished {run['finished']}, wall time **{run['wall time [s]']:.0f} s**"
         + "; per benchmark: " + ", ".join(f"{k} {v:.0f} s" for k, v in run["elapsed [s]"].items()),
+        "- tables below, by the time their run wrote them: " + ", ".join(
+            f"{name} {time.strftime('%Y-%m-%d %H:%M', time.gmtime((RESULTS / f'{name}.json').stat().st_mtime))}"
+            for name, _, _ in SUITE if (RESULTS / f"{name}.json").is_file()) + " UTC",
         f"- machine: {m['processor']}, {m['cpus']} CPUs, {m['memory [GiB]']} GiB, {m['os']}; Python {m['python']}, "
         f"numpy {m['numpy']}, scipy {m['scipy']}, pinocchio {m['pinocchio']}, BLAS {m['blas']}",
         "- threads: " + ", ".join(f"{k}={m[k]}" for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"))
