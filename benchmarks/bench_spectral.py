@@ -47,7 +47,6 @@ from __future__ import annotations
 
 import functools
 import os
-import statistics
 import time
 from concurrent.futures import ProcessPoolExecutor
 
@@ -57,7 +56,7 @@ import scipy.linalg as sla
 import pinlin
 from pinlin.spectral.qep import companion_pencil
 
-from .common import Report, Table, median_time, write_report
+from .common import Report, Table, interleaved_medians, median_time, write_report
 
 SIZES = (50, 100, 200)
 
@@ -71,23 +70,6 @@ def chain_system(n: int, seed: int = 0) -> pinlin.LinearizedSystem:
         robot, [pinlin.JointSpring(f"joint{i + 1}", k) for i, k in enumerate(ks)], gravity=(0, 0, -9.81)
     )
     return pinlin.linearize(scene, robot.neutral())
-
-
-def interleaved_medians(fns, repeats: int) -> list[float]:
-    """Median wall time [s] of each function, timed in turn within each repeat.
-
-    Interleaving keeps a change of machine load (this machine is shared) from
-    favouring one side of a ratio; one warm-up call each first.
-    """
-    for f in fns:
-        f()
-    samples = [[] for _ in fns]
-    for _ in range(repeats):
-        for f, out in zip(fns, samples):
-            t0 = time.perf_counter()
-            f()
-            out.append(time.perf_counter() - t0)
-    return [statistics.median(s) for s in samples]
 
 
 def plain_eta(M, C, K, lam, Z):
@@ -132,24 +114,6 @@ def _match_error(lam, ref):
     return worst
 
 
-def call_medians(fns, repeats: int) -> list[float]:
-    """Median wall time [s] of single calls of each function, called in turn (one warm-up call each).
-
-    The calls of all functions alternate, so periods in which the shared machine runs slower
-    (see the module doc) fall on every side of a ratio alike.
-    """
-    for f in fns:
-        f()
-    samples = [[] for _ in fns]
-    clock = time.perf_counter
-    for _ in range(repeats):
-        for f, out in zip(fns, samples):
-            t0 = clock()
-            f()
-            out.append(clock() - t0)
-    return [statistics.median(x) for x in samples]
-
-
 def _robot_system(name: str) -> pinlin.LinearizedSystem:
     """Springs (100 N m/rad at the reference pose), dampers 0.5 and a 5 N follower force at the tool."""
     robot = pinlin.load_example(name)
@@ -182,10 +146,11 @@ def lean_tables(quick: bool) -> tuple[list[Table], dict]:
     rows, summary = [], {}
     for label, sys in cases:
         A, B = companion_pencil(sys.M, sys.C, sys.K)
-        t_eig, t_modal, t_stab, t_cond = call_medians(
+        t_eig, t_modal, t_stab, t_cond = interleaved_medians(
             [lambda A=A, B=B: sla.eig(A, B), lambda sys=sys: pinlin.modal_analysis(sys),
              lambda sys=sys: pinlin.modal_analysis(sys).stability, lambda sys=sys: pinlin.modal_analysis(sys).condition],
             repeats if sys.n < 20 else repeats // 3,
+            min_time=0.0,  # single calls, alternating
         )
         m = pinlin.modal_analysis(sys)
         rows.append([label, sys.n, m.method.name, t_eig * 1e6, t_modal * 1e6, t_modal / t_eig, t_stab * 1e6,
@@ -213,10 +178,11 @@ def lean_tables(quick: bool) -> tuple[list[Table], dict]:
     sym_rows = []
     for n in (20, 50) if quick else (20, 50, 100, 200):
         sys = chain_system(n)
-        t_eigh, t_sym, t_stab = call_medians(
+        t_eigh, t_sym, t_stab = interleaved_medians(
             [lambda sys=sys: sla.eigh(sys.S, sys.M), lambda sys=sys: pinlin.modal_analysis(sys),
              lambda sys=sys: pinlin.modal_analysis(sys).stability],
             101 if n <= 50 else 21,
+            min_time=0.0,  # single calls, alternating
         )
         m = pinlin.modal_analysis(sys)
         w = np.linalg.eigvalsh(sys.M)
@@ -316,6 +282,7 @@ def run(quick: bool = False) -> Report:
                 lambda sys=sys: pinlin.modal_analysis(sys),
             ],
             repeats=repeats if n > 100 else 3 * repeats,
+            min_time=0.0,  # single calls, alternating
         )
         t_eigh = median_time(lambda sys=sys: sla.eigh(sys.S, sys.M), repeats=repeats)
         gen = pinlin.modal_analysis(sys, method="general")
@@ -343,6 +310,7 @@ def run(quick: bool = False) -> Report:
                     lambda A=A2_, B=B2_: sla.eig(A, B),
                 ],
                 repeats=repeats if n > 100 else 3 * repeats,
+                min_time=0.0,  # single calls, alternating
             )
             ms, mg = pinlin.modal_analysis(s), pinlin.modal_analysis(s, method="general")
             other_rows.append(

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..model.scene import Scene
 from ..results import readonly
-from .assembly import fro
+from .split import choose_element_parts, element_damping_parts
 from .time_invariance import InvarianceProof, invariance_proofs
 
 __all__ = ["LinearizationPlan", "RestDamping", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
@@ -26,8 +26,6 @@ __all__ = ["LinearizationPlan", "RestDamping", "STRUCTURE_EPS_FACTOR", "default_
 #: accumulate a few rounding errors per joint, so an exactly (skew-)symmetric part that
 #: should vanish comes out at a small multiple of n eps of the computed part's norm.
 STRUCTURE_EPS_FACTOR = 100.0
-
-_TINY = float(np.finfo(float).tiny)
 
 
 def default_structure_tol(n: int) -> float:
@@ -50,8 +48,9 @@ class RestDamping:
     C : (nv, nv) ndarray
         The elements' -dQ_e/dv.
     D, G : (n, n) ndarray
-        (C + C^T) / 2 and (C - C^T) / 2 on the free coordinates (D is C on them when
-        C is exactly symmetric, G is then None: the zero array ``zero`` stands for it).
+        (C + C^T) / 2 and (C - C^T) / 2 on the free coordinates
+        (:func:`~pinlin.linearization.split.element_damping_parts`; G is None when C is
+        exactly symmetric: the zero array ``zero`` stands for it).
     size : float
         ||G|| / ||C||: 0 when C is exactly symmetric (the usual case).
     """
@@ -63,29 +62,16 @@ class RestDamping:
         C = np.zeros((nv, nv))
         for group in scene.groups:
             group.add_damping(None, C)
-        Cf = C[block]
-        G = Cf - Cf.T
-        G *= 0.5
-        D = Cf + Cf.T
-        D *= 0.5
-        symmetric = not np.count_nonzero(G)
+        D, G, self.size = element_damping_parts(C[block])
         self.C = readonly(C)
-        if symmetric:  # D is C on the free block (the same array when every coordinate is free); G is zero
-            self.D = self.C if Cf.shape == C.shape else readonly(Cf)
-            self.G = None
-        else:
-            self.D, self.G = readonly(D), readonly(G)
-        self.zero = readonly(np.zeros(G.shape))
-        self.size = 0.0 if symmetric else fro(G) / max(fro(Cf), _TINY)
+        self.D = readonly(D)
+        self.G = None if G is None else readonly(G)
+        self.zero = readonly(np.zeros(D.shape))
 
     def split(self, tol: float, dropped: dict) -> tuple[np.ndarray, np.ndarray]:
         """(D, G) as read-only views, G set to zero when at rounding level (reported in ``dropped``)."""
-        if self.size == 0.0:
-            return self.D.view(), self.zero.view()
-        if self.size <= tol:
-            dropped["G (element rounding)"] = self.size
-            return self.D.view(), self.zero.view()
-        return self.D.view(), self.G.view()
+        G = None if self.G is None else self.G.view()
+        return choose_element_parts(self.D.view(), G, self.size, tol, dropped, self.zero.view())
 
 
 class LinearizationPlan:

@@ -8,12 +8,16 @@ dropped: its size is half the difference's norm, exactly (a power-of-two scaling
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from .assembly import Assembly, fro
-from .plan import LinearizationPlan
 
-__all__ = ["split_stiffness", "split_damping"]
+if TYPE_CHECKING:  # pragma: no cover
+    from .plan import LinearizationPlan
+
+__all__ = ["split_stiffness", "split_damping", "element_damping_parts", "choose_element_parts"]
 
 _TINY = float(np.finfo(float).tiny)
 
@@ -44,6 +48,25 @@ def split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) -
     return S, difference
 
 
+def element_damping_parts(C: np.ndarray) -> tuple[np.ndarray, np.ndarray | None, float]:
+    """(D, G, ||G|| / ||C||) of the elements' damping C; G None (size 0) when C is exactly symmetric, D then C."""
+    D, difference, norm = _halves(C)
+    if not norm and not np.count_nonzero(difference):
+        return C, None, 0.0
+    difference *= 0.5
+    return D, difference, 0.5 * norm / max(fro(C), _TINY)
+
+
+def choose_element_parts(D, G, size: float, tol: float, dropped: dict, zero: np.ndarray):
+    """(D, G) of the elements' damping, G replaced by ``zero`` when absent or at rounding level (reported)."""
+    if G is None:
+        return D, zero
+    if size <= tol:
+        dropped["G (element rounding)"] = size
+        return D, zero
+    return D, G
+
+
 def split_damping(
     C: np.ndarray, base: Assembly, plan: LinearizationPlan, tol: float, dropped: dict
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -58,16 +81,9 @@ def split_damping(
     """
     if base.coriolis_D is None and not plan.moving and plan.rest_damping is not None:
         return plan.rest_damping.split(tol, dropped)  # constant: split once per scene
-    D, difference, norm = _halves(C)
     if base.coriolis_D is None:  # C from the elements alone
-        if not norm and not np.count_nonzero(difference):
-            return C, np.zeros(C.shape)  # exactly symmetric
-        size = 0.5 * norm / max(fro(C), _TINY)
-        if size <= tol:
-            dropped["G (element rounding)"] = size
-            return D, np.zeros(C.shape)
-        difference *= 0.5
-        return D, difference
+        return choose_element_parts(*element_damping_parts(C), tol, dropped, np.zeros(C.shape))
+    D, difference, norm = _halves(C)
     if plan.undamped:  # C is Pinocchio's alone (coriolis_D is C): D is its symmetric part
         size = fro(D) / max(base.rounding_scale_C, _TINY)
         if size <= tol:
