@@ -138,26 +138,14 @@ def modal_analysis(
     )
     name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
     raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
-    if raw.second is not None:  # pairs sharing a real vector: figures on one member of each
-        lam, block, fig, weight = mirrored_figures(problem, raw)
-        _check_range(problem, lam, weight)
-    else:
-        raw = order_spectrum(raw)
-        lam, block = raw.lam, raw.block
-        _check_range(problem, lam, raw.weight)
-        fig = pair_figures(problem, lam, raw.P, raw.Y, raw.eta, raw.norm_x, raw.weight)
+    lam, block, fig = _figures(problem, raw)
     clusters, notes = _clusters(problem, lam, fig, tolerances)
     left, left_ok, model, more = _cluster_figures(problem, lam, fig, clusters)
     notes += more
     multiplicity = np.ones(lam.shape[0], dtype=int)
     for c in clusters:
         multiplicity[list(c.indices)] = c.algebraic
-    freq = np.abs(lam)
-    if np.count_nonzero(freq) == freq.size:
-        zeta = -lam.real / freq
-    else:
-        with np.errstate(divide="ignore", invalid="ignore"):
-            zeta = -lam.real / freq  # NaN exactly where lam = 0 (undefined)
+    freq, zeta = _frequency_damping(lam)
     bound = model.bound(0.0)
     # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
     if np.isnan(np.add.reduce(bound) + np.add.reduce(fig.backward_error)):
@@ -196,6 +184,26 @@ def modal_analysis(
             problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes)
         ),
     )
+
+
+def _figures(problem: QuadraticProblem, raw) -> tuple[np.ndarray, np.ndarray, PairFigures]:
+    """(eigenvalues in the result's order, their companion blocks, the pairs' figures), range-checked."""
+    if raw.second is not None:  # pairs sharing a real vector: figures on one member of each
+        lam, block, fig, weight = mirrored_figures(problem, raw)
+        _check_range(problem, lam, weight)
+        return lam, block, fig
+    raw = order_spectrum(raw)
+    _check_range(problem, raw.lam, raw.weight)
+    return raw.lam, raw.block, pair_figures(problem, raw.lam, raw.P, raw.Y, raw.eta, raw.norm_x, raw.weight)
+
+
+def _frequency_damping(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """|lam| and the damping ratio -Re(lam) / |lam| (NaN exactly where lam = 0: undefined)."""
+    freq = np.abs(lam)
+    if np.count_nonzero(freq) == freq.size:
+        return freq, -lam.real / freq
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return freq, -lam.real / freq
 
 
 def _owned(a: np.ndarray) -> np.ndarray:
