@@ -380,3 +380,51 @@ def test_scene_file_errors_name_key_and_table(tmp_path, old, new, match):
     path.write_text(SCENE.replace(old, new), encoding="utf-8")
     with pytest.raises(pinlin.SceneFileError, match=match):
         load_scene(path)
+
+
+# ----------------------------------------------------------------------------- stacked kinematics and log
+
+
+@pytest.mark.parametrize("count", [2, 40])  # few frames: read one by one; many: one conversion of data.oMf
+def test_frame_placements_and_positions_read_from_pinocchio(ur5, q_ur5, count):
+    """Evaluation.frame_homogeneous / frame_positions against Pinocchio's own placements, read-only, memoized."""
+    scene = pinlin.Scene(ur5)
+    model, data = _kinematics(ur5, q_ur5)
+    ids = tuple(range(1, model.nframes))[:count]
+    ev = Evaluation(scene, q_ur5, np.zeros(ur5.nv))
+    H = ev.frame_homogeneous(ids)
+    p = ev.frame_positions(ids)
+    assert H.shape == (len(ids), 4, 4) and p.shape == (len(ids), 3)
+    for k, f in enumerate(ids):
+        assert_allclose(H[k], data.oMf[f].homogeneous, rtol=0, atol=1e-15)
+        assert_allclose(p[k], data.oMf[f].translation, rtol=0, atol=1e-15)
+    assert not H.flags.writeable and not p.flags.writeable
+    assert ev.frame_homogeneous(ids) is H and ev.frame_positions(ids) is p
+
+
+def test_stacked_log_expansion_against_log6_differences():
+    """J_log and E2 computed for a stack of placements at once (the bushing group's use), each against
+    Pinocchio's Jlog6 and central differences of its log6: the stacked products keep every axis apart."""
+    rng = np.random.default_rng(11)
+    angles = [0.0, 1e-7, 0.3, 1.5, 2.5, 3.0]  # nearer pi the differences of log6 lose more than 1e-6
+    Xs = []
+    for a in angles:
+        w = rng.normal(size=3)
+        Xs.append(pin.SE3(pin.exp3(a * w / np.linalg.norm(w)), rng.normal(size=3)))
+    R = np.array([X.rotation for X in Xs])
+    p = np.array([X.translation for X in Xs])
+    J, E2 = log_expansion(R, p, np.array([pin.log3(r) for r in R]))
+    assert J.shape == (6, 6, 6) and E2.shape == (6, 6, 6, 6)
+    h = 1e-4
+    for k, X in enumerate(Xs):
+        if angles[k] >= 0.3:  # Pinocchio's Jlog6 is accurate away from small angles
+            assert_allclose(J[k], pin.Jlog6(X), rtol=0, atol=1e-12)
+
+        def e(xi, X=X):
+            return pin.log6(X * pin.exp6(xi)).vector
+
+        fd = np.zeros((6, 6, 6))
+        for i, ei in enumerate(np.eye(6) * h):
+            for j, ej in enumerate(np.eye(6) * h):
+                fd[:, i, j] = (e(ei + ej) - e(ei - ej) - e(ej - ei) + e(-ei - ej)) / (4 * h * h)
+        assert_allclose(E2[k], fd, rtol=1e-5, atol=1e-6)  # differences of log6 near pi: 1e-6 truncation

@@ -152,6 +152,7 @@ class Evaluation:
     _rotations: dict[int, np.ndarray] | None = None
     _jacobians: dict[tuple[int, pin.ReferenceFrame], np.ndarray] | None = None
     _positions: dict[tuple[int, ...], np.ndarray] | None = None
+    _homogeneous: dict[tuple[int, ...], np.ndarray] | None = None
     _mass: np.ndarray | None = None
     _elastic: np.ndarray | None = None
     _world_jacobian: np.ndarray | None = None
@@ -243,6 +244,25 @@ class Evaluation:
             out = np.array([oMf[i].translation for i in frame_ids], dtype=float).reshape(-1, 3)
             out.flags.writeable = False
             self._positions[frame_ids] = out
+        return out
+
+    def frame_homogeneous(self, frame_ids: tuple[int, ...]) -> np.ndarray:
+        """World placements of several frames as homogeneous matrices (len(frame_ids) x 4 x 4), read-only.
+
+        Computed once per evaluation for a given tuple of ids, like
+        :meth:`frame_positions`: rotations ``[:, :3, :3]``, origins ``[:, :3, 3]``.
+        """
+        if self._homogeneous is None:
+            self._homogeneous = {}
+        out = self._homogeneous.get(frame_ids)
+        if out is None:
+            self._ensure_kinematics()
+            oMf = self.data.oMf
+            if len(frame_ids) * FRAME_LIST_RATIO >= len(oMf):  # many frames: one conversion of them all
+                oMf = oMf.tolist()
+            out = np.array([oMf[i].homogeneous for i in frame_ids], dtype=float).reshape(-1, 4, 4)
+            out.flags.writeable = False
+            self._homogeneous[frame_ids] = out
         return out
 
     def world_jacobian(self) -> np.ndarray:

@@ -19,7 +19,7 @@ from .frame_pairs import (
     fixed_wrench_stiffness,
     support_mask,
 )
-from .se3 import ad_matrix, log_expansion, log_jacobian_derivative, skew
+from .se3 import LogExpansion, ad_matrix, log_jacobian_derivative, skew
 
 if TYPE_CHECKING:  # pragma: no cover
     from ...linearization.workspace import Evaluation
@@ -156,13 +156,10 @@ class _State:
 
     def __init__(self, group: BushingGroup, ev: Evaluation, velocity: bool):
         nb = len(group.elements)
-        placements = {f: ev.frame_placement(f) for f in group.frame_ids}
-        R_a = np.array([placements[f].rotation for f in group.fa])
-        p_a = np.array([placements[f].translation for f in group.fa])
-        R_b, p_b = group.target_R.copy(), group.target_p.copy()
-        for i, f in enumerate(group.fb):
-            if f >= 0:
-                R_b[i], p_b[i] = placements[f].rotation, placements[f].translation
+        H = ev.frame_homogeneous(group.frame_ids)
+        R_a, p_a = H[group.ia, :3, :3], H[group.ia, :3, 3]
+        R_b = np.where(group.world_b[:, None, None], group.target_R, H[group.ib, :3, :3])
+        p_b = np.where(group.world_b[:, None], group.target_p, H[group.ib, :3, 3])
         # X = O^-1 oMb^-1 oMa, with O^-1 = (Ro^T, -Ro^T po) stored as (R_oi, p_oi)
         R_ba = np.swapaxes(R_b, 1, 2)
         self.R = group.R_oi @ R_ba @ R_a
@@ -173,7 +170,8 @@ class _State:
         self.Ad[:, :3, :3] = self.Ad[:, 3:, 3:] = R_at
         self.Ad[:, :3, 3:] = -R_at @ skew(p_a)
         # our own J_log (Pinocchio 4.1's Jlog6 loses up to 5e-7 near 1e-3 rad, see tests)
-        self.J, _ = log_expansion(self.R, self.p, self.theta, second_order=False)
+        self._log = LogExpansion(self.R, self.p, self.theta)
+        self.J = self._log.J
         rho = np.einsum("bji,bj->bi", self.J[:, :3, :3], self.p)  # W(theta) p, W = A^T
         self.e = np.concatenate([rho, self.theta], axis=1)
         J0 = ev.world_jacobian()
@@ -189,8 +187,7 @@ class _State:
     def L(self) -> np.ndarray:
         """L[b, m, i, j] = d J_log[m, i] / d eta_j (:func:`.se3.log_jacobian_derivative`)."""
         if self._L is None:
-            J, E2 = log_expansion(self.R, self.p, self.theta)
-            self._L = log_jacobian_derivative(J, E2)
+            self._L = log_jacobian_derivative(self.J, self._log.E2)
         return self._L
 
     def projected(self) -> np.ndarray:
@@ -213,21 +210,28 @@ class BushingGroup(ElementGroup):
         self.symmetric_stiffness = False
         self.fa = [robot.frame_id(e.frame) for e in elements]
         self.fb = [robot.frame_id(e.target) if isinstance(e.target, str) else -1 for e in elements]
-        self.frame_ids = sorted(set(self.fa) | {f for f in self.fb if f >= 0})
+        self.frame_ids = tuple(sorted(set(self.fa) | {f for f in self.fb if f >= 0}))
+        index = {f: i for i, f in enumerate(self.frame_ids)}
+        # positions in frame_ids of each bushing's frames (a world target: any valid index, masked by world_b)
+        self.ia = readonly(np.array([index[f] for f in self.fa], dtype=np.intp))
+        self.ib = readonly(np.array([index.get(f, 0) for f in self.fb], dtype=np.intp))
+        self.world_b = readonly(np.array([f < 0 for f in self.fb], dtype=bool))
         targets = np.array([np.eye(4) if isinstance(e.target, str) else e.target for e in elements]).reshape(-1, 4, 4)
-        self.target_R, self.target_p = targets[:, :3, :3], targets[:, :3, 3]
+        self.target_R, self.target_p = readonly(targets[:, :3, :3].copy()), readonly(targets[:, :3, 3].copy())
         offsets = np.array([e.offset for e in elements]).reshape(-1, 4, 4)
-        self.R_oi = np.swapaxes(offsets[:, :3, :3], 1, 2)  # O^-1 = (Ro^T, -Ro^T po)
-        self.p_oi = -np.einsum("bij,bj->bi", self.R_oi, offsets[:, :3, 3])
+        self.R_oi = readonly(np.swapaxes(offsets[:, :3, :3], 1, 2).copy())  # O^-1 = (Ro^T, -Ro^T po)
+        self.p_oi = readonly(-np.einsum("bij,bj->bi", self.R_oi, offsets[:, :3, 3]))
         nv = model.nv
-        self.m_a = np.array([support_mask(model, model.frames[f].parentJoint) for f in self.fa]).reshape(-1, nv)
+        self.m_a = readonly(
+            np.array([support_mask(model, model.frames[f].parentJoint) for f in self.fa]).reshape(-1, nv)
+        )
         m_b = np.array(
             [support_mask(model, model.frames[f].parentJoint) if f >= 0 else np.zeros(nv) for f in self.fb]
         ).reshape(-1, nv)
-        self.s = self.m_a - m_b
-        self.T = ancestor_mask(model)
-        self.K6 = np.array([e.stiffness for e in elements]).reshape(-1, 6, 6)
-        self.D6 = np.array([e.damping for e in elements]).reshape(-1, 6, 6)
+        self.s = readonly(self.m_a - m_b)
+        self.T = readonly(ancestor_mask(model))
+        self.K6 = readonly(np.array([e.stiffness for e in elements], dtype=float).reshape(-1, 6, 6))
+        self.D6 = readonly(np.array([e.damping for e in elements], dtype=float).reshape(-1, 6, 6))
         self.damped = bool(np.any(self.D6))
 
     def state(self, ev: Evaluation) -> _State:
@@ -253,7 +257,9 @@ class BushingGroup(ElementGroup):
         J0 = ev.world_jacobian()
         Ja = st.Ad @ (J0 * self.m_a[:, None, :])  # body Jacobians of the frames, their axes
         # dw/dq = dJlog^T f + J^T df, df = -K6 de - D6 dedot, de = J Jr dq; W = Ad^T w turns with a's axes
-        middle = np.einsum("bm,bmij->bij", st.f, st.L) - np.swapaxes(st.J, 1, 2) @ self.K6 @ st.J
+        nb = st.f.shape[0]
+        middle = (st.f[:, None, :] @ st.L.reshape(nb, 6, 36)).reshape(nb, 6, 6)  # f_m L[m, i, j]
+        middle -= np.swapaxes(st.J, 1, 2) @ self.K6 @ st.J
         dw = middle @ st.Jr
         if self.damped and not ev.at_rest:
             weights = (self.s * ev.v)[:, None, :]  # (B, 1, nv)

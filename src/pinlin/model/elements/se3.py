@@ -38,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import zeta
 
-__all__ = ["skew", "log_expansion", "log_jacobian_derivative", "ad_matrix", "SERIES_TERMS"]
+__all__ = ["skew", "LogExpansion", "log_expansion", "log_jacobian_derivative", "ad_matrix", "SERIES_TERMS"]
 
 #: Terms of the series of beta(t): at t = pi the ratio of successive terms is 1/4,
 #: so 40 terms leave a truncation below 1e-20 even for the second derivative.
@@ -52,7 +52,6 @@ _SERIES = np.zeros((SERIES_TERMS, 3))
 _SERIES[:, 0] = _B
 _SERIES[: SERIES_TERMS - 1, 1] = _B[1:] * (2 * _n[1:] - 2)
 _SERIES[: SERIES_TERMS - 2, 2] = _B[2:] * (2 * _n[2:] - 2) * (2 * _n[2:] - 4)
-_POWERS = np.arange(SERIES_TERMS)
 
 #: Levi-Civita symbol: (a x b)_k = eps_ijk a_i b_j.
 _EPS = np.zeros((3, 3, 3))
@@ -66,9 +65,18 @@ _SS = np.einsum("abj,bck->acjk", _S, _S)
 _SS = _SS + _SS.transpose(0, 1, 3, 2)
 
 
+#: skew(a) = (a @ _SKEW).reshape(3, 3): _SKEW[j, 3 a + b] = _S[a, b, j].
+_SKEW = np.ascontiguousarray(_S.reshape(9, 3).T)
+#: _S_J[j] = [e_j]x, the generators stacked first (for products with a matrix per generator).
+_S_J = np.ascontiguousarray(_S.transpose(2, 0, 1))
+#: (A @ _EPS_K).reshape(3, 3, 3)[m, i, j] = sum_k A[m, k] eps_ijk.
+_EPS_K = np.ascontiguousarray(_EPS.reshape(9, 3).T)
+_I3 = np.eye(3)
+
+
 def skew(a: np.ndarray) -> np.ndarray:
     """[a]x, the matrix of the cross product a x . ((..., 3) -> (..., 3, 3))."""
-    return np.einsum("abj,...j->...ab", _S, a)
+    return (a @ _SKEW).reshape(a.shape[:-1] + (3, 3))
 
 
 def ad_matrix(xi: np.ndarray) -> np.ndarray:
@@ -81,25 +89,90 @@ def ad_matrix(xi: np.ndarray) -> np.ndarray:
     return out
 
 
-def _jr_inv_derivatives(theta: np.ndarray, second: bool = True):
-    """A = J_r^{-1}(theta) (..., 3, 3), dA[..., :, :, j] = dA/dtheta_j and d2A[..., :, :, j, k] (or None)."""
-    t2 = np.einsum("...j,...j->...", theta, theta)
-    beta, gamma, gamma2 = np.moveaxis(np.power.outer(t2, _POWERS) @ _SERIES, -1, 0)
-    T = skew(theta)
-    T2 = T @ T
-    A = np.eye(3) + 0.5 * T + beta[..., None, None] * T2
-    ST = np.einsum("abj,...bc->...acj", _S, T) + np.einsum("...ab,bcj->...acj", T, _S)  # S_j T + T S_j
-    dA = 0.5 * _S + gamma[..., None, None, None] * np.einsum("...j,...ab->...abj", theta, T2) + beta[..., None, None, None] * ST
-    if not second:
-        return A, dA, None
-    g = gamma[..., None, None, None, None]
-    d2A = (
-        gamma2[..., None, None, None, None] * np.einsum("...j,...k,...ab->...abjk", theta, theta, T2)
-        + g * np.einsum("jk,...ab->...abjk", np.eye(3), T2)
-        + g * (np.einsum("...j,...abk->...abjk", theta, ST) + np.einsum("...k,...abj->...abjk", theta, ST))
-        + beta[..., None, None, None, None] * _SS
-    )
-    return A, dA, d2A
+class LogExpansion:
+    """The expansion of e(X exp xi) at X = (R, p), stacked over leading axes: J_log now, E_2 on first use.
+
+    The first-order terms (A = J_r^{-1}(theta), its derivative, the series of beta)
+    are kept for :attr:`E2`, so a caller that needs both pays for them once.
+    Products are written as matrix products over the small axes (``np.einsum``
+    with three or four operands loops in C without BLAS and costs more than the
+    arithmetic on these (..., 3, 3, 3) arrays).
+
+    Parameters
+    ----------
+    R : (..., 3, 3) rotations, p : (..., 3) translations [m] of X.
+    theta : (..., 3) log3(R) [rad].
+    """
+
+    def __init__(self, R: np.ndarray, p: np.ndarray, theta: np.ndarray):
+        self.R, self.p, self.theta = R, p, theta
+        t2 = (theta * theta).sum(axis=-1)
+        powers = np.empty(t2.shape + (SERIES_TERMS,))  # 1, t^2, t^4, ...: a running product (no pow calls)
+        powers[..., 0] = 1.0
+        powers[..., 1:] = t2[..., None]
+        np.cumprod(powers, axis=-1, out=powers)
+        self._series = np.moveaxis(powers @ _SERIES, -1, 0)  # beta, gamma, gamma2
+        beta, gamma = self._series[0], self._series[1]
+        T = skew(theta)
+        self._T2 = T2 = T @ T
+        self.A = A = _I3 + 0.5 * T + beta[..., None, None] * T2
+        Tj = T[..., None, :, :]
+        self._ST = ST = np.moveaxis(_S_J @ Tj + Tj @ _S_J, -3, -1)  # [a, c, j]: S_j T + T S_j
+        # dA[a, b, j] = dA[a, b] / dtheta_j
+        self._dA = dA = (
+            0.5 * _S
+            + gamma[..., None, None, None] * (T2[..., None] * theta[..., None, None, :])
+            + (beta[..., None, None, None] * ST)
+        )
+        self._dW_A = np.swapaxes(dA, -3, -2) @ A[..., None, :, :]  # DW[A e_j], indexed [a, b, j] (W = A^T)
+        self.J = np.zeros(A.shape[:-2] + (6, 6))  # de/dxi at xi = 0 (Pinocchio's Jlog6(X))
+        self.J[..., :3, :3] = A
+        self.J[..., 3:, 3:] = A
+        self.J[..., :3, 3:] = (p[..., None, None, :] @ self._dW_A)[..., 0, :]
+        self._E2: np.ndarray | None = None
+
+    def _d2A(self) -> np.ndarray:
+        """d2A[..., a, b, j, k] = d^2 A[a, b] / dtheta_j dtheta_k."""
+        beta, gamma, gamma2 = self._series
+        theta, T2, ST = self.theta, self._T2, self._ST
+        g = gamma[..., None, None, None, None]
+        tt = theta[..., :, None] * theta[..., None, :]
+        return (
+            T2[..., None, None]
+            * (gamma2[..., None, None] * tt + gamma[..., None, None] * _I3)[..., None, None, :, :]
+            + g
+            * (
+                theta[..., None, None, :, None] * ST[..., None, :]
+                + theta[..., None, None, None, :] * ST[..., None]
+            )
+            + beta[..., None, None, None, None] * _SS
+        )
+
+    @property
+    def E2(self) -> np.ndarray:
+        """E2[..., m, i, j] = d^2 e_m / dxi_i dxi_j at xi = 0 (symmetric in i, j), formed on first access."""
+        if self._E2 is None:
+            A, p, dA, dW_A = self.A, self.p, self._dA, self._dW_A
+            lead = A.shape[:-2]
+            d2A = self._d2A()
+            half_A_eps = 0.5 * (A @ _EPS_K).reshape(lead + (3, 3, 3))  # (1/2) A (e_i x e_j)
+            H3 = dA @ A[..., None, :, :] + half_A_eps  # rotation rows: DA[A e_j] e_i - (1/2) A (e_j x e_i)
+            pr = p[..., None, :]
+            Y = (pr @ d2A.reshape(lead + (3, 27))).reshape(
+                lead + (3, 3, 3)
+            )  # D^2 W[., .] p, indexed [a, c, d]
+            Z = (pr @ dA.reshape(lead + (3, 9))).reshape(lead + (3, 3))  # DW[e_c] p, indexed [a, c]
+            E2 = np.zeros(lead + (6, 6, 6))
+            E2[..., 3:, 3:, 3:] = H3
+            At = np.swapaxes(A, -1, -2)[..., None, :, :]
+            E2[..., :3, 3:, 3:] = At @ Y @ A[..., None, :, :] + (Z @ H3.reshape(lead + (3, 9))).reshape(
+                lead + (3, 3, 3)
+            )
+            mixed = np.swapaxes(self.R, -1, -2)[..., None, :, :] @ dW_A - half_A_eps  # [a, v_i, omega_j]
+            E2[..., :3, :3, 3:] = mixed
+            E2[..., :3, 3:, :3] = np.swapaxes(mixed, -1, -2)
+            self._E2 = E2
+        return self._E2
 
 
 def log_expansion(
@@ -121,32 +194,14 @@ def log_expansion(
     E2 : (..., 6, 6, 6) ndarray
         E2[m, i, j] = d^2 e_m / dxi_i dxi_j at xi = 0.
     """
-    A, dA, d2A = _jr_inv_derivatives(theta, second_order)
-    dW = np.swapaxes(dA, -3, -2)  # W = A^T
-    dW_A = np.einsum("...abc,...cj->...abj", dW, A)  # DW[A e_j]
-    J = np.zeros(A.shape[:-2] + (6, 6))
-    J[..., :3, :3] = A
-    J[..., 3:, 3:] = A
-    J[..., :3, 3:] = np.einsum("...abj,...b->...aj", dW_A, p)
-    if not second_order:
-        return J, None
-    d2W = np.swapaxes(d2A, -4, -3)
-    dA_A = np.einsum("...abc,...cj->...abj", dA, A)  # DA[A e_j]
-    half_A_eps = 0.5 * np.einsum("...mk,ijk->...mij", A, _EPS)  # (1/2) A (e_i x e_j)
-    H3 = dA_A + half_A_eps  # rotation rows: DA[A e_j] e_i - (1/2) A (e_j x e_i)
-    E2 = np.zeros(A.shape[:-2] + (6, 6, 6))
-    E2[..., 3:, 3:, 3:] = H3
-    E2[..., :3, 3:, 3:] = np.einsum("...abcd,...b,...ci,...dj->...aij", d2W, p, A, A) + np.einsum(
-        "...abc,...b,...cij->...aij", dW, p, H3
-    )
-    mixed = np.einsum("...abj,...bi->...aij", dW_A, R) - half_A_eps  # [a, v_i, omega_j]
-    E2[..., :3, :3, 3:] = mixed
-    E2[..., :3, 3:, :3] = np.swapaxes(mixed, -1, -2)
-    return J, E2
+    ex = LogExpansion(R, p, theta)
+    return ex.J, (ex.E2 if second_order else None)
 
 
 #: _AD_BASIS[i] = ad(e_i) (6 x 6 each).
 _AD_BASIS = ad_matrix(np.eye(6))
+#: (J @ _AD_K).reshape(6, 6, 6)[m, i, j] = sum_k J[m, k] ad(e_i)[k, j].
+_AD_K = np.ascontiguousarray(_AD_BASIS.transpose(1, 0, 2).reshape(6, 36))
 
 
 def log_jacobian_derivative(J: np.ndarray, E2: np.ndarray) -> np.ndarray:
@@ -156,4 +211,4 @@ def log_jacobian_derivative(J: np.ndarray, E2: np.ndarray) -> np.ndarray:
     d(J_log e_i)/d eta = E2[:, i, :] + (1/2) J_log ad(.) e_i, i.e.
     L[:, i, j] = E2[:, i, j] - (1/2) J_log ad(e_i) e_j.
     """
-    return E2 - 0.5 * np.einsum("...mk,ikj->...mij", J, _AD_BASIS)
+    return E2 - 0.5 * (J @ _AD_K).reshape(J.shape[:-2] + (6, 6, 6))
