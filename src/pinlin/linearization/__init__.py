@@ -13,13 +13,15 @@ One concept per module:
 - :mod:`.equilibrium` -- Newton on the configuration manifold;
 - :mod:`.linearize` -- :func:`linearize`: restriction to the free coordinates and
   the checks; :mod:`.split` the symmetric and skew parts;
-- :mod:`.batch` -- :func:`linearize_many`: one scene at many configurations, the
-  checks and splits shared; :mod:`.batch_static` its path for joint-space scenes at
-  rest (the element work vectorized over the points);
+- :mod:`.batch` -- :func:`linearize_many`: one scene at many configurations; its
+  stacked paths :mod:`.batch_static` (joint-space scenes at rest) and
+  :mod:`.batch_moving` (steady motions proved time-invariant), with
+  :mod:`.batch_common` (stacked norms, checks, result objects);
 - :mod:`.system` -- :class:`LinearizedSystem`, the frozen result;
 - constraints (SPEC section 10): :mod:`.constraint_set` (Phi, J_c, rank and
   multipliers at one q), :mod:`.closure` (the assembly step, :func:`close_loops`),
-  :mod:`.singularity` (redundant constraints or a singular configuration?),
+  :mod:`.singularity` (redundant constraints or a singular configuration?, probed)
+  and :mod:`.constrained_structure` (redundancy proved: planar loops),
   :mod:`.coordinates` (the basis B of ker J_c), :mod:`.constrained_equilibrium`
   (Newton with the KKT matrix), :mod:`.constrained` (the projected linearization,
   the constraint stiffness K_lambda).

@@ -15,6 +15,12 @@ computed (:func:`pinlin.model.constraints.dead_wrench_stiffness`): a constrained
 scene runs the Pinocchio passes of the same scene without constraints, plus one
 ``computeJointJacobians`` + ``updateFramePlacements``.
 
+A rank-deficient J_c is told apart from a singular configuration by
+:mod:`.constrained_structure` when the redundancy is structural (a planar loop:
+proved once per call from the Jacobians at hand) and otherwise by probing nearby
+assembled configurations (:func:`~pinlin.linearization.singularity.check_regular`).
+The default coordinates come from :func:`.coordinates.pivoted_basis`.
+
 Contacts stay bilateral in the linearization (the standard stance
 linearization): the equilibrium and the system's notes say when the ground
 would have to pull or friction exceed mu.  Prescribed joint velocities are
@@ -42,6 +48,7 @@ from ..errors import (
 )
 from ..model.scene import Scene
 from .assembly import fro
+from .constrained_structure import structurally_redundant
 from .constraint_set import (
     CONSTRAINT_TOL,
     RANK_TOL,
@@ -51,7 +58,7 @@ from .constraint_set import (
     evaluate_constraints,
     relative_residual,
 )
-from .coordinates import coordinate_basis
+from .coordinates import PIVOTED_METHOD, coordinate_basis, pivoted_basis
 from .plan import STRUCTURE_EPS_FACTOR
 from .singularity import check_regular
 from .system import LinearizedSystem, null_motion
@@ -132,7 +139,8 @@ def linearize_constrained(
             nv,
             [c.label for c in scene.constraints],
         )
-    check_regular(scene, q, state, calls)
+    if state.rank < state.m and state.rank != state.m - structurally_redundant(scene, state):
+        check_regular(scene, q, state, calls)  # no structural proof of the redundancy: probe nearby
     lam, g, asm, Kt = constrained_point(scene, q, state, stiffness=True, damping=True, mass=True)
     calls += asm.calls
     rel = relative_residual(g, state, lam, asm, Kt)
@@ -145,54 +153,64 @@ def linearize_constrained(
             residual=fro(g),
             relative_residual=rel,
         )
-    basis = coordinate_basis(state, scene.dof_names, coordinates)
-    if basis.condition > COORDINATE_CONDITION_WARN:
+    if coordinates is None:  # the default: the same basis as coordinate_basis(state, names, None), leaner
+        B, names, condition = pivoted_basis(state, scene.dof_names)
+        method = PIVOTED_METHOD
+    else:
+        basis = coordinate_basis(state, scene.dof_names, coordinates)
+        B, names, condition, method = basis.B, basis.dof_names, basis.condition, basis.method
+    if condition > COORDINATE_CONDITION_WARN:
         warnings.warn(
-            f"linearize: the coordinates {list(basis.dof_names)} are nearly singular here: the joints that follow "
-            f"them have cond(J_d) = {basis.condition:.2e} > {COORDINATE_CONDITION_WARN:g}, so M, C, K lose up to "
-            f"about eps cond(J_d)^2 = {np.finfo(float).eps * basis.condition**2:.1e} relative accuracy; choose "
+            f"linearize: the coordinates {list(names)} are nearly singular here: the joints that follow "
+            f"them have cond(J_d) = {condition:.2e} > {COORDINATE_CONDITION_WARN:g}, so M, C, K lose up to "
+            f"about eps cond(J_d)^2 = {np.finfo(float).eps * condition**2:.1e} relative accuracy; choose "
             f"other joints, coordinates=None or coordinates='orthonormal'",
             AccuracyWarning,
             stacklevel=3,
         )
-    return _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, structure_tol, calls, t0)
+    return _project_system(
+        scene, q, state, lam, g, asm, Kt, (B, names, condition, method), rel, balancing, structure_tol, calls, t0
+    )
 
 
 def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, structure_tol, calls, t0):
-    B = basis.B
-    M = B.T @ asm.M @ B
-    M = M + M.T
-    M *= 0.5
-    C = B.T @ asm.C @ B
-    K = B.T @ Kt @ B
-    # one product per pair: a NaN or inf anywhere makes it non-finite (inf * 0 is NaN)
-    if not (math.isfinite(np.vdot(M, C)) and math.isfinite(np.vdot(K, K))):
-        if not (np.isfinite(M).all() and np.isfinite(C).all() and np.isfinite(K).all()):
-            raise ComputationError("linearize: non-finite entries in the projected M, C or K")
+    B, names, condition, method = basis
+    # B^T A B of the three matrices in one batched product (each slice is the same gemm, bitwise),
+    # and their symmetric parts in one sum: M, D = (C + C^T) / 2 and S = (K + K^T) / 2
+    P = B.T @ np.array((asm.M, asm.C, Kt)) @ B
+    H = P + P.transpose(0, 2, 1)
+    H *= 0.5
+    # one product: a NaN or inf anywhere makes it non-finite (inf * 0 is NaN); P finite if H is
+    if not math.isfinite(np.vdot(H, H)) and not np.isfinite(H).all():
+        raise ComputationError("linearize: non-finite entries in the projected M, C or K")
+    M, D, S = H
     if lapack.dpotrf(M, lower=1, clean=0)[1] != 0:
-        smallest, weak = null_motion(M, basis.dof_names)
+        smallest, weak = null_motion(M, names)
         raise SingularMassError(
             f"the mass matrix B^T M B of the constrained system is not positive definite (smallest eigenvalue "
             f"{smallest:.3g}); the coordinates {weak} carry no inertia",
             weak,
         )
     dropped: dict[str, float] = {}
-    S, N = (K + K.T) * 0.5, (K - K.T) * 0.5
+    K = P[2]
+    N = K - K.T  # 2 N: halving is exact, so ||N|| = ||K - K^T|| / 2 bitwise (barring subnormals)
     # rounding in B^T (K - K_lambda) B: eps-relative to ||B||^2 (||K|| + ||K_lambda||) (||B||_2 <= ||B||_F)
-    size = fro(N) / max(float(np.vdot(B, B)) * asm.rounding_scale_K, _TINY)
+    size = 0.5 * fro(N) / max(float(np.vdot(B, B)) * asm.rounding_scale_K, _TINY)
     if structure_tol is None:
-        structure_tol = STRUCTURE_EPS_FACTOR * len(basis.dof_names) * _EPS
+        structure_tol = STRUCTURE_EPS_FACTOR * len(names) * _EPS
+    G = np.zeros(K.shape)  # v0 = 0: C comes from the (symmetric) elements alone
     if size <= structure_tol:
         if size:
             dropped["N"] = size
-        N = np.zeros(K.shape)
-    D, G = (C + C.T) * 0.5, np.zeros(K.shape)  # v0 = 0: C comes from the (symmetric) elements alone
+        N = G  # both zero and read-only in the result: one array
+    else:
+        N *= 0.5
     notes, _ = constraint_notes(scene, state, lam, all_contacts=False)
     if scene.contact_index:
         notes.append(BILATERAL_NOTE)
     notes.append(
-        f"{len(basis.dof_names)} coordinates z ({basis.method}) for {len(scene.constraints)} constraints "
-        f"(rank J_c = {state.rank} of m = {state.m}); joint velocities = basis @ z; cond(J_d) = {basis.condition:.3g}"
+        f"{len(names)} coordinates z ({method}) for {len(scene.constraints)} constraints "
+        f"(rank J_c = {state.rank} of m = {state.m}); joint velocities = basis @ z; cond(J_d) = {condition:.3g}"
     )
     balance = None
     if balancing:
@@ -203,7 +221,7 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
         )
     return LinearizedSystem.trusted(
         M, D, G, S, N,
-        dof_names=basis.dof_names,
+        dof_names=names,
         q=q,
         v=scene.v0,
         residual=rel,
@@ -215,7 +233,7 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
         method="analytic",
         basis=B,
         basis_names=scene.dof_names,
-        basis_condition=basis.condition,
+        basis_condition=condition,
         constraint_forces=constraint_forces(scene, lam),
     )  # fmt: skip
 

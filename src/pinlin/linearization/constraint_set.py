@@ -6,8 +6,9 @@ a rank-revealing factorization, the column-pivoted QR of J_c (LAPACK ``dgeqp3``:
 J_c P = Q R with |R_11| >= |R_22| >= ...): the rank is the number of diagonal
 entries |R_kk| > ``rank_tol`` |R_11| (:data:`RANK_TOL`); the same factorization
 picks the dependent joints of the default coordinates (:mod:`.coordinates`).  The
-multipliers are the minimum-norm least-squares solution of J_c^T lambda = r
-(LAPACK ``dgelsy``, a complete orthogonal factorization with the same threshold;
+multipliers are the minimum-norm least-squares solution of J_c^T lambda = r: at
+full row rank the unique one (LAPACK ``dgels``, a Householder QR of J_c^T), else
+LAPACK ``dgelsy`` (a complete orthogonal factorization with the same threshold;
 the SVD truncated at the rank if the two rank decisions ever differ): a redundant
 set (a planar loop's point constraint has an out-of-plane equation that is always
 satisfied, so its force along that direction is not determined) gets the
@@ -18,7 +19,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 import scipy.linalg.lapack as lapack
@@ -49,6 +49,19 @@ RANK_TOL = 1e-9
 #: closed: the equilibrium solver closes loops to ~1e-15 m; 1e-8 m leaves room for
 #: configurations assembled by other tools while staying far below any physical gap.
 CONSTRAINT_TOL = 1e-8
+
+
+class _once:
+    """A lazily computed attribute, stored in the instance on first access (no lock: a state is one caller's)."""
+
+    def __init__(self, compute):
+        self.compute, self.name, self.__doc__ = compute, compute.__name__, compute.__doc__
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            return self
+        value = obj.__dict__[self.name] = self.compute(obj)
+        return value
 
 
 @dataclass
@@ -89,21 +102,22 @@ class ConstraintState:
     rank_tol: float = RANK_TOL
     frames: np.ndarray | None = None
 
-    @cached_property
+    @_once
     def qr(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Column-pivoted QR of J_c: (LAPACK's packed Q and R, 0-based column pivots, Householder tau)."""
         qr, pivots, tau, _, _ = lapack.dgeqp3(self.J)
         return qr, pivots - 1, tau
 
-    @cached_property
+    @_once
     def rank(self) -> int:
         """Numerical rank of J_c: pivots |R_kk| above ``rank_tol`` |R_11|."""
-        d = np.abs(self.qr[0].diagonal())
-        if not len(d) or d[0] == 0:
+        d = self.qr[0].diagonal().tolist()  # a few entries: Python floats, the same comparisons
+        if not d or d[0] == 0:
             return 0
-        return int(np.count_nonzero(d > self.rank_tol * d[0]))
+        cut = self.rank_tol * abs(d[0])
+        return len([x for x in d if abs(x) > cut])
 
-    @cached_property
+    @_once
     def svd(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Full SVD of J_c: U (m x m), s, Vt (nv x nv) (bases of the null spaces, minimum-norm multipliers)."""
         return np.linalg.svd(self.J, full_matrices=True)
@@ -112,7 +126,7 @@ class ConstraintState:
     def m(self) -> int:
         return len(self.phi)
 
-    @cached_property
+    @_once
     def left_null(self) -> np.ndarray:
         """Orthonormal basis of ker J_c^T (m x (m - rank)): the dependent combinations of the equations."""
         return self.svd[0][:, self.rank :]
@@ -126,10 +140,20 @@ class ConstraintState:
 
         .. math::  \\lambda = \\arg\\min \\|\\lambda\\| \\ \\text{among the minimizers of}
                    \\ \\|r - J_c^T \\lambda\\|
+
+        At full row rank (rank J_c = m: a standing robot's contacts) the minimizer is
+        unique and LAPACK's ``dgels`` gives it (a Householder QR of J_c^T, backward
+        stable like ``dgelsy``, without the pivoting and rank estimation this state's
+        rank decision has already done); otherwise ``dgelsy`` with ``rank_tol``.
         """
         k, (nv, m) = self.rank, self.J.T.shape
         if not k:
             return np.zeros(m), r.copy()
+        if k == m and nv >= m:
+            _, x, info = lapack.dgels(self.J.T, r[:, None])
+            if info == 0:  # info > 0: an exactly zero pivot, which the rank decision excludes
+                lam = x[:m, 0]
+                return lam, r - self.J.T @ lam
         b = np.zeros((max(nv, m), 1))
         b[:nv, 0] = r
         mn = min(nv, m)
@@ -145,32 +169,46 @@ class ConstraintState:
         """K_lambda = d(J_c^T lambda)/dq at fixed lambda (nv x nv; SPEC section 10)."""
         before = self.scene.robot.dof_supports
         if self.frames is not None:
-            return dead_wrench_stiffness(self.frames, lam.reshape(-1, 3), None, before)
+            return dead_wrench_stiffness(self.frames, lam.reshape(-1, 3), None, before, linear=self.J)
         terms = [t for c, rows in zip(self.scene.constraints, self.rows) for t in c.wrench_terms(self.ev, lam[rows])]
         return dead_wrench_stiffness(*stack_wrenches(terms), before)
 
     def gaps(self) -> tuple[float, float, str]:
         """Largest distance [m], largest rotation [rad], and the label of the constraint with the largest distance."""
-        P = self.phi[self.scene.position_rows]
-        d2 = np.add.reduce(P * P, axis=1)
-        worst = int(d2.argmax())
+        scene = self.scene
+        values = self.phi.tolist()  # a few constraints: Python floats, the sums numpy would form
+        worst, largest = 0, math.nan
+        for i, row in enumerate(scene.position_rows[:, 0].tolist()):
+            x, y, z = values[row], values[row + 1], values[row + 2]
+            d2 = x * x + y * y + z * z
+            if not i or d2 > largest or (d2 != d2 and largest == largest):  # the first largest; a NaN wins
+                worst, largest = i, d2
         rot = 0.0
-        if len(self.scene.rotation_rows):
-            R = self.phi[self.scene.rotation_rows]
+        if len(scene.rotation_rows):
+            R = self.phi[scene.rotation_rows]
             rot = math.sqrt(float(np.maximum.reduce(np.add.reduce(R * R, axis=1))))
-        return math.sqrt(float(d2[worst])), rot, self.scene.constraints[worst].label
+        return math.sqrt(largest), rot, scene.constraints[worst].label
 
     def contacts_violated(self, lam: np.ndarray) -> bool:
-        """True when a contact needs the ground to pull or more friction than its mu."""
+        """True when a contact needs the ground to pull or more friction than its mu.
+
+        On Python floats (a handful of contacts: cheaper than numpy's fixed costs), in
+        the order of the sums :meth:`ContactStatus <pinlin.model.constraints.PointConstraint.contact_status>`
+        reports: f_n = n . lambda, t = lambda - f_n n, violated when f_n < 0 or |t|^2 > (mu f_n)^2.
+        """
         scene = self.scene
         if not scene.contact_index:
             return False
-        L = lam[scene.contact_rows]
-        n = scene.contact_normals
-        fn = np.add.reduce(L * n, axis=1)
-        t = L - fn[:, None] * n
-        mu_fn = scene.contact_friction * fn
-        return bool(np.count_nonzero(fn < 0) or np.count_nonzero(np.add.reduce(t * t, axis=1) > mu_fn * mu_fn))
+        values = lam.tolist()
+        for row, (a, b, c), mu in zip(scene.contact_rows[:, 0].tolist(), scene.contact_normals.tolist(),
+                                      scene.contact_friction.tolist()):  # fmt: skip
+            x, y, z = values[row], values[row + 1], values[row + 2]
+            fn = x * a + y * b + z * c
+            tx, ty, tz = x - fn * a, y - fn * b, z - fn * c
+            mu_fn = mu * fn
+            if fn < 0 or tx * tx + ty * ty + tz * tz > mu_fn * mu_fn:
+                return True
+        return False
 
     def row_owners(self, vector: np.ndarray, share: float) -> list[str]:
         """Labels of the constraints whose rows carry at least ``share`` of a unit vector (m,)."""
@@ -192,12 +230,11 @@ def evaluate_constraints(
     ``q`` must already be checked (:meth:`Scene.check_configuration`).  Runs
     ``computeJointJacobians`` + ``updateFramePlacements`` once.
     """
-    ev = Evaluation(scene, q, scene.v0, ws)
+    ev = Evaluation(scene, q, scene.v0, ws, at_rest=True)  # constraints refuse prescribed velocities: v0 = 0
     if scene.world_points is not None:  # points at world points: one group, same numbers
         ids, targets = scene.world_points
-        ev.frame_position(ids[0])  # the kinematics, once
-        oMf = ev.data.oMf
-        frames = np.array([ev.world_aligned_jacobian(i) for i in ids])
+        frames = np.array([ev.world_aligned_jacobian(i) for i in ids])  # runs the kinematics, once
+        oMf = ev.data.oMf  # a few frames: one proxy each costs less than converting every frame
         phi = (np.array([oMf[i].translation for i in ids]) - targets).ravel()
         J = frames[:, :3].reshape(-1, scene.model.nv)
         return ConstraintState(scene, q, phi, J, J if closure else None, scene.constraint_rows, ev.calls, ev, rank_tol, frames)
@@ -209,8 +246,15 @@ def evaluate_constraints(
 
 
 def constraint_forces(scene: Scene, lam: np.ndarray) -> tuple[ConstraintForce, ...]:
-    """One :class:`~pinlin.ConstraintForce` per constraint, in scene order."""
-    return tuple(c.force(lam[rows]) for c, rows in zip(scene.constraints, scene.constraint_rows))
+    """One :class:`~pinlin.ConstraintForce` per constraint, in scene order.
+
+    One copy of ``lam``; each force (and torque) is a view of its own rows of it.
+    """
+    lam = np.array(lam, dtype=float)
+    if scene.world_points is not None:  # points at world points: the rows of lam (k x 3) are their forces
+        of = ConstraintForce.of  # what PointConstraint.force(f, copy=False) returns
+        return tuple([of(c.label, c.frame, c.target, f) for c, f in zip(scene.constraints, lam.reshape(-1, 3))])
+    return tuple([c.force(lam[rows], copy=False) for c, rows in zip(scene.constraints, scene.constraint_rows)])
 
 
 def contact_statuses(scene: Scene, lam: np.ndarray) -> tuple[ContactStatus, ...]:

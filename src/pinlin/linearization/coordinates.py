@@ -29,7 +29,7 @@ import scipy.linalg.lapack as lapack
 from ..errors import JointNotFoundError, ParameterError
 from .constraint_set import ConstraintState
 
-__all__ = ["CoordinateBasis", "coordinate_basis"]
+__all__ = ["CoordinateBasis", "coordinate_basis", "pivoted_basis", "pivoted_coordinates", "PIVOTED_METHOD"]
 
 
 @dataclass(frozen=True)
@@ -152,30 +152,62 @@ def coordinate_basis(
         B = state.kernel()
         return CoordinateBasis(B, tuple(f"z{i + 1}" for i in range(n)), 1.0, "orthonormal", ())
     if coordinates is None:
-        R, perm = state.qr[:2]  # the rank-revealing QR of J_c: its pivots are the dependent joints
-        dependent, rest = perm[:r], perm[r:]
-        order = np.argsort(rest)  # coordinates in joint order
-        independent = rest[order]
-        X = lapack.dtrtrs(R[:r, :r], R[:r, r:])[0][:, order] if r else np.zeros((0, n))  # upper triangle only
-        B = _joint_basis(J, independent, dependent, X)
-        condition = _condition(R[:r, :r]) if r else 1.0
-        method = "joints (column-pivoted QR)"
-    else:
-        independent = np.array(_named_indices(list(coordinates), dof_names, state.scene.robot), dtype=int)
-        if len(independent) != n:
-            raise ParameterError(
-                "coordinates",
-                f"{list(coordinates)} give {len(independent)} degree(s) of freedom; the constraints leave "
-                f"n = nv - rank J_c = {nv} - {r} = {n}",
-            )
-        dependent = np.setdiff1d(np.arange(nv), independent)
-        X, condition = _follow(state, J, dependent, independent, list(coordinates), dof_names)
-        B = _joint_basis(J, independent, dependent, X)
-        method = "joints (given)"
+        return pivoted_coordinates(state, dof_names)
+    independent = np.array(_named_indices(list(coordinates), dof_names, state.scene.robot), dtype=int)
+    if len(independent) != n:
+        raise ParameterError(
+            "coordinates",
+            f"{list(coordinates)} give {len(independent)} degree(s) of freedom; the constraints leave "
+            f"n = nv - rank J_c = {nv} - {r} = {n}",
+        )
+    dependent = np.setdiff1d(np.arange(nv), independent)
+    X, condition = _follow(state, J, dependent, independent, list(coordinates), dof_names)
+    B = _joint_basis(J, independent, dependent, X)
     return CoordinateBasis(
         B,
         tuple(map(dof_names.__getitem__, np.asarray(independent).tolist())),
         condition,
-        method,
+        "joints (given)",
         tuple(map(dof_names.__getitem__, np.sort(dependent).tolist())),
     )
+
+
+#: ``CoordinateBasis.method`` of the default coordinates.
+PIVOTED_METHOD = "joints (column-pivoted QR)"
+
+
+def pivoted_basis(state: ConstraintState, dof_names: tuple[str, ...]) -> tuple[np.ndarray, tuple[str, ...], float]:
+    """(B, names of z, cond(J_d)) for the joints the column-pivoted QR of J_c leaves independent.
+
+    ``CoordinateBasis(B, names, condition, PIVOTED_METHOD, dependent)`` is what
+    :func:`coordinate_basis` returns for them (:func:`pivoted_coordinates`); the
+    linearization reads the first three only, with fewer numpy and Python steps than
+    the dataclass needs (issue 14).
+
+    The condition number is LAPACK's ``dtrcon`` 1-norm estimate on R11 (1 when
+    nothing depends, rank J_c = 0), as :func:`coordinate_basis` reports it.
+    """
+    R, perm = state.qr[:2]
+    r = state.rank
+    nv = R.shape[1]
+    n = nv - r
+    dependent, rest = perm[:r], perm[r:]
+    order = rest.argsort()  # coordinates in joint order
+    independent = rest[order]
+    B = np.zeros((nv, n))
+    B[independent, np.arange(n)] = 1.0
+    condition = 1.0
+    if r:
+        R11 = R[:r, :r]
+        B[dependent] = -lapack.dtrtrs(R11, R[:r, r:])[0][:, order]  # upper triangle only
+        rcond = lapack.dtrcon(R11, norm="1")[0]
+        condition = float(1.0 / rcond) if rcond > 0 else float("inf")
+    return B, tuple([dof_names[i] for i in independent.tolist()]), condition
+
+
+def pivoted_coordinates(state: ConstraintState, dof_names: tuple[str, ...]) -> CoordinateBasis:
+    """:func:`pivoted_basis` as the :class:`~.coordinates.CoordinateBasis` it stands for (dependent joints named)."""
+    B, names, condition = pivoted_basis(state, dof_names)
+    dependent = state.qr[1][: state.rank].tolist()
+    dependent.sort()
+    return CoordinateBasis(B, names, condition, PIVOTED_METHOD, tuple([dof_names[i] for i in dependent]))

@@ -120,8 +120,12 @@ class Constraint(ABC):
         """The world-fixed wrenches J_c^T lam stands for: (J, force, torque) per frame (:func:`dead_wrench_stiffness`)."""
 
     @abstractmethod
-    def force(self, lam: np.ndarray) -> ConstraintForce:
-        """The wrench ``lam`` (this constraint's multipliers) as a :class:`ConstraintForce`."""
+    def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
+        """The wrench ``lam`` (this constraint's multipliers) as a :class:`ConstraintForce`.
+
+        ``copy=False``: ``lam`` is a float array the caller hands over (a view of its own
+        copy of all multipliers), kept without another copy.
+        """
 
     def gaps(self, phi: np.ndarray) -> tuple[float, float]:
         """Distance [m] and rotation [rad] between the frame and its target for this constraint's Phi."""

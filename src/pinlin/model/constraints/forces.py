@@ -33,6 +33,23 @@ class ConstraintForce:
     force: np.ndarray
     torque: np.ndarray | None = None
 
+    @classmethod
+    def of(
+        cls, constraint: str, frame: str, target: str | np.ndarray, force: np.ndarray, torque: np.ndarray | None = None
+    ) -> ConstraintForce:
+        """The same value as ``ConstraintForce(constraint, frame, target, force, torque)``, built directly.
+
+        The frozen dataclass's constructor sets each field through ``object.__setattr__``;
+        a linearization builds one of these per constraint on every call, so its
+        fields go into the instance dictionary in one step (equal, hashable and
+        printed exactly as a constructed one).
+        """
+        obj = object.__new__(cls)
+        object.__setattr__(
+            obj, "__dict__", {"constraint": constraint, "frame": frame, "target": target, "force": force, "torque": torque}
+        )
+        return obj
+
 
 @dataclass(frozen=True)
 class ContactStatus:

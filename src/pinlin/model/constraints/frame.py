@@ -110,6 +110,6 @@ class FrameConstraint(Constraint):
         lam = np.asarray(lam, dtype=float)
         return self._pair(ev, lam[:3], lam[3:])
 
-    def force(self, lam: np.ndarray) -> ConstraintForce:
-        lam = np.array(lam, dtype=float)
-        return ConstraintForce(self.label, self.frame, self.target, lam[:3], lam[3:])
+    def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
+        lam = np.array(lam, dtype=float) if copy else lam
+        return ConstraintForce.of(self.label, self.frame, self.target, lam[:3], lam[3:])

@@ -105,8 +105,8 @@ class PointConstraint(Constraint):
     def wrench_terms(self, ev: Evaluation, lam: np.ndarray) -> list[tuple]:
         return self._pair(ev, np.asarray(lam, dtype=float), None)
 
-    def force(self, lam: np.ndarray) -> ConstraintForce:
-        return ConstraintForce(self.label, self.frame, self.target, np.array(lam, dtype=float))
+    def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
+        return ConstraintForce.of(self.label, self.frame, self.target, np.array(lam, dtype=float) if copy else lam)
 
     def contact_status(self, lam: np.ndarray) -> ContactStatus:
         """Normal and tangential force of a contact with multipliers ``lam``.
@@ -123,7 +123,7 @@ class PointConstraint(Constraint):
         lam = np.asarray(lam, dtype=float)
         fn = float(self.normal @ lam)
         ft = float(np.linalg.norm(lam - fn * self.normal))
-        needed = ft / fn if fn > 0 else math.inf
+        needed = ft / fn if fn > 0 else (0.0 if ft == 0 else math.inf)  # no force at all needs no friction
         slips = self.friction is not None and needed > self.friction
         return ContactStatus(self.label, fn, ft, needed, self.friction, fn < 0, bool(slips and fn >= 0))
 

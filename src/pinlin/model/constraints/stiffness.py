@@ -19,7 +19,11 @@ CONSTANT_SUBSPACE_JOINTS = frozenset(
 )
 
 def dead_wrench_stiffness(
-    J: np.ndarray, forces: np.ndarray, torques: np.ndarray | None, before: np.ndarray
+    J: np.ndarray,
+    forces: np.ndarray,
+    torques: np.ndarray | None,
+    before: np.ndarray,
+    linear: np.ndarray | None = None,
 ) -> np.ndarray:
     """d(sum_k J_k^T w_k)/dq (nv x nv, tangent space) of world-fixed wrenches w_k = (F_k, T_k) at frame origins.
 
@@ -42,6 +46,14 @@ def dead_wrench_stiffness(
     ``pin.integrate`` in the tests.  The mask is the same for every wrench, so the
     wrenches are summed first (one product for all of them) and masked once.
 
+    It does not call :func:`pinlin.model.elements.frame_pairs.fixed_wrench_stiffness` (the
+    same derivative from the world Jacobian and each degree of freedom's accumulated
+    spatial wrench) because the constraints already hold the LOCAL_WORLD_ALIGNED frame
+    Jacobians J_c is built from, while that form first needs the accumulated wrenches
+    (p x F and a support mask per frame, one more product) and a copy of the world
+    Jacobian: more numpy calls for the same nv^2 product, rounded unlike the J_c it
+    differentiates.
+
     Parameters
     ----------
     J : (k, 6, nv) ndarray
@@ -54,13 +66,17 @@ def dead_wrench_stiffness(
         before[i, j]: the joint of degree of freedom j supports (or is) that of i
         (:attr:`pinlin.Robot.dof_supports`); only the degrees of freedom that move
         a frame matter, and those lie on one chain.
+    linear : (3k, nv) ndarray, optional
+        ``J[:, :3].reshape(-1, nv)`` when the caller has it already (a point
+        constraint set's J_c): the same numbers, one copy fewer.
     """
     if not len(J):
         return np.zeros(before.shape)
     nv = J.shape[2]
     W = J[:, 3:]
     FxW = (forces @ _GENERATORS).reshape(-1, 3, 3) @ W  # [F_k]x W_k
-    A = J[:, :3].reshape(-1, nv).T @ FxW.reshape(-1, nv)
+    U = J[:, :3].reshape(-1, nv) if linear is None else linear
+    A = U.T @ FxW.reshape(-1, nv)
     K = np.where(before, A, A.T)
     if torques is not None:
         TxW = (torques @ _GENERATORS).reshape(-1, 3, 3) @ W
