@@ -231,9 +231,9 @@ class Scene:
     def _compile_configuration(self) -> None:
         """Bounds and unit blocks of q, for :meth:`check_configuration` (one vectorized pass per call).
 
-        ``_q_limit`` (nq,): :data:`ANGLE_LIMIT` on revolute angles, the largest double elsewhere
-        (one comparison also catches inf and NaN); ``_unit_blocks``: (joint name, slice of q)
-        of each quaternion and (cos, sin) pair, None when there is none.
+        ``q_limit`` (nq,), read-only: :data:`ANGLE_LIMIT` on revolute angles, the largest double elsewhere
+        (one comparison also catches inf and NaN); ``unit_blocks``: (joint name, slice of q) of each
+        quaternion and (cos, sin) pair, None when there is none (also read by ``linearize_many``).
         """
         limit = np.full(self.robot.nq, np.finfo(float).max)
         blocks: list[tuple[str, slice]] = []
@@ -246,10 +246,10 @@ class Scene:
                 end = j.idx_q + j.nq
                 blocks.append((name, slice(end - _UNIT_BLOCKS[kind], end)))
         limit.flags.writeable = False
-        self._q_limit = limit
+        self.q_limit = limit
         self._q_shape = (self.robot.nq,)
         self._q_small = self.robot.nq <= _SMALL_NQ
-        self._unit_blocks = tuple(blocks) or None
+        self.unit_blocks = tuple(blocks) or None
 
     def _check_constraints(self, robot: Robot, given: tuple | None) -> tuple[Constraint, ...]:
         constraints = robot.constraints if given is None else given
@@ -344,7 +344,7 @@ class Scene:
             :data:`ANGLE_LIMIT`, or a zero quaternion or (cos, sin) pair (naming the joint).
         """
         if type(q) is np.ndarray and q.dtype is _F64:  # the common case; pin.normalize below copies too
-            q = q.copy() if self._unit_blocks is None else q  # the result may be frozen read-only
+            q = q.copy() if self.unit_blocks is None else q  # the result may be frozen read-only
         else:  # numpy would drop an imaginary part with a warning
             try:
                 complex_entries = np.iscomplexobj(q)
@@ -363,11 +363,11 @@ class Scene:
         # |q_i| <= ||q|| (rounding is monotone; NaN, inf: no norm): one norm, else each entry vs its limit
         values = q.tolist() if self._q_small else None
         within = math.hypot(*values) <= _HALF_LIMIT if values is not None else np.dot(q, q) <= _HALF_LIMIT**2
-        if not within and not (np.abs(q) <= self._q_limit).all():
+        if not within and not (np.abs(q) <= self.q_limit).all():
             self._refuse_configuration(q, label)
-        if self._unit_blocks is None:  # a vector space: nothing to normalize
+        if self.unit_blocks is None:  # a vector space: nothing to normalize
             return q
-        for name, block in self._unit_blocks:
+        for name, block in self.unit_blocks:
             unit = values[block] if values is not None else q[block].tolist()
             length = math.hypot(*unit)
             if not length >= UNIT_NORM_MIN:  # False for NaN
@@ -382,7 +382,7 @@ class Scene:
         bad = np.flatnonzero(~np.isfinite(q))
         if bad.size:
             raise ConfigurationError(f"{label} has non-finite entries at {bad.tolist()}: {q}")
-        k = int(np.flatnonzero(np.abs(q) > self._q_limit)[0])
+        k = int(np.flatnonzero(np.abs(q) > self.q_limit)[0])
         joint = next(n for n in self.robot.joint_names if self.robot.joint(n).idx_q == k)
         raise ConfigurationError(  # only revolute angles have a limit below the largest double
             f"{label}[{k}] = {q[k]:.6g} rad on revolute joint {joint!r} is beyond {ANGLE_LIMIT:.3g} rad: "

@@ -1,0 +1,150 @@
+"""What the batched paths of :func:`pinlin.linearize_many` share: stacked norms, checks and result objects.
+
+:mod:`.batch_static` (scenes at rest) and :mod:`.batch_moving` (steady motions
+of prescribed joints) compute every point's matrices on stacked arrays (P, n, n);
+this module takes their norms (:func:`norms`), runs the single call's checks on
+all points at once, raising the single call's own error at the first bad point
+(:func:`check_points`), and builds the result objects (:class:`Systems`).
+
+The norms are taken for all points in one reduction, so the figures built on them
+(``residual``, ``dropped``) agree with ``linearize``'s to rounding; where such a
+figure decides something and lies within :data:`DECISION_MARGIN` of its
+tolerance (:func:`near`), the paths take it again as ``linearize`` takes it, so
+every decision is the single call's.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ComputationError
+from ..model.scene import Scene
+from .assembly import Assembly
+from .linearize import _check_finite_and_mass, _check_mass, _equilibrium
+from .system import LinearizedSystem
+
+__all__ = ["norms", "near", "halves", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "Systems", "TINY"]
+
+TINY = float(np.finfo(float).tiny)
+
+#: A figure of the stacked norms this close to the tolerance it is compared with (relative) is
+#: taken again with the single call's ``fro`` before the comparison: the two norms differ by a
+#: few rounding errors of a sum of squares (about 1e-16 relative), far below this margin.
+DECISION_MARGIN = 1e-12
+
+
+#: A mass matrix passes the stacked Cholesky check outright when every pivot satisfies
+#: L_jj^2 >= PIVOT_MARGIN M_jj; a Cholesky factorization's pivots are off by about n eps M_jj, so
+#: any LAPACK's (the single call's is scipy's, the stack's numpy's) succeeds on it too.  Closer
+#: ones go through the single call's check.
+PIVOT_MARGIN = 1e-8
+
+
+def norms(X: np.ndarray) -> np.ndarray:
+    """Frobenius norm of each X[p] (P,), overflow-safe: scaled again where the squares overflow."""
+    flat = X.reshape(len(X), -1)
+    squares = np.einsum("pi,pi->p", flat, flat)
+    if squares.sum() < math.inf:  # the usual case; False for an overflow, inf or NaN
+        return np.sqrt(squares)
+    out = np.sqrt(squares)
+    bad = ~np.isfinite(out)  # entries beyond ~1e154 (or non-finite ones): scale by the largest entry
+    with np.errstate(over="ignore", invalid="ignore"):
+        big = np.abs(flat[bad]).max(axis=1)
+        scaled = flat[bad] / np.where(big > 0, big, 1.0)[:, None]
+        norm = big * np.sqrt(np.einsum("pi,pi->p", scaled, scaled))
+    out[bad] = np.where(np.isfinite(big), norm, big)  # an infinite (NaN) entry: an infinite (NaN) norm, as fro
+    return out
+
+
+def near(figures: np.ndarray, tol: float) -> list[int]:
+    """Indices of the figures within DECISION_MARGIN (relative) of ``tol``: equal to it when tol is 0."""
+    return np.flatnonzero(np.abs(figures - tol) <= DECISION_MARGIN * tol).tolist()
+
+
+def halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """((A^T + A) / 2, A - A^T) of each A[p] of a stack (P, n, n): :func:`~.split.split_stiffness`'s arithmetic.
+
+    The same operations, entry by entry, as the single call's split; both results
+    are fresh C-contiguous stacks.
+    """
+    T = A.transpose(0, 2, 1).copy()
+    difference = A - T
+    T += A
+    T *= 0.5
+    return T, difference
+
+
+def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, balancing: bool) -> None:
+    """The single call's equilibrium, finite-entry and mass checks on all points; its own errors at the first bad one.
+
+    ``residual`` (P, nv) holds the residuals on all coordinates, ``rel`` (P,) their
+    relative sizes on the free ones, ``M`` (P, n, n) the mass matrices and ``C`` the
+    damping matrices (P, n, n), or one (n, n) matrix for all points.  The checks run
+    stage by stage (every residual, then finite entries, then every mass matrix).
+    """
+    plan = scene.linearization_plan
+    if not balancing and (rel > tol).any():
+        i = int(np.argmax(rel > tol))
+        _equilibrium(scene, plan, _assembly(residual[i], force_scale[i]), tol, balancing)  # raises
+    if not (np.isfinite(force_scale).all() and np.isfinite(M).all() and np.isfinite(C).all()):
+        for i in range(len(M)):  # raises at the first bad point
+            _check_finite_and_mass(scene, M[i], C[i] if C.ndim == 3 else C, _assembly(residual[i], force_scale[i]))
+        raise ComputationError("linearize_many: non-finite entries in M, C, K or the residual")  # pragma: no cover
+    try:
+        L = np.linalg.cholesky(M)  # all points at once (numpy's LAPACK potrf)
+    except np.linalg.LinAlgError:
+        for Mi in M:  # the single call's check, point by point, raises for the first singular M
+            _check_mass(scene, Mi)
+        return
+    pivots = np.diagonal(L, axis1=1, axis2=2)
+    close = (pivots * pivots < PIVOT_MARGIN * np.diagonal(M, axis1=1, axis2=2)).any(axis=1)
+    for i in np.flatnonzero(close).tolist():  # nearly singular: the single call's own Cholesky decides
+        _check_mass(scene, M[i])
+
+
+def _assembly(residual: np.ndarray, force_scale: float) -> Assembly:
+    """A one-point Assembly carrying what the single call's checks read (for their error messages)."""
+    return Assembly(residual=residual, force_scale=float(force_scale), M=None, C=None, K=None,
+                    rounding_scale_C=0.0, rounding_scale_K=0.0, coriolis_D=None, calls=[])  # fmt: skip
+
+
+class Systems:
+    """Builds the batch's LinearizedSystem objects: what is common to all points, once.
+
+    The first system comes from :meth:`LinearizedSystem.trusted`; the others are
+    copies of its attribute dictionary with the per-point entries replaced (the
+    matrices, q, the figures, ``dropped``, ``notes``, ``balancing``), so every
+    system holds the same attributes as the single call's, without re-forming the
+    shared tuples and dictionaries per point.  Every array handed in must be
+    read-only already (rows of the batch's read-only stacks, shared read-only views).
+    """
+
+    __slots__ = ("scene", "calls", "notes", "elapsed", "balancing", "template")
+
+    def __init__(self, scene: Scene, calls: tuple, notes: tuple, elapsed: float, balancing: bool):
+        self.scene, self.calls, self.notes, self.elapsed, self.balancing = scene, calls, notes, elapsed, balancing
+        self.template: dict | None = None
+
+    def at(self, M, D, G, S, N, q, rel: float, r, dropped: dict) -> LinearizedSystem:
+        """The system of one point: ``r`` its residual on the free coordinates (kept with ``balancing``)."""
+        notes = self.notes
+        if self.balancing:
+            notes = notes + (f"held at q by constant actuator forces (relative residual {rel:.2e})",)
+        balancing = r if self.balancing else None
+        if self.template is None:
+            system = LinearizedSystem.trusted(
+                M, D, G, S, N, dof_names=self.scene.dof_names, q=q, v=self.scene.v0, residual=rel,
+                balancing=balancing, elapsed=self.elapsed, calls=self.calls, dropped=dropped, notes=notes,
+                method="analytic", frozen=True,
+            )  # fmt: skip
+            self.template = dict(vars(system))
+            return system
+        attributes = self.template.copy()
+        attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = M, D, G, S, N
+        attributes["q"], attributes["residual"], attributes["balancing"] = q, rel, balancing
+        attributes["dropped"], attributes["notes"] = dropped, notes
+        system = object.__new__(LinearizedSystem)
+        object.__setattr__(system, "__dict__", attributes)
+        return system
