@@ -61,15 +61,16 @@ from .common import Report, Table, interleaved_medians, median_time, write_repor
 SIZES = (50, 100, 200)
 
 
-def analyse(sys: pinlin.LinearizedSystem, **options) -> pinlin.Modes:
+def analyse(sys, **options) -> pinlin.Modes:
     """``modal_analysis(sys)`` after dropping the system's cached C = D + G and K = S + N.
 
     A timed loop analyses one system many times; without this the sums would be
     formed once and every later call would skip them, which a sweep (a new system
     per point) never does.
     """
-    sys.__dict__.pop("C", None)
-    sys.__dict__.pop("K", None)
+    if isinstance(sys, pinlin.LinearizedSystem):  # a tuple (M, C, K) caches nothing
+        sys.__dict__.pop("C", None)
+        sys.__dict__.pop("K", None)
     return pinlin.modal_analysis(sys, **options)
 
 
