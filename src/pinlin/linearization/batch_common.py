@@ -21,11 +21,11 @@ import numpy as np
 
 from ..errors import ComputationError
 from ..model.scene import Scene
-from .assembly import Assembly
+from .assembly import Assembly, fro
 from .linearize import _check_finite_and_mass, _check_mass, _equilibrium
 from .system import LinearizedSystem
 
-__all__ = ["norms", "near", "halves", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "Systems", "TINY"]
+__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "Systems", "TINY"]
 
 TINY = float(np.finfo(float).tiny)
 
@@ -74,6 +74,22 @@ def halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     T += A
     T *= 0.5
     return T, difference
+
+
+def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray]:
+    """(force scales, relative residuals) of all points: ``_equilibrium``'s figures of linearize, stacked.
+
+    ``r`` (P, n) is tau - Q on the free coordinates; the scale is ||tau|| + ||Q|| +
+    ||K|| (0 gives a relative residual of 0).  Where a figure lies within
+    :data:`DECISION_MARGIN` of ``tol`` it is taken again with the single call's ``fro``.
+    """
+    force_scale = norms(tau) + norms(Q) + norms(K)
+    rel = norms(r) / np.where(force_scale > 0, force_scale, 1.0)
+    rel[force_scale <= 0] = 0.0
+    for i in near(rel, tol):  # as linearize's _equilibrium, where it decides
+        force_scale[i] = fro(tau[i]) + fro(Q[i]) + fro(K[i])
+        rel[i] = fro(r[i]) / force_scale[i] if force_scale[i] > 0 else 0.0
+    return force_scale, rel
 
 
 def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, balancing: bool) -> None:

@@ -24,7 +24,7 @@ import pinocchio as pin
 
 from ..model.scene import Scene
 from .assembly import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms
+from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
 from .system import LinearizedSystem
 from .workspace import Evaluation, workspace
 
@@ -79,16 +79,11 @@ def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: 
     """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
     plan = scene.linearization_plan
     tau, Q, K, C, M, pinocchio_K, pinocchio_C = _evaluate(scene, qs)
-    scale_C, scale_K, K_norm = norms(pinocchio_C), norms(pinocchio_K), norms(K)
-    rounding_K = scale_K if plan.symmetric_elements else scale_K + K_norm
+    scale_C, scale_K = norms(pinocchio_C), norms(pinocchio_K)
     residual = tau - Q
     r = residual[:, plan.rows]
-    force_scale = norms(tau) + norms(Q) + K_norm
-    rel = norms(r) / np.where(force_scale > 0, force_scale, 1.0)
-    rel[force_scale <= 0] = 0.0
-    for i in near(rel, equilibrium_tol):  # as linearize's _equilibrium, where it decides
-        force_scale[i] = fro(tau[i]) + fro(Q[i]) + fro(K[i])
-        rel[i] = fro(r[i]) / force_scale[i] if force_scale[i] > 0 else 0.0
+    force_scale, rel = relative_residuals(tau, Q, K, r, equilibrium_tol)
+    rounding_K = scale_K if plan.symmetric_elements else scale_K + norms(K)
     block = (slice(None),) + plan.block  # the free coordinates of every point
     M = M[block]
     check_points(scene, residual, force_scale, rel, M, C[block], equilibrium_tol, balancing)

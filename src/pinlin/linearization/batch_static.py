@@ -26,7 +26,7 @@ import pinocchio as pin
 
 from ..model.scene import Scene
 from .assembly import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms
+from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
 from .system import LinearizedSystem
 from .workspace import crba_is_symmetric, workspace
 
@@ -91,15 +91,9 @@ def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol:
     for group in scene.groups:
         group.add_force_many(qs, Q)
         group.add_stiffness_many(qs, K)
-    K_norm = norms(K)
-    rounding = scale_K if plan.symmetric_elements else scale_K + K_norm
     r = tau - Q
-    force_scale = norms(tau) + norms(Q) + K_norm
-    rel = norms(r) / np.where(force_scale > 0, force_scale, 1.0)
-    rel[force_scale <= 0] = 0.0
-    for i in near(rel, equilibrium_tol):  # as linearize's _equilibrium, where it decides
-        force_scale[i] = fro(tau[i]) + fro(Q[i]) + fro(K[i])
-        rel[i] = fro(r[i]) / force_scale[i] if force_scale[i] > 0 else 0.0
+    force_scale, rel = relative_residuals(tau, Q, K, r, equilibrium_tol)
+    rounding = scale_K if plan.symmetric_elements else scale_K + norms(K)
     check_points(scene, r, force_scale, rel, M, plan.rest_damping.C, equilibrium_tol, balancing)
     S, N = halves(K)
     sizes = 0.5 * norms(N) / np.maximum(rounding, TINY)

@@ -17,6 +17,7 @@ callback) are safe too.
 from __future__ import annotations
 
 import functools
+import operator
 import threading
 import weakref
 from typing import TYPE_CHECKING
@@ -32,6 +33,8 @@ __all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba
 #: ``data.oMf[i]`` costs about 1.1 us per frame (boost.python's proxy), ``data.oMf.tolist()``
 #: about 0.05 us per frame of the model: reading at least one frame in this many, convert them all.
 FRAME_LIST_RATIO = 16
+_TRANSLATION = operator.attrgetter("translation")
+_HOMOGENEOUS = operator.attrgetter("homogeneous")
 
 
 def symmetric_from_upper(a: np.ndarray, lower: np.ndarray) -> np.ndarray:
@@ -235,16 +238,7 @@ class Evaluation:
         """
         if self._positions is None:
             self._positions = {}
-        out = self._positions.get(frame_ids)
-        if out is None:
-            self._ensure_kinematics()
-            oMf = self.data.oMf
-            if len(frame_ids) * FRAME_LIST_RATIO >= len(oMf):  # many frames: one conversion of them all
-                oMf = oMf.tolist()
-            out = np.array([oMf[i].translation for i in frame_ids], dtype=float).reshape(-1, 3)
-            out.flags.writeable = False
-            self._positions[frame_ids] = out
-        return out
+        return self._frame_stack(self._positions, frame_ids, _TRANSLATION, (-1, 3))
 
     def frame_homogeneous(self, frame_ids: tuple[int, ...]) -> np.ndarray:
         """World placements of several frames as homogeneous matrices (len(frame_ids) x 4 x 4), read-only.
@@ -254,15 +248,19 @@ class Evaluation:
         """
         if self._homogeneous is None:
             self._homogeneous = {}
-        out = self._homogeneous.get(frame_ids)
+        return self._frame_stack(self._homogeneous, frame_ids, _HOMOGENEOUS, (-1, 4, 4))
+
+    def _frame_stack(self, cache: dict, frame_ids: tuple[int, ...], read, shape: tuple[int, ...]) -> np.ndarray:
+        """``read`` of each frame's placement, stacked (read-only) and kept in ``cache`` for this evaluation."""
+        out = cache.get(frame_ids)
         if out is None:
             self._ensure_kinematics()
             oMf = self.data.oMf
             if len(frame_ids) * FRAME_LIST_RATIO >= len(oMf):  # many frames: one conversion of them all
                 oMf = oMf.tolist()
-            out = np.array([oMf[i].homogeneous for i in frame_ids], dtype=float).reshape(-1, 4, 4)
+            out = np.array([read(oMf[i]) for i in frame_ids], dtype=float).reshape(shape)
             out.flags.writeable = False
-            self._homogeneous[frame_ids] = out
+            cache[frame_ids] = out
         return out
 
     def world_jacobian(self) -> np.ndarray:
