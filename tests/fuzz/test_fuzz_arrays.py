@@ -15,7 +15,7 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
-from fuzz_strategies import NASTY_FLOATS, arrays, outcome
+from fuzz_strategies import NASTY_FLOATS, arrays, check_result, outcome
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -139,3 +139,21 @@ def test_scene_functions_arguments(q, v, t, which):
         else:
             # a small budget keeps a far end time cheap: the run stops with IntegrationBudgetError
             outcome(lambda: pinlin.simulate(SCENE, q, v, t, max_steps=100), "simulate")
+
+
+@given(qs=arrays([(1, 2), (3, 2), (7, 2)]))
+def test_linearize_many_is_linearize_row_by_row(qs):
+    """Whatever the rows (nasty values, wrong shapes and types included): linearize_many raises a
+    PinlinError, or returns for every row what linearize returns for it, bitwise."""
+    with warnings.catch_warnings():
+        _error_on_complex_loss()
+        systems = outcome(lambda: pinlin.linearize_many(SCENE, qs, balancing=True), "linearize_many")
+    if systems is None:
+        return
+    rows = np.asarray(qs, dtype=float)
+    assert len(systems) == len(rows)
+    for row, system in zip(rows, systems):
+        check_result(system, "linearize_many")
+        single = pinlin.linearize(SCENE, row, balancing=True)
+        for name in ("M", "D", "G", "S", "N", "q"):
+            assert np.array_equal(getattr(system, name), getattr(single, name)), name
