@@ -41,3 +41,47 @@ MASSLESS_LINK_URDF = """<robot name="x"><link name="base"/>
         <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
       <joint name="ghost_joint" type="revolute"><parent link="bar"/><child link="ghost"/><axis xyz="0 1 0"/>
         <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""
+
+
+def mp_log6_jacobian(R, p):
+    """d log6(X exp(xi)) / d xi at 50 digits (central differences with h = 1e-20), X = (R, p)."""
+    import mpmath as mp
+
+    with mp.workdps(50):
+
+        def skew(a):
+            return mp.matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+
+        def exp3(w):
+            t = mp.sqrt(sum(x * x for x in w))
+            if t == 0:
+                return mp.eye(3)
+            W = skew(w)
+            return mp.eye(3) + mp.sin(t) / t * W + (1 - mp.cos(t)) / t**2 * W * W
+
+        def left_jacobian(w):
+            t = mp.sqrt(sum(x * x for x in w))
+            if t == 0:
+                return mp.eye(3)
+            W = skew(w)
+            return mp.eye(3) + (1 - mp.cos(t)) / t**2 * W + (t - mp.sin(t)) / t**3 * W * W
+
+        def log6(Rm, pm):
+            t = mp.acos((Rm[0, 0] + Rm[1, 1] + Rm[2, 2] - 1) / 2)
+            th = mp.matrix([Rm[2, 1] - Rm[1, 2], Rm[0, 2] - Rm[2, 0], Rm[1, 0] - Rm[0, 1]]) * (t / (2 * mp.sin(t)))
+            T = skew(th)
+            beta = 1 / t**2 - (1 + mp.cos(t)) / (2 * t * mp.sin(t))
+            return list((mp.eye(3) - T / 2 + beta * T * T) * pm) + list(th)
+
+        Rm, pm = mp.matrix(R.tolist()), mp.matrix(p.tolist())
+        h = mp.mpf(10) ** -20
+        J = np.zeros((6, 6))
+        for i in range(6):
+            cols = []
+            for sign in (1, -1):
+                xi = [mp.mpf(0)] * 6
+                xi[i] = sign * h
+                v, w = mp.matrix(xi[:3]), mp.matrix(xi[3:])
+                cols.append(log6(Rm * exp3(w), pm + Rm * left_jacobian(w) * v))
+            J[:, i] = [float((a - b) / (2 * h)) for a, b in zip(*cols)]
+    return J

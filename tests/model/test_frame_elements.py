@@ -7,13 +7,13 @@ tests/reference/test_reference_frame_elements.py; check_element on every type in
 tests/model/test_element_protocol.py.
 """
 
-import mpmath as mp
 import numpy as np
 import pinocchio as pin
 import pytest
 from numpy.testing import assert_allclose
 
 import pinlin
+from helpers import mp_log6_jacobian
 from pinlin.linearization.assembly import assemble
 from pinlin.linearization.workspace import Evaluation
 from pinlin.model.elements.se3 import log_expansion
@@ -180,48 +180,6 @@ def test_bushing_force_is_the_gradient_of_its_energy(ur5, q_ur5):
 # ----------------------------------------------------------------------------- the SE(3) log to second order
 
 
-def _mp_log6_jacobian(R, p):
-    """d log6(X exp(xi)) / d xi at 50 digits (central differences with h = 1e-20), X = (R, p)."""
-    with mp.workdps(50):
-
-        def skew(a):
-            return mp.matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-
-        def exp3(w):
-            t = mp.sqrt(sum(x * x for x in w))
-            if t == 0:
-                return mp.eye(3)
-            W = skew(w)
-            return mp.eye(3) + mp.sin(t) / t * W + (1 - mp.cos(t)) / t**2 * W * W
-
-        def left_jacobian(w):
-            t = mp.sqrt(sum(x * x for x in w))
-            if t == 0:
-                return mp.eye(3)
-            W = skew(w)
-            return mp.eye(3) + (1 - mp.cos(t)) / t**2 * W + (t - mp.sin(t)) / t**3 * W * W
-
-        def log6(Rm, pm):
-            t = mp.acos((Rm[0, 0] + Rm[1, 1] + Rm[2, 2] - 1) / 2)
-            th = mp.matrix([Rm[2, 1] - Rm[1, 2], Rm[0, 2] - Rm[2, 0], Rm[1, 0] - Rm[0, 1]]) * (t / (2 * mp.sin(t)))
-            T = skew(th)
-            beta = 1 / t**2 - (1 + mp.cos(t)) / (2 * t * mp.sin(t))
-            return list((mp.eye(3) - T / 2 + beta * T * T) * pm) + list(th)
-
-        Rm, pm = mp.matrix(R.tolist()), mp.matrix(p.tolist())
-        h = mp.mpf(10) ** -20
-        J = np.zeros((6, 6))
-        for i in range(6):
-            cols = []
-            for sign in (1, -1):
-                xi = [mp.mpf(0)] * 6
-                xi[i] = sign * h
-                v, w = mp.matrix(xi[:3]), mp.matrix(xi[3:])
-                cols.append(log6(Rm * exp3(w), pm + Rm * left_jacobian(w) * v))
-            J[:, i] = [float((a - b) / (2 * h)) for a, b in zip(*cols)]
-    return J
-
-
 @pytest.mark.parametrize("angle", [3e-4, 1e-3, 0.5, 2.0])
 def test_log_jacobian_against_mpmath(angle):
     """Our J_log (the series of se3.py) to 1e-14 everywhere, including the small angles where
@@ -231,7 +189,7 @@ def test_log_jacobian_against_mpmath(angle):
     R = pin.exp3(angle * w / np.linalg.norm(w))
     p = rng.normal(size=3)
     J, _ = log_expansion(R, p, pin.log3(R))
-    assert_allclose(J, _mp_log6_jacobian(R, p), rtol=0, atol=1e-14)
+    assert_allclose(J, mp_log6_jacobian(R, p), rtol=0, atol=1e-14)
 
 
 @pytest.mark.parametrize("angle", [1e-7, 0.3, 1.5, 3.0])

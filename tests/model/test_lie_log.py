@@ -1,0 +1,100 @@
+"""The joint springs' Lie-group log (pinlin.model.elements.lie_log) against mpmath, the stacked SE(3)
+expansion of the bushings, Pinocchio away from small angles, and differences of Pinocchio's log.
+
+Pinocchio 4.1's dDifference on SE(3), SO(3) and SE(2) loses accuracy between about 1e-4 and
+2e-3 rad (up to 3e-5 relative on SE(3)): the tests in that band use mpmath references only.
+"""
+
+import numpy as np
+import pinocchio as pin
+import pytest
+from numpy.testing import assert_allclose
+
+import pinlin
+from helpers import mp_log6_jacobian
+from pinlin.model.elements.lie_log import beta_gamma, joint_log, se3_log
+from pinlin.model.elements.se3 import log_expansion
+
+#: Angles [rad] of the band where Pinocchio 4.1's Lie-group Jacobians lose accuracy, and beyond.
+BAND = [1e-4, 1.6e-4, 3e-4, 1e-3, 2e-3]
+ANGLES = [0.0, 1e-9, *BAND, 0.3, 1.0, 1.99, 2.0, 2.01, 3.0, 3.1]
+
+
+def _placement(rng, angle):
+    w = rng.normal(size=3)
+    return pin.exp3(angle * w / np.linalg.norm(w)), rng.normal(size=3)
+
+
+def test_beta_gamma_against_their_closed_forms_in_mpmath():
+    import mpmath as mp
+
+    with mp.workdps(40):
+        for t in [1e-6, 1e-3, 0.1, 0.9, 1.5, 1.999, 2.001, 2.5, 3.1]:
+            tm = mp.mpf(t)
+            beta = 1 / tm**2 - (1 + mp.cos(tm)) / (2 * tm * mp.sin(tm))
+            gamma = mp.diff(lambda s: 1 / s**2 - (1 + mp.cos(s)) / (2 * s * mp.sin(s)), tm) / tm
+            b, g = beta_gamma(t * t)
+            assert abs(b - float(beta)) <= 2e-16 * abs(float(beta))
+            assert abs(g - float(gamma)) <= 1e-15 * abs(float(gamma))
+
+
+@pytest.mark.parametrize("angle", ANGLES)
+def test_se3_log_against_the_stacked_expansion(angle):
+    """e and J_log for one placement (Python floats) against the bushings' stacked expansion, checked
+    against mpmath in test_frame_elements: the same closed form, evaluated another way."""
+    R, p = _placement(np.random.default_rng(int(angle * 1e6) + 1), angle)
+    theta = pin.log3(R)
+    J_ref, _ = log_expansion(R, p, theta, second_order=False)
+    e, J = se3_log(theta.tolist(), p.tolist())
+    assert_allclose(J, J_ref, rtol=0, atol=2e-15 * np.abs(J_ref).max())
+    assert_allclose(e, np.concatenate([J_ref[:3, :3].T @ p, theta]), rtol=0, atol=2e-15 * np.linalg.norm(p))
+
+
+@pytest.mark.parametrize("angle", BAND)
+def test_se3_log_jacobian_against_mpmath_in_pinocchios_band(angle):
+    R, p = _placement(np.random.default_rng(7), angle)
+    _, J = se3_log(pin.log3(R).tolist(), p.tolist())
+    assert_allclose(J, mp_log6_jacobian(R, p), rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("kind", [pin.JointModelFreeFlyer, pin.JointModelSpherical, pin.JointModelPlanar])
+def test_joint_log_is_pinocchios_difference_away_from_the_band_and_exact_at_rest(kind):
+    """The conventions: the same e and de/dq as Pinocchio's difference and dDifference(ARG1) where
+    Pinocchio is accurate (below 1e-6 rad and above 0.05 rad); e = 0 and de/dq = I exactly at rest."""
+    model = pin.Model()
+    model.addJoint(0, kind(), pin.SE3.Identity(), "j")
+    group, rng = model.joints[1].lieGroup(), np.random.default_rng(3)
+    for angle in [0.0, 1e-7, 0.05, 0.5, 2.0, 3.0]:
+        rest = pin.randomConfiguration(model, -np.ones(model.nq), np.ones(model.nq))
+        xi = rng.normal(size=model.nv)
+        rotation = slice(3, 6) if model.nv == 6 else (slice(0, 3) if model.nq == 4 else slice(2, 3))
+        xi[rotation] *= angle / np.linalg.norm(xi[rotation])
+        q = pin.integrate(model, rest, xi)
+        log = joint_log(model.joints[1], rest)
+        assert log.name == group.name
+        assert_allclose(log.difference(q), group.difference(rest, q), rtol=0, atol=1e-13)
+        assert_allclose(log.jacobian(q), group.dDifference(rest, q, pin.ARG1), rtol=0, atol=1e-12)
+        assert not log.difference(rest).any()
+        assert np.array_equal(log.jacobian(rest), np.eye(model.nv))
+
+
+def test_free_flyer_spring_stiffness_near_rest_against_mpmath():
+    """A 6-DOF spring mount deflected by 1.6e-4 rad: K = K_s J_log(rest^-1 q), with J_log from mpmath.
+    Pinocchio's dDifference (the code before) is 8e-6 off here (relative); now exact to rounding."""
+    robot = pinlin.load_urdf_string(
+        '<robot name="box"><link name="box"><inertial><mass value="2"/>'
+        '<inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
+        free_flyer=True,
+    )
+    rng = np.random.default_rng(11)
+    A = rng.normal(size=(6, 6))
+    Ks = A @ A.T + 6.0 * np.eye(6)
+    rest = pin.neutral(robot.model)
+    R, p = _placement(rng, 1.6e-4)
+    q = pin.SE3ToXYZQUAT(pin.SE3(R, p))
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("root_joint", Ks, rest=rest)], gravity=(0, 0, 0))
+    sys = pinlin.linearize(scene, q, balancing=True)
+    X = pin.XYZQUATToSE3(q)
+    K_ref = Ks @ mp_log6_jacobian(X.rotation, X.translation)
+    assert_allclose(sys.K, K_ref, rtol=0, atol=5e-14 * np.abs(K_ref).max())
+    assert_allclose(pinlin.linearize_many(scene, [q, q], balancing=True)[1].K, sys.K, rtol=0, atol=0)
