@@ -43,36 +43,52 @@ MASSLESS_LINK_URDF = """<robot name="x"><link name="base"/>
         <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""
 
 
+def _mp_se3():
+    """mpmath's (exp3, left Jacobian of SO(3), log6 of (R, p)): closed forms, at the caller's precision."""
+    import mpmath as mp
+
+    def skew(a):
+        return mp.matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+
+    def exp3(w):
+        t = mp.sqrt(sum(x * x for x in w))
+        if t == 0:
+            return mp.eye(3)
+        W = skew(w)
+        return mp.eye(3) + mp.sin(t) / t * W + (1 - mp.cos(t)) / t**2 * W * W
+
+    def left_jacobian(w):
+        t = mp.sqrt(sum(x * x for x in w))
+        if t == 0:
+            return mp.eye(3)
+        W = skew(w)
+        return mp.eye(3) + (1 - mp.cos(t)) / t**2 * W + (t - mp.sin(t)) / t**3 * W * W
+
+    def log6(Rm, pm):
+        t = mp.acos((Rm[0, 0] + Rm[1, 1] + Rm[2, 2] - 1) / 2)
+        th = mp.matrix([Rm[2, 1] - Rm[1, 2], Rm[0, 2] - Rm[2, 0], Rm[1, 0] - Rm[0, 1]]) * (t / (2 * mp.sin(t)))
+        T = skew(th)
+        beta = 1 / t**2 - (1 + mp.cos(t)) / (2 * t * mp.sin(t))
+        return list((mp.eye(3) - T / 2 + beta * T * T) * pm) + list(th)
+
+    return exp3, left_jacobian, log6
+
+
+def mp_log6(R, p):
+    """log6(X) (linear part first) at 50 digits, X = (R, p), rounded to doubles (0 < angle < pi)."""
+    import mpmath as mp
+
+    with mp.workdps(50):
+        _, _, log6 = _mp_se3()
+        return np.array([float(x) for x in log6(mp.matrix(R.tolist()), mp.matrix(p.tolist()))])
+
+
 def mp_log6_jacobian(R, p):
     """d log6(X exp(xi)) / d xi at 50 digits (central differences with h = 1e-20), X = (R, p)."""
     import mpmath as mp
 
     with mp.workdps(50):
-
-        def skew(a):
-            return mp.matrix([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-
-        def exp3(w):
-            t = mp.sqrt(sum(x * x for x in w))
-            if t == 0:
-                return mp.eye(3)
-            W = skew(w)
-            return mp.eye(3) + mp.sin(t) / t * W + (1 - mp.cos(t)) / t**2 * W * W
-
-        def left_jacobian(w):
-            t = mp.sqrt(sum(x * x for x in w))
-            if t == 0:
-                return mp.eye(3)
-            W = skew(w)
-            return mp.eye(3) + (1 - mp.cos(t)) / t**2 * W + (t - mp.sin(t)) / t**3 * W * W
-
-        def log6(Rm, pm):
-            t = mp.acos((Rm[0, 0] + Rm[1, 1] + Rm[2, 2] - 1) / 2)
-            th = mp.matrix([Rm[2, 1] - Rm[1, 2], Rm[0, 2] - Rm[2, 0], Rm[1, 0] - Rm[0, 1]]) * (t / (2 * mp.sin(t)))
-            T = skew(th)
-            beta = 1 / t**2 - (1 + mp.cos(t)) / (2 * t * mp.sin(t))
-            return list((mp.eye(3) - T / 2 + beta * T * T) * pm) + list(th)
-
+        exp3, left_jacobian, log6 = _mp_se3()
         Rm, pm = mp.matrix(R.tolist()), mp.matrix(p.tolist())
         h = mp.mpf(10) ** -20
         J = np.zeros((6, 6))

@@ -31,7 +31,7 @@ import pinocchio as pin
 
 from .se3 import _SERIES
 
-__all__ = ["beta_gamma", "se3_log", "JointLog", "joint_log", "SERIES_BELOW"]
+__all__ = ["beta_gamma", "se3_log", "JointLog", "joint_log", "curved_joints", "SERIES_BELOW"]
 
 #: beta and gamma come from their series below this t^2 (t < 2 rad), from the closed forms above:
 #: gamma's closed form loses about eps / t^4 of its size, its series' terms shrink like (t / 2 pi)^2.
@@ -178,3 +178,20 @@ def joint_log(joint: pin.JointModel, rest: np.ndarray) -> JointLog | None:
     """A :class:`JointLog` for a free-flyer, spherical or planar joint at its rest configuration, else None."""
     kind = _KINDS.get(joint.shortname())
     return None if kind is None else JointLog(kind, rest)
+
+
+def curved_joints(model: pin.Model, q0: np.ndarray) -> list[tuple[slice, slice, JointLog]]:
+    """(q slice, v slice, log at q0's part) of every free-flyer, spherical and planar joint of the model.
+
+    ``pin.difference(model, q0, q)`` and ``pin.dDifference(model, q0, q, ARG1)`` are
+    block diagonal over the joints: these blocks, replaced by the logs', are accurate
+    at every angle (module docstring).
+    """
+    out = []
+    for jid in range(1, model.njoints):
+        joint = model.joints[jid]
+        qs, vs = slice(joint.idx_q, joint.idx_q + joint.nq), slice(joint.idx_v, joint.idx_v + joint.nv)
+        log = joint_log(joint, q0[qs])
+        if log is not None:
+            out.append((qs, vs, log))
+    return out
