@@ -100,10 +100,9 @@ class JointSpring(Element):
         if j.nq == 1:
             return qj - rest, None
         log = _lie_log(ev.model.joints[j.id], rest)
-        e = log.difference(qj)
         if j.nv == 1:  # SO(2): the derivative of the angle difference is 1
-            return e, None
-        return e, log.jacobian(qj)
+            return log.difference(qj), None
+        return log.evaluate(qj)
 
     def generalized_force(self, ev: Evaluation) -> np.ndarray:
         j = ev.robot.joint(self.joint)
@@ -175,9 +174,14 @@ class SpringGroup(ElementGroup):
                 Q[self.iv] -= force
             else:
                 np.subtract.at(Q, self.iv, force)
-        for qs, vs, rest, log, Ks, _ in self.prepared:
+        for qs, vs, rest, log, Ks, derivative in self.prepared:
             view = Q[vs]
-            view -= np.dot(Ks, q[qs] - rest if log is None else log.difference(q[qs]))
+            if log is None:
+                view -= np.dot(Ks, q[qs] - rest)
+            elif derivative:  # e and de/dq from one evaluation of the log, kept for add_stiffness
+                view -= np.dot(Ks, ev.memo(log, lambda log=log, qs=qs: log.evaluate(q[qs]))[0])
+            else:
+                view -= np.dot(Ks, log.difference(q[qs]))
 
     def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
         if self.few is not None:
@@ -188,7 +192,7 @@ class SpringGroup(ElementGroup):
         q = ev.q
         for qs, vs, _, log, Ks, derivative in self.prepared:
             view = K[vs, vs]
-            view += np.dot(Ks, log.jacobian(q[qs])) if derivative else Ks
+            view += np.dot(Ks, ev.memo(log, lambda log=log, qs=qs: log.evaluate(q[qs]))[1]) if derivative else Ks
 
     batched = True
 
@@ -252,6 +256,9 @@ class _GroupLog:
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
         return np.asarray(self.group.dDifference(self.rest, q, pin.ARG1), dtype=float)
+
+    def evaluate(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return self.difference(q), self.jacobian(q)
 
 
 def _lie_log(joint: pin.JointModel, rest: np.ndarray):

@@ -48,7 +48,9 @@ _BUCKETS = tuple(
 def beta_gamma(t2: float) -> tuple[float, float]:
     """beta(t) = 1/t^2 - (1 + cos t) / (2 t sin t) and gamma = beta'(t) / t at t^2 (module docstring)."""
     if t2 < SERIES_BELOW:
-        series_b, series_g = next((b, g) for limit, b, g in _BUCKETS if t2 < limit)
+        for limit, series_b, series_g in _BUCKETS:  # noqa: B007 (the first bucket that holds t^2)
+            if t2 < limit:
+                break
         b = g = 0.0
         for cb, cg in zip(series_b, series_g):
             b = b * t2 + cb
@@ -85,14 +87,17 @@ def se3_log(theta, p, jacobian: bool = True) -> tuple[list[float], np.ndarray | 
     d00, d01, d02 = ux * x - b * px * x + btp, -0.5 * pz + ux * y - b * px * y + b * cz, 0.5 * py + ux * z - b * px * z - b * cy
     d10, d11, d12 = 0.5 * pz + uy * x - b * py * x - b * cz, uy * y - b * py * y + btp, -0.5 * px + uy * z - b * py * z + b * cx
     d20, d21, d22 = -0.5 * py + uz * x - b * pz * x + b * cy, 0.5 * px + uz * y - b * pz * y - b * cx, uz * z - b * pz * z + btp
+    b00, b01, b02 = d00 * a00 + d01 * a10 + d02 * a20, d00 * a01 + d01 * a11 + d02 * a21, d00 * a02 + d01 * a12 + d02 * a22
+    b10, b11, b12 = d10 * a00 + d11 * a10 + d12 * a20, d10 * a01 + d11 * a11 + d12 * a21, d10 * a02 + d11 * a12 + d12 * a22
+    b20, b21, b22 = d20 * a00 + d21 * a10 + d22 * a20, d20 * a01 + d21 * a11 + d22 * a21, d20 * a02 + d21 * a12 + d22 * a22
     J = np.array([
-        [a00, a01, a02, d00 * a00 + d01 * a10 + d02 * a20, d00 * a01 + d01 * a11 + d02 * a21, d00 * a02 + d01 * a12 + d02 * a22],
-        [a10, a11, a12, d10 * a00 + d11 * a10 + d12 * a20, d10 * a01 + d11 * a11 + d12 * a21, d10 * a02 + d11 * a12 + d12 * a22],
-        [a20, a21, a22, d20 * a00 + d21 * a10 + d22 * a20, d20 * a01 + d21 * a11 + d22 * a21, d20 * a02 + d21 * a12 + d22 * a22],
-        [0.0, 0.0, 0.0, a00, a01, a02],
-        [0.0, 0.0, 0.0, a10, a11, a12],
-        [0.0, 0.0, 0.0, a20, a21, a22],
-    ])  # fmt: skip
+        a00, a01, a02, b00, b01, b02,
+        a10, a11, a12, b10, b11, b12,
+        a20, a21, a22, b20, b21, b22,
+        0.0, 0.0, 0.0, a00, a01, a02,
+        0.0, 0.0, 0.0, a10, a11, a12,
+        0.0, 0.0, 0.0, a20, a21, a22,
+    ]).reshape(6, 6)  # fmt: skip (a flat list: cheaper than nested rows)
     return e, J
 
 
@@ -145,6 +150,15 @@ class JointLog:
         angle = math.atan2(c0 * s1 - s0 * c1, c0 * c1 + s0 * s1)
         return [0.0, 0.0, angle], [c0 * dx + s0 * dy, c0 * dy - s0 * dx, 0.0]
 
+    def evaluate(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(e, de/dq): the deflection e = log(rest^{-1} q) (nv_j,) and J_log(rest^{-1} q) (nv_j x nv_j)."""
+        e, J = se3_log(*self._point(q))
+        if self.name == "SE(3)":
+            return np.array(e), J
+        if self.name == "SO(3)":
+            return np.array(e[3:]), J[3:, 3:].copy()
+        return np.array((e[0], e[1], e[5])), J[_PLANAR]
+
     def difference(self, q: np.ndarray) -> np.ndarray:
         """e = log(rest^{-1} q) (nv_j,)."""
         e, _ = se3_log(*self._point(q), jacobian=False)
@@ -152,10 +166,7 @@ class JointLog:
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
         """de/dq = J_log(rest^{-1} q) (nv_j x nv_j)."""
-        _, J = se3_log(*self._point(q))
-        if self.name == "SE(3)":
-            return J
-        return J[3:, 3:].copy() if self.name == "SO(3)" else J[_PLANAR]
+        return self.evaluate(q)[1]
 
 
 def _relative(a, b) -> tuple[float, float, float, float]:
