@@ -83,13 +83,13 @@ def mp_log6(R, p):
         return np.array([float(x) for x in log6(mp.matrix(R.tolist()), mp.matrix(p.tolist()))])
 
 
-def mp_log6_jacobian(R, p):
+def mp_log6_jacobian(R, p, _exact=None):
     """d log6(X exp(xi)) / d xi at 50 digits (central differences with h = 1e-20), X = (R, p)."""
     import mpmath as mp
 
     with mp.workdps(50):
         exp3, left_jacobian, log6 = _mp_se3()
-        Rm, pm = mp.matrix(R.tolist()), mp.matrix(p.tolist())
+        Rm, pm = (mp.matrix(R.tolist()), mp.matrix(p.tolist())) if _exact is None else _exact
         h = mp.mpf(10) ** -20
         J = np.zeros((6, 6))
         for i in range(6):
@@ -101,3 +101,14 @@ def mp_log6_jacobian(R, p):
                 cols.append(log6(Rm * exp3(w), pm + Rm * left_jacobian(w) * v))
             J[:, i] = [float((a - b) / (2 * h)) for a, b in zip(*cols)]
     return J
+
+
+def mp_exp6_log_jacobian(xi):
+    """J_log(exp6(xi)) at 50 digits, exp6 taken in mpmath too (xi = (rho, theta), linear part first)."""
+    import mpmath as mp
+
+    with mp.workdps(50):
+        exp3, left_jacobian, _ = _mp_se3()
+        rho, theta = mp.matrix([mp.mpf(x) for x in xi[:3]]), [mp.mpf(x) for x in xi[3:]]
+        exact = (exp3(theta), left_jacobian(theta) * rho)
+        return mp_log6_jacobian(None, None, _exact=exact)

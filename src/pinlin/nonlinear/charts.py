@@ -20,6 +20,8 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
+from ..model.elements.lie_log import exp_chart_rate
+
 __all__ = ["Chart", "chart_groups", "MAX_CHART_RADIUS"]
 
 #: Lie groups whose ``integrate`` is a plain sum in the tangent coordinates
@@ -69,6 +71,7 @@ class Chart:
         self.model = model
         self.base = base
         self.groups = groups
+        self.curved = _curved(model) if groups else None
 
     def configuration(self, dq: np.ndarray) -> np.ndarray:
         """q = integrate(q_b, dq), (nq,)."""
@@ -78,6 +81,11 @@ class Chart:
         """d(dq)/dt for the velocity v at q = integrate(q_b, dq): (d integrate / d dq)^-1 v."""
         if not self.groups:
             return v.copy()
+        if self.curved is not None:  # every curved joint SE(3), SO(3) or SE(2): block by block, accurate
+            rate = v.copy()
+            for block, name in self.curved:
+                rate[block] = exp_chart_rate(name, dq[block], v[block])
+            return rate
         J = pin.dIntegrate(self.model, self.base, dq, pin.ArgumentPosition.ARG1)
         return np.linalg.solve(J, v)
 
@@ -87,4 +95,27 @@ class Chart:
 
     def recentred(self, dq: np.ndarray) -> Chart:
         """The chart based at integrate(q_b, dq) (where dq = 0 again)."""
-        return Chart(self.model, self.configuration(dq), self.groups)
+        chart = Chart(self.model, self.configuration(dq), [])
+        chart.groups, chart.curved = self.groups, self.curved  # the model's, unchanged
+        return chart
+
+
+def _curved(model: pin.Model) -> list[tuple[slice, str]] | None:
+    """(tangent slice, group name) of each curved joint when all are SE(3), SO(3) or SE(2), else None.
+
+    On those d integrate / d dq is block diagonal with the blocks of
+    :func:`pinlin.model.elements.lie_log.exp_chart_rate` (solving Pinocchio 4.1's
+    ``dIntegrate`` on SE(3) gives rates up to 3e-5 relative off between about 1e-4 and
+    2e-3 rad); any other curved
+    group keeps Pinocchio's whole-model solve.
+    """
+    out = []
+    for jid in range(1, model.njoints):
+        joint = model.joints[jid]
+        name = joint.lieGroup().name
+        if name.startswith(FLAT_GROUPS):
+            continue
+        if name not in ("SE(3)", "SO(3)", "SE(2)"):
+            return None
+        out.append((slice(joint.idx_v, joint.idx_v + joint.nv), name))
+    return out
