@@ -6,9 +6,12 @@ de/dq = J_log(X) at X = q_rest^{-1} q (right perturbations, Pinocchio's
 convention: ``difference`` and ``dDifference(..., ARG1)``).  Pinocchio 4.1's
 ``dDifference`` on these groups (``Jlog6``, ``Jlog3``) loses accuracy for
 rotations between about 1e-4 and 2e-3 rad, where a spring near its rest
-works: up to 3e-5 relative on SE(3), 2e-9 on SO(3) and 5e-9 on SE(2).  Here the same closed form as :mod:`.se3` (which the
-bushings use, checked against mpmath) is evaluated for one joint on Python
-floats, so that it costs a few microseconds per call:
+works: up to 3e-5 relative on SE(3), 2e-9 on SO(3) and 5e-9 on SE(2).  Here
+the same closed form as :mod:`.se3` (which the bushings use, checked against
+mpmath) is evaluated for one joint on Python floats, a few microseconds per call
+(:class:`JointLog`); :func:`pinlin.linear_coordinates` reads the same log, and
+the nonlinear simulator's charts the rate of the exponential chart
+(:func:`exp_chart_rate`):
 
 .. math::  J_{log} = \\begin{bmatrix} A & D(p) A \\\\ 0 & A \\end{bmatrix},\\qquad
            A = I + \\tfrac12 [\\theta]_\\times + \\beta [\\theta]_\\times^2,
