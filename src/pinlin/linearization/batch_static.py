@@ -89,8 +89,7 @@ def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol:
     scale_K = norms(K)
     Q = np.zeros(tau.shape)
     for group in scene.groups:
-        group.add_force_many(qs, Q)
-        group.add_stiffness_many(qs, K)
+        group.add_many(qs, Q, K)
     r = tau - Q
     force_scale, rel = relative_residuals(tau, Q, K, r, equilibrium_tol)
     rounding = scale_K if plan.symmetric_elements else scale_K + norms(K)

@@ -100,11 +100,8 @@ class DamperGroup(ElementGroup):
 
     batched = True
 
-    def add_force_many(self, qs: np.ndarray, Q: np.ndarray) -> None:
-        """Forces at rest (v = 0) at each row of ``qs``: none."""
-
-    def add_stiffness_many(self, qs: np.ndarray, K: np.ndarray) -> None:
-        """Dampers add no stiffness."""
+    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray) -> None:
+        """Forces at rest (v = 0) and stiffness at each row of ``qs``: none."""
 
     def add_damping(self, ev: Evaluation | None, C: np.ndarray) -> None:
         """Add the dampers' matrices (the same at every point; ``ev`` is not read and may be None)."""

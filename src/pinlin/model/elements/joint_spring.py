@@ -196,8 +196,12 @@ class SpringGroup(ElementGroup):
 
     batched = True
 
-    def add_force_many(self, qs: np.ndarray, Q: np.ndarray) -> None:
-        """:meth:`add_force` at each row of ``qs`` (P, nq), into the rows of Q (P, nv)."""
+    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray) -> None:
+        """:meth:`add_force` and :meth:`add_stiffness` at each row of ``qs`` (P, nq), into Q (P, nv) and K (P, nv, nv).
+
+        A multi-DOF spring's log is evaluated once per row for both, as the single
+        call shares it through its evaluation.
+        """
         if len(self.iv):
             force = self.k * (qs[:, self.q_index] - self.rest)
             if self.v_slice:
@@ -207,19 +211,20 @@ class SpringGroup(ElementGroup):
                 Q[:, self.iv] -= force
             else:  # repeated joints: in order, as element by element
                 np.subtract.at(Q.T, self.iv, force.T)
-        for qs_j, vs, rest, log, Ks, _ in self.prepared:
-            for q, row in zip(qs, Q):
-                view = row[vs]
-                view -= np.dot(Ks, q[qs_j] - rest if log is None else log.difference(q[qs_j]))
-
-    def add_stiffness_many(self, qs: np.ndarray, K: np.ndarray) -> None:
-        """:meth:`add_stiffness` at each row of ``qs`` (P, nq), into K (P, nv, nv), C-contiguous."""
-        if len(self.iv):
             self.diagonal.add_many(K, self.k)
-        for qs_j, vs, _, log, Ks, derivative in self.prepared:
-            for q, Kp in zip(qs, K):
-                view = Kp[vs, vs]
-                view += np.dot(Ks, log.jacobian(q[qs_j])) if derivative else Ks
+        for qs_j, vs, rest, log, Ks, derivative in self.prepared:
+            for q, row, Kp in zip(qs, Q, K):
+                view, block = row[vs], Kp[vs, vs]
+                if log is None:
+                    view -= np.dot(Ks, q[qs_j] - rest)
+                    block += Ks
+                elif derivative:
+                    e, jacobian = log.evaluate(q[qs_j])
+                    view -= np.dot(Ks, e)
+                    block += np.dot(Ks, jacobian)
+                else:
+                    view -= np.dot(Ks, log.difference(q[qs_j]))
+                    block += Ks
 
     def add_damping(self, ev: Evaluation | None, C: np.ndarray) -> None:
         """Springs add no damping."""
