@@ -24,6 +24,7 @@ import threading
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+import pinocchio as pin
 import pytest
 
 import pinlin
@@ -103,7 +104,25 @@ def _ur5():
     return scene, [scene.neutral() + 0.1 * rng.standard_normal(robot.nq) for _ in range(CALLS)], 0.1
 
 
+def _floating_mount():
+    """A free body on an anisotropic 6-DOF spring mount, near rest: the joint spring's own Lie-group log
+    (kept per evaluation in ev.memo) and the simulator's chart rates on a free-flyer."""
+    robot = pinlin.load_urdf_string(
+        '<robot name="box"><link name="box"><inertial><mass value="2"/>'
+        '<inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
+        free_flyer=True,
+    )
+    rng = np.random.default_rng(6)
+    A = rng.normal(size=(6, 6))
+    mount = pinlin.JointSpring("root_joint", 50.0 * (A @ A.T) + 100.0 * np.eye(6))
+    scene = pinlin.Scene(robot, [mount, pinlin.JointDamper("root_joint", 0.5)])
+    neutral = robot.neutral()
+    qs = [pin.integrate(robot.model, neutral, 1e-3 * rng.standard_normal(6)) for _ in range(CALLS)]
+    return scene, qs, 0.2
+
+
 SCENES = {
+    "floating_mount": _floating_mount,
     "double_pendulum_dead": _double_pendulum,
     "chain30_rayleigh": _chain,
     "turntable": _turntable,
