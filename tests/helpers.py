@@ -33,6 +33,12 @@ def rel_err(a, b):
 
 #: A hinge carrying a bar, and a second hinge carrying a link without mass or inertia ("ghost_joint"):
 #: its mass matrix is singular, and the error should name that joint.
+#: One rigid box (2 kg, principal inertias 0.1, 0.2, 0.3 kg m^2): load it with ``free_flyer=True``.
+BOX_URDF = (
+    '<robot name="box"><link name="box"><inertial><mass value="2"/>'
+    '<inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>'
+)
+
 MASSLESS_LINK_URDF = """<robot name="x"><link name="base"/>
       <link name="bar"><inertial><mass value="1"/><origin xyz="0 0 -0.5"/>
         <inertia ixx="0.1" iyy="0.1" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>

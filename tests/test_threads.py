@@ -28,6 +28,7 @@ import pinocchio as pin
 import pytest
 
 import pinlin
+from helpers import BOX_URDF
 
 #: Workers of the thread pool (the issue's acceptance: 8).
 WORKERS = 8
@@ -107,11 +108,7 @@ def _ur5():
 def _floating_mount():
     """A free body on an anisotropic 6-DOF spring mount, near rest: the joint spring's own Lie-group log
     (kept per evaluation in ev.memo) and the simulator's chart rates on a free-flyer."""
-    robot = pinlin.load_urdf_string(
-        '<robot name="box"><link name="box"><inertial><mass value="2"/>'
-        '<inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
-        free_flyer=True,
-    )
+    robot = pinlin.load_urdf_string(BOX_URDF, free_flyer=True)
     rng = np.random.default_rng(6)
     A = rng.normal(size=(6, 6))
     mount = pinlin.JointSpring("root_joint", 50.0 * (A @ A.T) + 100.0 * np.eye(6))

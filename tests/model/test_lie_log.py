@@ -11,7 +11,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import pinlin
-from helpers import mp_exp6_log_jacobian, mp_log6_jacobian
+from helpers import BOX_URDF, mp_exp6_log_jacobian, mp_log6_jacobian
 from pinlin.model.elements.lie_log import beta_gamma, exp_chart_rate, joint_log, se3_log
 from pinlin.model.elements.se3 import log_expansion
 from pinlin.nonlinear.charts import Chart, chart_groups
@@ -82,11 +82,7 @@ def test_joint_log_is_pinocchios_difference_away_from_the_band_and_exact_at_rest
 def test_free_flyer_spring_stiffness_near_rest_against_mpmath():
     """A 6-DOF spring mount deflected by 1.6e-4 rad: K = K_s J_log(rest^-1 q), with J_log from mpmath.
     Pinocchio's dDifference (the code before) is 8e-6 off here (relative); now exact to rounding."""
-    robot = pinlin.load_urdf_string(
-        '<robot name="box"><link name="box"><inertial><mass value="2"/>'
-        '<inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
-        free_flyer=True,
-    )
+    robot = pinlin.load_urdf_string(BOX_URDF, free_flyer=True)
     rng = np.random.default_rng(11)
     A = rng.normal(size=(6, 6))
     Ks = A @ A.T + 6.0 * np.eye(6)

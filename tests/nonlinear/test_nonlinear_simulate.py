@@ -18,7 +18,7 @@ from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
 import pinlin
-from helpers import mp_log6, mp_log6_jacobian
+from helpers import BOX_URDF, mp_log6, mp_log6_jacobian
 from pinlin.model.elements import Element
 from response_cases import TURNTABLE, expm_free_response, rotating_ring, turntable
 
@@ -169,11 +169,7 @@ def test_linear_coordinates_are_tangent_differences():
 def test_linear_coordinates_of_a_floating_body_at_small_rotations():
     """A free body 1.6e-4 rad from its operating point (where Pinocchio 4.1's dDifference is 7e-6 off):
     x = log6(q_op^-1 q) and xdot = J_log(q_op^-1 q) v, both against mpmath."""
-    robot = pinlin.load_urdf_string(
-        '<robot name="box"><link name="box"><inertial><mass value="2"/>'
-        '<inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
-        free_flyer=True,
-    )
+    robot = pinlin.load_urdf_string(BOX_URDF, free_flyer=True)
     scene = pinlin.Scene(robot, gravity=(0, 0, 0))
     rng = np.random.default_rng(11)
     q_op = pin.integrate(robot.model, pin.neutral(robot.model), rng.normal(size=6))

@@ -39,13 +39,22 @@ def split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) -
     whose stiffness is not exactly symmetric).
     """
     S, difference, norm = _halves(K)
-    size = 0.5 * norm / max(rounding, _TINY)  # ||(K - K^T) / 2||, exactly (a power-of-two scaling)
+    return S, _skew_part(difference, norm, rounding, tol, dropped, "N")
+
+
+def _skew_part(difference: np.ndarray, norm: float, scale: float, tol: float, dropped: dict, name: str) -> np.ndarray:
+    """(A - A^T) / 2 from ``difference`` = A - A^T (halved in place), or zeros when it is at rounding level.
+
+    Its size ||(A - A^T) / 2|| / scale is half the difference's norm, exactly (a
+    power-of-two scaling); a nonzero size at or below ``tol`` goes to ``dropped[name]``.
+    """
+    size = 0.5 * norm / max(scale, _TINY)
     if size <= tol:
         if size:
-            dropped["N"] = size
-        return S, np.zeros(K.shape)
+            dropped[name] = size
+        return np.zeros(difference.shape)
     difference *= 0.5
-    return S, difference
+    return difference
 
 
 def element_damping_parts(C: np.ndarray) -> tuple[np.ndarray, np.ndarray | None, float]:
@@ -95,10 +104,4 @@ def split_damping(
             D -= D_rnea  # D is a fresh array
     if size <= tol and size:
         dropped["D (Coriolis rounding)"] = size
-    size = 0.5 * norm / max(base.rounding_scale_C, _TINY)
-    if size <= tol:
-        if size:
-            dropped["G"] = size
-        return D, np.zeros(C.shape)
-    difference *= 0.5
-    return D, difference
+    return D, _skew_part(difference, norm, base.rounding_scale_C, tol, dropped, "G")

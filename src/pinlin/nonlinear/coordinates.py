@@ -86,13 +86,14 @@ def linear_coordinates(scene: Scene, q_op, q, v=None) -> tuple[np.ndarray, np.nd
     curved = curved_joints(model, q_op)  # free-flyer, spherical, planar: logs accurate at every angle
     for i, qi in enumerate(qs):
         dq = pin.difference(model, q_op, qi)
+        J = None if vs is None else pin.dDifference(model, q_op, qi, pin.ArgumentPosition.ARG1)
         for q_block, v_block, log in curved:
-            dq[v_block] = log.difference(qi[q_block])
+            if J is None:
+                dq[v_block] = log.difference(qi[q_block])
+            else:  # e and its Jacobian from one evaluation of the log
+                dq[v_block], J[v_block, v_block] = log.evaluate(qi[q_block])
         x[i] = dq[f]
-        if vs is not None:
-            J = pin.dDifference(model, q_op, qi, pin.ArgumentPosition.ARG1)
-            for q_block, v_block, log in curved:
-                J[v_block, v_block] = log.jacobian(qi[q_block])
+        if J is not None:
             xdot[i] = (J @ vs[i])[f]
     if single:
         return x[0], (None if xdot is None else xdot[0])

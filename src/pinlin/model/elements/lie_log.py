@@ -156,15 +156,15 @@ class JointLog:
     def evaluate(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(e, de/dq): the deflection e = log(rest^{-1} q) (nv_j,) and J_log(rest^{-1} q) (nv_j x nv_j)."""
         e, J = se3_log(*self._point(q))
-        if self.name == "SE(3)":
-            return np.array(e), J
-        if self.name == "SO(3)":
-            return np.array(e[3:]), J[3:, 3:].copy()
-        return np.array((e[0], e[1], e[5])), J[_PLANAR]
+        return self._restrict(e), _restrict_jacobian(self.name, J)
 
     def difference(self, q: np.ndarray) -> np.ndarray:
         """e = log(rest^{-1} q) (nv_j,)."""
         e, _ = se3_log(*self._point(q), jacobian=False)
+        return self._restrict(e)
+
+    def _restrict(self, e: list[float]) -> np.ndarray:
+        """SE(3)'s (v, omega) restricted to the group's tangent coordinates."""
         return np.array(e[3:] if self.name == "SO(3)" else (e if self.name == "SE(3)" else (e[0], e[1], e[5])))
 
     def jacobian(self, q: np.ndarray) -> np.ndarray:
@@ -256,6 +256,11 @@ def exp_chart_rate(name: str, dq: np.ndarray, v: np.ndarray) -> np.ndarray:
     p = [L[0] * rho[0] + L[1] * rho[1] + L[2] * rho[2], L[3] * rho[0] + L[4] * rho[1] + L[5] * rho[2],
          L[6] * rho[0] + L[7] * rho[1] + L[8] * rho[2]]  # fmt: skip
     _, J = se3_log(theta, p)
+    return _restrict_jacobian(name, J) @ v
+
+
+def _restrict_jacobian(name: str, J: np.ndarray) -> np.ndarray:
+    """SE(3)'s J_log (6 x 6) restricted to a group's tangent coordinates: all, the rotation block, or the planar ones."""
     if name == "SE(3)":
-        return J @ v
-    return J[3:, 3:] @ v if name == "SO(3)" else J[_PLANAR] @ v
+        return J
+    return J[3:, 3:].copy() if name == "SO(3)" else J[_PLANAR]
