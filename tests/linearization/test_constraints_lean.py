@@ -253,6 +253,8 @@ def test_constraint_forces_are_values_of_their_own(solo):
         assert np.array_equal(f.force, built.force) and f.torque is None
         with pytest.raises(dataclasses.FrozenInstanceError):
             f.force = None
+        with pytest.raises(ValueError, match="read-only"):  # a frozen result: its arrays too
+            f.force[0] = 1.0
 
 
 def test_dead_wrench_stiffness_with_the_linear_rows_given(solo):

@@ -248,9 +248,10 @@ def evaluate_constraints(
 def constraint_forces(scene: Scene, lam: np.ndarray) -> tuple[ConstraintForce, ...]:
     """One :class:`~pinlin.ConstraintForce` per constraint, in scene order.
 
-    One copy of ``lam``; each force (and torque) is a view of its own rows of it.
+    One copy of ``lam``, read-only; each force (and torque) is a view of its own rows of it.
     """
     lam = np.array(lam, dtype=float)
+    lam.flags.writeable = False  # the forces are part of a frozen result
     if scene.world_points is not None:  # points at world points: the rows of lam (k x 3) are their forces
         of = ConstraintForce.of  # what PointConstraint.force(f, copy=False) returns
         return tuple([of(c.label, c.frame, c.target, f) for c, f in zip(scene.constraints, lam.reshape(-1, 3))])
