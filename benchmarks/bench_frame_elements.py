@@ -35,7 +35,7 @@ import numpy as np  # noqa: E402
 import pinocchio as pin  # noqa: E402
 
 import pinlin  # noqa: E402
-from pinlin.linearization.workspace import Evaluation  # noqa: E402
+from pinlin.model.evaluation import Evaluation  # noqa: E402
 from pinlin.testing import check_element  # noqa: E402
 
 from .bench_linearize import fd_linearization, matrix_error, richardson_reference  # noqa: E402

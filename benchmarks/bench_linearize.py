@@ -57,7 +57,7 @@ import pinocchio as pin
 
 import pinlin
 from pinlin.linearization.assembly import assemble
-from pinlin.linearization.workspace import workspace
+from pinlin.model.evaluation import workspace
 from pinlin.model.loading import example_urdf_path
 
 from .bench_workspace import workspace_section

@@ -45,7 +45,6 @@ import scipy.linalg  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402
 
 import pinlin  # noqa: E402
-from pinlin.response import first_order  # noqa: E402
 
 from .common import Report, Table, median_time, result_path, save_figure, write_report  # noqa: E402
 
@@ -112,7 +111,7 @@ def run(quick: bool = False) -> Report:
     ref_time = time.perf_counter() - t_ref
 
     modes = pinlin.modal_analysis(sys)
-    A, _ = first_order(sys)
+    A, _, _ = sys.first_order()
     rows = []
 
     def add(method, setting, fn):

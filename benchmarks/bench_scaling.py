@@ -117,7 +117,7 @@ def worker(n: int) -> dict:
     out: dict = {"n": n, "stages": {}}
     state: dict = {}
 
-    from pinlin.linearization.workspace import workspace
+    from pinlin.model.evaluation import workspace
 
     def load():
         state.pop("scene", None)  # a repeat must not hold two Pinocchio datas at once

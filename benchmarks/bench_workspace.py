@@ -1,7 +1,7 @@
 """Per-thread Pinocchio workspaces (issue 10): ``linearize`` before and after, and the cost of a fresh Data.
 
 Issue 10 moved Pinocchio's ``Data`` off the shared ``Scene`` into a workspace per
-thread (:mod:`pinlin.linearization.workspace`), created on a thread's first use
+thread (:mod:`pinlin.model.evaluation`), created on a thread's first use
 and reused.  Two questions, answered in one run:
 
 1. Did it make ``linearize`` slower?  The code before the change (commit

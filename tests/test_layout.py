@@ -2,9 +2,13 @@
 
 Walks ``src/pinlin`` with :mod:`ast` (nothing is imported):
 
-- the graph of module-level imports between pinlin modules, relative and
-  absolute, must have no cycle (imports inside functions and under
-  ``if TYPE_CHECKING:`` are deferred and do not count);
+- the graph of imports between pinlin modules, relative and absolute, must have no
+  cycle; every import counts, also those inside functions and under
+  ``if TYPE_CHECKING:`` (an import for a type annotation or deferred to a call is
+  still a dependency of the design, issue 22);
+- between packages, the imports run down the data flow (:data:`LAYERS`): no package
+  imports one of a later layer, and packages of one layer form no cycle;
+- no module imports a ``_private`` name of another module;
 - no module is longer than :data:`MAX_MODULE_LINES`;
 - functions longer than :data:`FUNCTION_LINES_TARGET` lines of code are
   reported, and those longer than :data:`MAX_FUNCTION_LINES` fail;
@@ -20,6 +24,21 @@ from pathlib import Path
 
 #: Root of the package sources.
 SRC = Path(__file__).resolve().parents[1] / "src" / "pinlin"
+#: The packages (and top-level modules) of pinlin in the order of the data flow: a package may import
+#: those of its own layer (without a cycle) and of earlier layers, never of a later one.
+LAYERS = (
+    ("errors", "version"),
+    ("results", "extras"),
+    ("numerics",),
+    ("model",),
+    ("linearization",),
+    ("spectral", "adjoint", "frf", "response", "periodic", "nonlinear"),
+    ("boundaries",),
+    ("studies",),
+    ("interop", "report", "cli", "plot", "testing"),
+    ("pinlin",),
+)
+
 #: Longest module allowed [lines] (issue 10: "no module over 400 lines").
 MAX_MODULE_LINES = 400
 #: Function length [lines of code] above which a function is reported (issue 10: "about 80").
@@ -39,28 +58,11 @@ def _modules(root: Path = SRC) -> dict[str, Path]:
     return out
 
 
-def _is_type_checking(test: ast.expr) -> bool:
-    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
-        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
-    )
-
-
-def _module_level_imports(tree: ast.Module):
-    """Import statements executed when the module is imported (not in functions, not for type checkers)."""
-    stack = list(tree.body)
-    while stack:
-        node = stack.pop()
+def _all_imports(tree: ast.Module):
+    """Every import statement of a module: at module level, in functions, under ``if TYPE_CHECKING:``."""
+    for node in ast.walk(tree):
         if isinstance(node, (ast.Import, ast.ImportFrom)):
             yield node
-        elif isinstance(node, ast.If):
-            if not _is_type_checking(node.test):
-                stack.extend(node.body)
-            stack.extend(node.orelse)
-        elif isinstance(node, ast.Try):
-            for block in (node.body, node.orelse, node.finalbody, *(h.body for h in node.handlers)):
-                stack.extend(block)
-        elif isinstance(node, (ast.With, ast.ClassDef)):
-            stack.extend(node.body)
 
 
 def _resolve(module: str, is_package: bool, node: ast.ImportFrom) -> str:
@@ -75,7 +77,7 @@ def _resolve(module: str, is_package: bool, node: ast.ImportFrom) -> str:
 
 
 def import_graph(root: Path = SRC) -> dict[str, set[str]]:
-    """Module of the package at ``root`` -> the modules of that package it imports at module level.
+    """Module of the package at ``root`` -> the modules of that package it imports (anywhere in it).
 
     ``from .pkg import name`` counts as an import of ``pkg.name`` when that is
     a module, and of the package ``pkg`` otherwise.  Importing ``a.b.c`` also
@@ -86,7 +88,7 @@ def import_graph(root: Path = SRC) -> dict[str, set[str]]:
     for name, path in modules.items():
         tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
         targets: set[str] = set()
-        for node in _module_level_imports(tree):
+        for node in _all_imports(tree):
             if isinstance(node, ast.Import):
                 targets.update(alias.name for alias in node.names)
             else:
@@ -189,6 +191,66 @@ def test_no_import_cycle():
     assert cycle is None, "import cycle between pinlin modules: " + " -> ".join(cycle)
 
 
+def package_of(module: str) -> str:
+    """The first-level package (or top-level module) a pinlin module belongs to; "pinlin" for the root."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "pinlin"
+
+
+def package_graph(graph: dict[str, set[str]]) -> dict[str, set[str]]:
+    """First-level package -> the first-level packages its modules import."""
+    out: dict[str, set[str]] = {}
+    for module, targets in graph.items():
+        mine = package_of(module)
+        out.setdefault(mine, set()).update(package_of(t) for t in targets if package_of(t) != mine)
+    return out
+
+
+def layer_violations(packages: dict[str, set[str]], layers=LAYERS) -> list[str]:
+    """Arrows from a package to one of a later layer, and packages not placed in any layer."""
+    rank = {name: k for k, layer in enumerate(layers) for name in layer}
+    out = [f"{p} is in no layer" for p in sorted(packages) if p not in rank]
+    for p, targets in sorted(packages.items()):
+        for t in sorted(targets):
+            if p in rank and t in rank and rank[t] > rank[p]:
+                out.append(f"{p} -> {t} runs up the data flow")
+    return out
+
+
+def private_imports(root: Path = SRC) -> list[str]:
+    """``module imports _name from other`` for every import of a private name from another pinlin module."""
+    modules = _modules(root)
+    out = []
+    for name, path in modules.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        for node in _all_imports(tree):
+            if isinstance(node, ast.ImportFrom):
+                base = _resolve(name, path.name == "__init__.py", node)
+                if base.split(".")[0] != root.name or base == name:
+                    continue
+                for alias in node.names:
+                    if alias.name.startswith("_") and not alias.name.startswith("__"):
+                        out.append(f"{name} imports {alias.name} from {base}")
+            else:
+                for alias in node.names:
+                    if any(part.startswith("_") and not part.startswith("__") for part in alias.name.split(".")):
+                        out.append(f"{name} imports the private module {alias.name}")
+    return out
+
+
+def test_packages_follow_the_data_flow():
+    packages = package_graph(import_graph())
+    assert {"model", "linearization", "spectral", "numerics"} <= set(packages)
+    assert not layer_violations(packages), "\n".join(layer_violations(packages))
+    cycle = find_cycle(packages)
+    assert cycle is None, "import cycle between pinlin packages: " + " -> ".join(cycle)
+
+
+def test_no_private_name_imported_from_another_module():
+    found = private_imports()
+    assert not found, "\n".join(found)
+
+
 def test_no_module_over_limit():
     sizes = {name: len(path.read_text(encoding="utf-8").splitlines()) for name, path in _modules().items()}
     too_long = sorted((n, name) for name, n in sizes.items() if n > MAX_MODULE_LINES)
@@ -232,6 +294,23 @@ def test_cycle_finder_on_hand_made_graphs():
     assert find_cycle({"a": {"b", "d"}, "b": set(), "d": {"d2"}, "d2": {"d"}}) == ["d", "d2", "d"]
 
 
+def test_layer_and_private_checkers_on_hand_made_cases(tmp_path):
+    layers = (("low",), ("mid", "side"), ("high",))
+    assert layer_violations({"low": set(), "mid": {"low", "side"}, "high": {"mid"}}, layers) == []
+    assert layer_violations({"low": {"mid"}, "mid": set(), "odd": set()}, layers) == [
+        "odd is in no layer", "low -> mid runs up the data flow"
+    ]
+    assert package_of("pinlin.model.scene") == "model" and package_of("pinlin") == "pinlin"
+    graph = {"pinlin.a.x": {"pinlin.b.y"}, "pinlin.b.y": {"pinlin.a.z"}, "pinlin.a.z": set()}
+    assert package_graph(graph) == {"a": {"b"}, "b": {"a"}}
+    pkg = tmp_path / "pinlin"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text('"""doc"""\n')
+    (pkg / "a.py").write_text("def _helper():\n    pass\n")
+    (pkg / "b.py").write_text("def f():\n    from .a import _helper\n")
+    assert private_imports(pkg) == ["pinlin.b imports _helper from pinlin.a"]
+
+
 def test_import_resolution_and_deferred_imports(tmp_path):
     source = (
         "from __future__ import annotations\n"
@@ -246,10 +325,13 @@ def test_import_resolution_and_deferred_imports(tmp_path):
     tree = ast.parse(source)
     found = [
         _resolve("pinlin.pkg.mod", False, n)
-        for n in _module_level_imports(tree)
+        for n in _all_imports(tree)
         if isinstance(n, ast.ImportFrom)
     ]
-    assert sorted(found) == ["__future__", "pinlin.other", "pinlin.pkg", "typing"]
+    # the type checker's and the deferred import count too (issue 22)
+    assert sorted(found) == [
+        "__future__", "pinlin.other", "pinlin.pkg", "pinlin.pkg.hidden", "pinlin.pkg.late", "typing"
+    ]
     # from a package's __init__, "." is the package itself
     node = ast.parse("from .sub import a").body[0]
     assert _resolve("pinlin.pkg", True, node) == "pinlin.pkg.sub"
@@ -271,14 +353,16 @@ def test_import_graph_of_a_small_package(tmp_path):
     assert graph == {
         "pkg": {"pkg.sub", "pkg.sub.tool"},
         "pkg.sub": {"pkg.sub.tool"},
-        "pkg.sub.tool": {"pkg.core"},
-        "pkg.core": set(),
+        "pkg.sub.tool": {"pkg.core", "pkg.late"},
+        "pkg.core": {"pkg.late"},
         "pkg.late": {"pkg.sub", "pkg.sub.tool"},
     }
-    assert find_cycle(graph) is None  # the function-level and TYPE_CHECKING imports close no cycle
-    (pkg / "core.py").write_text("from .late import x\n", encoding="utf-8")
-    cycle = find_cycle(import_graph(pkg))
-    assert cycle is not None and cycle[0] == cycle[-1] and "pkg.core" in cycle and "pkg.late" in cycle
+    # the function-level and TYPE_CHECKING imports count: each closes a cycle through pkg.late
+    cycle = find_cycle(graph)
+    assert cycle is not None and cycle[0] == cycle[-1] and "pkg.late" in cycle
+    (pkg / "core.py").write_text("import numpy\n", encoding="utf-8")
+    (pkg / "sub/tool.py").write_text("from ..core import base\n", encoding="utf-8")
+    assert find_cycle(import_graph(pkg)) is None
 
 
 def test_code_lines_skip_docstring_comments_and_blanks():

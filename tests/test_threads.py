@@ -1,7 +1,7 @@
 """One shared Scene, many threads: results bitwise equal to the serial run (issue 10, acceptance).
 
 A :class:`pinlin.Scene` is an immutable description; every computation runs in
-the Pinocchio ``Data`` of its own thread (:mod:`pinlin.linearization.workspace`).
+the Pinocchio ``Data`` of its own thread (:mod:`pinlin.model.evaluation`).
 Before that split, all calls on one scene wrote into one ``scene.data``, and a
 thread pool gave wrong stiffness matrices (the double pendulum with a dead
 wrench), wrong balancing forces (a chain with gravity and Rayleigh damping) and
@@ -265,7 +265,7 @@ def test_sweep_with_thread_pool_matches_serial(name):
 
 
 def test_each_thread_computes_in_its_own_workspace():
-    from pinlin.linearization.workspace import workspace
+    from pinlin.model.evaluation import workspace
 
     scene, _, _ = _case("double_pendulum_dead")
     mine = workspace(scene)
@@ -283,7 +283,7 @@ def test_scenes_of_one_robot_share_the_threads_data():
     Scenes of one robot differ in gravity and elements, not in the model's structure;
     interleaving them in one workspace gives bitwise the results of each alone.
     """
-    from pinlin.linearization.workspace import workspace
+    from pinlin.model.evaluation import workspace
 
     robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(4))
     weak = pinlin.Scene(robot, [pinlin.JointSpring(j, 5.0) for j in robot.joint_names])

@@ -23,10 +23,7 @@ Conventions (names, units, axis orders, what ``.error`` means per result) are in
 from ``docs/`` with Sphinx (``docs/index.md`` says how).
 """
 
-from . import (
-    _compat,
-    testing,  # noqa: F401 -- pinlin.testing.check_element (SPEC section 9) after a plain `import pinlin`
-)
+from . import testing  # noqa: F401 -- pinlin.testing.check_element after a plain `import pinlin`
 from .adjoint import (
     AdjugateMatrix,
     CharacteristicPolynomial,
@@ -60,6 +57,7 @@ from .errors import (
     IntegrationBudgetError,
     IntegrationError,
     JointNotFoundError,
+    LoopClosureError,
     MissingDependencyError,
     MjcfError,
     ModelTooLargeError,
@@ -92,7 +90,8 @@ from .interop import StateSpaceModel, state_space
 from .linearization.batch import linearize_many
 from .linearization.closure import ClosureResult, close_loops
 from .linearization.constrained import constraint_stiffness
-from .linearization.equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
+from .linearization.equilibrium import equilibrium_residual, find_equilibrium
+from .linearization.equilibrium_result import EquilibriumResult
 from .linearization.linearize import generalized_force, linearize
 from .linearization.system import LinearizedSystem
 from .model import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
@@ -128,10 +127,7 @@ from .response import (
 )
 from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
 from .studies.sweep import SweepFailure, SweepResult, sweep
-
-__version__ = "0.2.0"
-
-_compat.install()
+from .version import __version__
 
 __all__ = [
     "__version__",
@@ -178,6 +174,7 @@ __all__ = [
     "ConstraintError",
     "ConstraintViolationError",
     "AssemblyError",
+    "LoopClosureError",
     "SingularConstraintError",
     "OverconstrainedError",
     "MjcfError",

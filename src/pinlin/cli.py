@@ -29,7 +29,6 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from . import __version__
 from .errors import (
     InputError,
     MissingDependencyError,
@@ -41,7 +40,7 @@ from .errors import (
 from .model.elements import JointDamper, JointSpring
 from .model.loading import EXAMPLES, data_path, load_example
 from .model.scene import Scene
-from .model.scenefile import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
+from .model.scene_file import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
 from .report import REPORT_SCHEMA, REPORT_VERSION, analyze, render_text, write_plot
 from .report.outputs import (
     check_animation_path,
@@ -52,6 +51,7 @@ from .report.outputs import (
 )
 from .report.sweep import render_sweep_text, run_sweep, sweep_document, sweep_plan, write_sweep_plot
 from .report.sweep.parameters import SWEEP_FORMAT
+from .version import __version__
 
 __all__ = [
     "main",

@@ -28,14 +28,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Result", "ResultArray", "to_jsonable", "result_types", "readonly"]
+__all__ = ["Result", "ResultArray", "to_jsonable", "result_types"]
 
-
-def readonly(a, dtype=None) -> np.ndarray:
-    """A read-only copy of ``a`` (results and systems never share writable arrays)."""
-    out = np.array(a, dtype=dtype, copy=True)
-    out.flags.writeable = False
-    return out
 
 
 def _number(x) -> Any:

@@ -254,8 +254,8 @@ def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> flo
     import pinocchio as pin
 
     from .linearization.assembly import assemble
-    from .linearization.workspace import Evaluation
     from .model.elements import Element
+    from .model.evaluation import Evaluation
 
     if not isinstance(element, Element):
         raise ParameterError("element", f"expected a pinlin element, got {element!r}")

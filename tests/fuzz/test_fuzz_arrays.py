@@ -20,7 +20,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import pinlin
-from pinlin.model.scenefile import default_scene_path, load_scene
+from pinlin.model.scene_file import default_scene_path, load_scene
 
 #: The fixed systems the frequency- and time-domain functions get: SPEC 7.1 with a little damping.
 SPEC = pinlin.LinearizedSystem.from_matrices(

@@ -28,7 +28,7 @@ from hypothesis import strategies as st
 
 import pinlin
 from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, EXIT_OK, main
-from pinlin.model.scenefile import SCENE_FORMAT, load_scene
+from pinlin.model.scene_file import SCENE_FORMAT, load_scene
 from pinlin.report import REPORT_SCHEMA, analyze
 
 if sys.version_info >= (3, 11):

@@ -12,7 +12,7 @@ from numpy.testing import assert_allclose
 
 import pinlin
 from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, main
-from pinlin.model.scenefile import default_scene_path, load_scene
+from pinlin.model.scene_file import default_scene_path, load_scene
 from pinlin.numerics import definiteness
 from pinlin.report import REPORT_SCHEMA, REPORT_VERSION, analyze, matrix_structure
 

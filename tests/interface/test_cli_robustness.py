@@ -19,7 +19,7 @@ import pytest
 
 import pinlin
 from pinlin.cli import EXIT_COMPUTATION, EXIT_INPUT, EXIT_OK, main
-from pinlin.model.scenefile import load_scene
+from pinlin.model.scene_file import load_scene
 from pinlin.report import REPORT_SCHEMA, analyze
 from pinlin.report.sweep import sweep_plan
 

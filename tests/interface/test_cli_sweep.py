@@ -19,7 +19,7 @@ import pytest
 
 import pinlin
 from pinlin.cli import EXIT_INPUT, default_sweep_scene_path, main
-from pinlin.model.scenefile import load_scene
+from pinlin.model.scene_file import load_scene
 from pinlin.report.sweep import SWEEP_SCHEMA, run_sweep, sweep_plan
 
 #: SPEC 7.1 parameters.

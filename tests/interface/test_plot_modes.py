@@ -21,7 +21,7 @@ from PIL import Image  # noqa: E402
 
 import pinlin  # noqa: E402
 from pinlin import plot  # noqa: E402
-from pinlin.model.scenefile import load_scene  # noqa: E402
+from pinlin.model.scene_file import load_scene  # noqa: E402
 
 #: Positions are computed by the same Pinocchio algorithms on the same configurations: equal to rounding.
 POSITION_ATOL = 1e-12  # [m]

@@ -16,7 +16,7 @@ from interop_cases import L1, L2, double_pendulum, double_pendulum_scene, rotati
 from numpy.testing import assert_allclose
 
 import pinlin
-from pinlin.linearization.workspace import Evaluation
+from pinlin.model.evaluation import Evaluation
 
 control = pytest.importorskip("control")
 

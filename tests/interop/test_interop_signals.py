@@ -1,4 +1,4 @@
-"""The written form of inputs and outputs (pinlin.interop.signals): names, expansion, bad input."""
+"""The written form of inputs and outputs (pinlin.interop.signal_names): names, expansion, bad input."""
 
 import numpy as np
 import pytest

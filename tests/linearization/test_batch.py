@@ -15,6 +15,7 @@ from pinlin.errors import (
     TimePeriodicError,
 )
 from pinlin.linearization import batch_common, batch_static
+from pinlin.linearization.plan import plan_of
 
 FIELDS = ("M", "D", "G", "S", "N", "C", "K", "q", "v")
 #: The at-rest path takes the norms behind residual and dropped for all points in one reduction:
@@ -174,7 +175,7 @@ def test_paths_and_repeated_or_scattered_springs():
 
 @pytest.mark.parametrize("size", [4, 36])  # math.hypot up to SMALL_NORM entries, a dot product beyond
 def test_norms_closed_form_and_overflow(size):
-    from pinlin.linearization.assembly import SMALL_NORM, fro
+    from pinlin.numerics.norms import SMALL_NORM, fro
 
     assert (size <= SMALL_NORM) == (size == 4)
     for scale in (1.0, 1e-100, 3e200):  # 3e200: the squares overflow, the norm does not
@@ -330,7 +331,7 @@ def test_steady_motions_are_stacked_and_equal_single_calls():
     damped, undamped = _turntable(dampers + [follower]), _turntable()
     tilted = _turntable(dampers, gravity=(1.0, 0.0, -9.81))  # gravity off the table's axis: time-periodic
     assert batch_moving.applies(damped, 1e-8) and batch_moving.applies(undamped, 1e-8)
-    assert not batch_moving.applies(tilted, 1e-8) and not damped.linearization_plan.undamped
+    assert not batch_moving.applies(tilted, 1e-8) and not plan_of(damped).undamped
     qs = np.tile(damped.neutral(), (4, 1))
     qs[:, 2:] = np.random.default_rng(3).uniform(-0.8, 0.8, size=(4, 2))
     qs[1, :2] = [np.cos(0.7), np.sin(0.7)]  # the table turned: the proof makes it irrelevant
@@ -384,8 +385,8 @@ def test_large_batches_are_taken_in_chunks(monkeypatch):
 def test_nearly_singular_mass_matrices_are_decided_by_the_single_calls_cholesky(monkeypatch):
     scene = _pendulum_scene()
     seen = []
-    single_check = batch_common._check_mass
-    monkeypatch.setattr(batch_common, "_check_mass", lambda s, M: seen.append(M.copy()) or single_check(s, M))
+    single_check = batch_common.check_mass
+    monkeypatch.setattr(batch_common, "check_mass", lambda s, M: seen.append(M.copy()) or single_check(s, M))
     delta = 1e-10  # [[1, 1 - delta], [1 - delta, 1]]: second pivot 2 delta - delta^2, below PIVOT_MARGIN
     near = np.array([[1.0, 1.0 - delta], [1.0 - delta, 1.0]])
     assert 2 * delta < batch_common.PIVOT_MARGIN

@@ -11,12 +11,13 @@ import numpy as np
 import pytest
 
 import pinlin
-from pinlin.linearization.assembly import Assembly, fro
-from pinlin.linearization.linearize import _check_finite_and_mass
+from pinlin.linearization.assembly import Assembly
+from pinlin.linearization.checks import check_finite_and_mass
 from pinlin.linearization.split import split_damping, split_stiffness
-from pinlin.linearization.workspace import Evaluation
 from pinlin.model.elements.joint_spring import FEW_SPRINGS, SpringGroup
+from pinlin.model.evaluation import Evaluation
 from pinlin.model.scene import ANGLE_LIMIT
+from pinlin.numerics.norms import fro
 
 
 @pytest.fixture(scope="module")
@@ -121,7 +122,7 @@ def test_non_finite_M_or_C_raise_computation_error(chain, where, value):
     else:
         C[0, 1] = value
     with pytest.raises(pinlin.ComputationError, match=r"non-finite entries in M, C, K or the residual"):
-        _check_finite_and_mass(scene, M, C, _assembly())
+        check_finite_and_mass(scene, M, C, _assembly())
 
 
 def test_non_finite_force_scale_raises_computation_error(chain):
@@ -129,7 +130,7 @@ def test_non_finite_force_scale_raises_computation_error(chain):
     scene = pinlin.Scene(chain)
     for scale in (math.inf, math.nan):
         with pytest.raises(pinlin.ComputationError, match="non-finite entries"):
-            _check_finite_and_mass(scene, np.eye(3), np.zeros((3, 3)), _assembly(scale))
+            check_finite_and_mass(scene, np.eye(3), np.zeros((3, 3)), _assembly(scale))
 
 
 def test_huge_finite_entries_are_not_taken_for_overflow(chain):
@@ -137,7 +138,7 @@ def test_huge_finite_entries_are_not_taken_for_overflow(chain):
     scene = pinlin.Scene(chain)
     M, C = 1e200 * np.eye(3), np.full((3, 3), 1e200)
     assert not math.isfinite(float(np.vdot(M, C)))
-    _check_finite_and_mass(scene, M, C, _assembly(fro(np.full((6, 6), 1e200))))  # no error
+    check_finite_and_mass(scene, M, C, _assembly(fro(np.full((6, 6), 1e200))))  # no error
     assert fro(np.full((6, 6), 1e200)) == pytest.approx(6e200, rel=1e-15)
     assert fro(np.array([3e200, 4e200])) == pytest.approx(5e200, rel=1e-15)
 
@@ -159,7 +160,7 @@ def test_overflowing_damping_raises_computation_error(chain):
 def test_indefinite_mass_is_still_a_singular_mass_error(chain):
     M = np.array([[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, 1.0]])  # eigenvalues 3, -1, 1
     with pytest.raises(pinlin.SingularMassError, match=r"singular or indefinite \(smallest eigenvalue -1\)"):
-        _check_finite_and_mass(pinlin.Scene(chain), M, np.zeros((3, 3)), _assembly())
+        check_finite_and_mass(pinlin.Scene(chain), M, np.zeros((3, 3)), _assembly())
 
 
 # ----------------------------------------------------------------------------- splits

@@ -21,16 +21,16 @@ from numpy.testing import assert_allclose
 
 import pinlin
 from pinlin.linearization.assembly import assemble
+from pinlin.linearization.periodicity import PERIODIC_TEST_ANGLES, numeric_change
+from pinlin.linearization.plan import plan_of
 from pinlin.linearization.time_invariance import (
     BODY_FIXED_LOAD,
     DEAD_LOAD,
     JOINT_SPACE,
-    PERIODIC_TEST_ANGLES,
     SYMMETRY_TOL,
     UNKNOWN,
     invariance_kind,
     invariance_proofs,
-    numeric_change,
 )
 from pinlin.model.elements import ElementGroup
 
@@ -86,7 +86,7 @@ def turntable_q(scene):
 
 def test_root_turntable_is_proved_and_costs_one_pass():
     scene = turntable()
-    assert set(scene.linearization_plan.proofs) == {"table"}
+    assert set(plan_of(scene).proofs) == {"table"}
     q = turntable_q(scene)
     sys = pinlin.linearize(scene, q)
     assert sys.calls == ("computeRNEADerivatives",)
@@ -97,7 +97,7 @@ def test_root_turntable_is_proved_and_costs_one_pass():
 def test_axisymmetric_rotor_on_undamped_pendulum_is_proved():
     """The spurious TimePeriodicError of issue 13: C is exactly zero here (n = 1: no gyroscopic term)."""
     scene = rotor_scene()
-    proof = scene.linearization_plan.proofs["spin"]
+    proof = plan_of(scene).proofs["spin"]
     assert "axisymmetric rigid rotor" in proof.note and proof.departure == 0.0
     sys = pinlin.linearize(scene, scene.neutral())
     assert sys.calls == ("computeRNEADerivatives",)
@@ -109,7 +109,7 @@ def test_unknown_element_falls_back_to_the_numerical_check_with_a_system_scale()
     """An undamped scene (C = 0) checked numerically: rounding in C no longer reads as a 1e291 change."""
     anchor = pinlin.LinearSpringDamper("arm", (0.0, 0.0, -0.5), stiffness=1.0)
     scene = rotor_scene(extra=[anchor])
-    assert scene.linearization_plan.unproved == ("spin",)
+    assert plan_of(scene).unproved == ("spin",)
     sys = pinlin.linearize(scene, scene.neutral())
     assert sys.is_zero("C")
     assert sys.calls.count("computeRNEADerivatives") == 1 + len(PERIODIC_TEST_ANGLES)
@@ -130,7 +130,7 @@ def test_root_slider_at_constant_speed_is_proved():
         <limit lower="-10" upper="10" effort="1" velocity="1"/></joint></robot>"""
     robot = pinlin.load_urdf_string(urdf)
     scene = pinlin.Scene(robot, [pinlin.JointSpring("hinge", 3.0)], gravity=(0.5, 0.0, -9.81), prescribed={"drive": 4.0})
-    assert "sliding along a fixed axis" in scene.linearization_plan.proofs["drive"].note
+    assert "sliding along a fixed axis" in plan_of(scene).proofs["drive"].note
     sys = pinlin.linearize(scene, [0.3, 0.0], balancing=True)
     assert sys.calls == ("computeRNEADerivatives",)
     assert check_numerically(scene, [0.3, 0.0]) < ROUNDING
@@ -138,9 +138,9 @@ def test_root_slider_at_constant_speed_is_proved():
 
 def test_dead_force_along_the_table_axis_is_proved_across_it_refused():
     along = turntable(elements=[pinlin.DeadWrench("particle", force=(0.0, 0.0, -2.0))])
-    assert "table" in along.linearization_plan.proofs
+    assert "table" in plan_of(along).proofs
     across = turntable(elements=[pinlin.DeadWrench("particle", force=(2.0, 0.0, 0.0))])
-    assert across.linearization_plan.unproved == ("table",)
+    assert plan_of(across).unproved == ("table",)
     with pytest.raises(pinlin.TimePeriodicError, match="depend on the position of prescribed joint 'table'"):
         pinlin.linearize(across, turntable_q(across), balancing=True)
 
@@ -148,7 +148,7 @@ def test_dead_force_along_the_table_axis_is_proved_across_it_refused():
 def test_joint_held_still_needs_no_check():
     robot = pinlin.load_urdf_string(rotor_urdf(ixx=0.03))  # unbalanced, but it does not turn
     scene = pinlin.Scene(robot, [pinlin.JointSpring("swing", 2.0)], prescribed={"spin": 0.0})
-    assert "held still" in scene.linearization_plan.proofs["spin"].note
+    assert "held still" in plan_of(scene).proofs["spin"].note
     sys = pinlin.linearize(scene, robot.neutral())
     assert sys.calls == ("computeGeneralizedGravityDerivatives", "crba")
 
@@ -156,7 +156,7 @@ def test_joint_held_still_needs_no_check():
 def test_a_proof_departing_from_symmetry_is_used_only_within_periodic_tol():
     """An inertia off by 1e-13 relative: proved for the default periodic_tol, checked for a tighter one."""
     scene = rotor_scene(ixx=0.02 * (1 + 1e-13))
-    proof = scene.linearization_plan.proofs["spin"]
+    proof = plan_of(scene).proofs["spin"]
     assert 0 < proof.departure <= SYMMETRY_TOL
     assert pinlin.linearize(scene, scene.neutral()).calls == ("computeRNEADerivatives",)
     tight = pinlin.linearize(scene, scene.neutral(), periodic_tol=proof.departure / 10)
@@ -173,7 +173,7 @@ def test_invariance_proofs_of_scenes_without_prescribed_joints_are_empty():
 
 @pytest.mark.parametrize("inertia", [{"ixx": 0.03}, {"com": "0.01 0 0"}])
 def test_unbalanced_rotor_is_not_proved(inertia):
-    assert rotor_scene(**inertia).linearization_plan.unproved == ("spin",)
+    assert plan_of(rotor_scene(**inertia)).unproved == ("spin",)
 
 
 def test_unbalanced_rotor_on_undamped_pendulum_reports_a_relative_change_of_physical_size():
@@ -195,7 +195,7 @@ def test_unbalanced_rotor_on_undamped_pendulum_reports_a_relative_change_of_phys
 
 def test_tilted_turntable_is_refused():
     scene = turntable(gravity=(9.81, 0.0, 0.0))
-    assert scene.linearization_plan.unproved == ("table",)
+    assert plan_of(scene).unproved == ("table",)
     with pytest.raises(pinlin.TimePeriodicError, match="time-periodic") as info:
         pinlin.linearize(scene, turntable_q(scene), balancing=True)
     assert 1e-3 < info.value.variation < 10.0  # a change of physical size, never a division by `tiny`
@@ -295,14 +295,14 @@ def test_an_undeclared_subclass_of_joint_spring_is_checked_numerically():
     """A copy of JointSpring passes the numerical check; a subclass reading the spin is caught by it."""
     copied = pinlin.Scene(rotor_scene().robot, [CopiedSpring("swing", 2.0)], prescribed={"spin": OMEGA})
     assert invariance_kind(copied.elements[0]) == UNKNOWN
-    assert copied.linearization_plan.unproved == ("spin",)
+    assert plan_of(copied).unproved == ("spin",)
     sys = pinlin.linearize(copied, copied.neutral())
     assert sys.calls.count("computeRNEADerivatives") == 1 + len(PERIODIC_TEST_ANGLES)
     assert any("checked numerically" in note for note in sys.notes)
     proved = pinlin.linearize(rotor_scene(), copied.neutral())
     assert np.array_equal(sys.M, proved.M) and np.array_equal(sys.K, proved.K)
     tuned = pinlin.Scene(rotor_scene().robot, [SpinTunedSpring("swing", 2.0)], prescribed={"spin": OMEGA})
-    assert tuned.linearization_plan.unproved == ("spin",)
+    assert plan_of(tuned).unproved == ("spin",)
     with pytest.raises(pinlin.TimePeriodicError, match="prescribed joint 'spin'") as info:
         pinlin.linearize(tuned, tuned.neutral())
     M0 = 1.0 * 0.5**2 + 0.1 + 0.5 * 1.0**2 + 0.02  # arm about the pivot, rotor's point mass and iyy
@@ -315,13 +315,13 @@ def test_a_user_element_declaring_joint_space_is_proved():
     robot = pinlin.load_urdf_string(rotor_urdf())
     declared = pinlin.Scene(robot, [TorsionSpring("swing", 2.0)], prescribed={"spin": OMEGA})
     assert invariance_kind(declared.elements[0]) == JOINT_SPACE
-    assert declared.linearization_plan.proofs == rotor_scene().linearization_plan.proofs
+    assert plan_of(declared).proofs == plan_of(rotor_scene()).proofs
     sys = pinlin.linearize(declared, declared.neutral())
     assert sys.calls == ("computeRNEADerivatives",)
     assert sys.K[0, 0] == pytest.approx(2.0 + 9.81 * (1.0 * 0.5 + 0.5 * 1.0), rel=1e-14)  # spring and gravity
     assert check_numerically(declared, declared.neutral()) < ROUNDING
     undeclared = pinlin.Scene(robot, [UndeclaredTorsionSpring("swing", 2.0)], prescribed={"spin": OMEGA})
-    assert undeclared.linearization_plan.unproved == ("spin",)
+    assert plan_of(undeclared).unproved == ("spin",)
 
 
 def test_a_user_element_declaring_an_unknown_kind_is_refused():
@@ -341,8 +341,8 @@ class PlainFollower(pinlin.FollowerWrench):
 def test_only_declared_loads_off_the_rotor_keep_its_proof():
     """A follower force on the arm keeps the rotor's proof; an undeclared subclass of it does not."""
     on_arm = rotor_scene(extra=[pinlin.FollowerWrench("arm", force=(0.0, 0.0, 3.0))])
-    assert "axisymmetric rigid rotor" in on_arm.linearization_plan.proofs["spin"].note
+    assert "axisymmetric rigid rotor" in plan_of(on_arm).proofs["spin"].note
     assert check_numerically(on_arm, on_arm.neutral()) < ROUNDING
     undeclared = rotor_scene(extra=[PlainFollower("arm", force=(0.0, 0.0, 3.0))])
     assert invariance_kind(undeclared.elements[1]) == UNKNOWN
-    assert undeclared.linearization_plan.unproved == ("spin",)
+    assert plan_of(undeclared).unproved == ("spin",)

@@ -13,11 +13,12 @@ from numpy.testing import assert_array_equal
 
 import pinlin
 from pinlin.linearization.assembly import assemble
-from pinlin.linearization.workspace import Evaluation
+from pinlin.linearization.plan import plan_of
 from pinlin.model.elements.base import DiagonalIndex, contiguous
 from pinlin.model.elements.joint_damper import DamperGroup
 from pinlin.model.elements.joint_spring import SpringGroup
-from pinlin.results import readonly
+from pinlin.model.evaluation import Evaluation
+from pinlin.numerics.arrays import readonly
 
 
 def _tree_robot() -> pinlin.Robot:
@@ -193,7 +194,7 @@ def test_damper_group_at_rest_adds_no_force_and_its_damping_is_constant():
 def test_plan_rest_damping_is_the_per_call_sum_and_read_only():
     robot = _tree_robot()
     scene = pinlin.Scene(robot, _elements(robot, np.random.default_rng(2)), gravity=(0, 0, 0))
-    rest = scene.linearization_plan.rest_damping
+    rest = plan_of(scene).rest_damping
     C = np.zeros((robot.nv, robot.nv))
     ev = Evaluation(scene, robot.neutral(), np.zeros(robot.nv))
     for group in scene.groups:
@@ -209,4 +210,4 @@ def test_plan_rest_damping_is_the_per_call_sum_and_read_only():
         D.setflags(write=True)  # a view of the plan's read-only array cannot be made writable
     # Rayleigh damping depends on M(q): no constant damping, assembled per call
     with_rayleigh = pinlin.Scene(robot, [pinlin.RayleighDamping(alpha=0.1)], gravity=(0, 0, 0))
-    assert with_rayleigh.linearization_plan.rest_damping is None
+    assert plan_of(with_rayleigh).rest_damping is None

@@ -16,8 +16,8 @@ from numpy.testing import assert_allclose
 
 import pinlin
 from pinlin.linearization.assembly import assemble
-from pinlin.linearization.workspace import Evaluation
 from pinlin.model.elements.base import ElementGroup
+from pinlin.model.evaluation import Evaluation
 from pinlin.testing import check_element
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "elements.md"
@@ -110,7 +110,7 @@ def ur5_case(preload: bool):
     q = rng.uniform(-2.5, 2.5, robot.nq)
     v = rng.normal(size=robot.nv)
     scene0 = pinlin.Scene(robot, gravity=(0, 0, 0))
-    ev = pinlin.linearization.workspace.Evaluation(scene0, q, np.zeros(robot.nv))
+    ev = pinlin.model.evaluation.Evaluation(scene0, q, np.zeros(robot.nv))
     tool, arm = (robot.frame_id(f) for f in ("tool0", "upper_arm_link"))
     length = np.linalg.norm(ev.frame_position(tool) - ev.frame_position(arm))
     relative = ev.frame_placement(arm).actInv(ev.frame_placement(tool))
@@ -141,7 +141,7 @@ def free_body_case(preload: bool):
     q = pin.randomConfiguration(robot.model, -2.0 * np.ones(robot.nq), 2.0 * np.ones(robot.nq))
     v = rng.normal(size=robot.nv)
     scene0 = pinlin.Scene(robot, gravity=(0, 0, 0))
-    ev = pinlin.linearization.workspace.Evaluation(scene0, q, np.zeros(robot.nv))
+    ev = pinlin.model.evaluation.Evaluation(scene0, q, np.zeros(robot.nv))
     tip, base = (robot.frame_id(f) for f in ("tip", "base"))
     length = np.linalg.norm(ev.frame_position(tip) - ev.frame_position(base))
     base_placement = ev.frame_placement(base)
@@ -183,7 +183,7 @@ def test_frame_elements_at_rest_length_are_unloaded():
     """'Without preload' really means no force: the spring at its length, the bushing at its offset."""
     for make in CASES.values():
         scene, q, _ = make(False)
-        ev = pinlin.linearization.workspace.Evaluation(scene, q, np.zeros(scene.model.nv))
+        ev = pinlin.model.evaluation.Evaluation(scene, q, np.zeros(scene.model.nv))
         spring = next(e for e in scene.elements if e.kind == "spring_damper")
         bushing = next(e for e in scene.elements if e.kind == "bushing")
         assert np.linalg.norm(spring.generalized_force(ev)) < 1e-12

@@ -15,9 +15,9 @@ from numpy.testing import assert_allclose
 import pinlin
 from helpers import mp_log6_jacobian
 from pinlin.linearization.assembly import assemble
-from pinlin.linearization.workspace import Evaluation
 from pinlin.model.elements.se3 import log_expansion
-from pinlin.model.scenefile import load_scene
+from pinlin.model.evaluation import Evaluation
+from pinlin.model.scene_file import load_scene
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 

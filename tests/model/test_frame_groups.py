@@ -21,8 +21,8 @@ from numpy.testing import assert_allclose
 
 import pinlin
 from pinlin.linearization.assembly import assemble
-from pinlin.linearization.workspace import Evaluation
 from pinlin.model.elements.spring_damper import SpringDamperGroup
+from pinlin.model.evaluation import Evaluation
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 

@@ -8,7 +8,7 @@ import pytest
 from numpy.testing import assert_allclose
 
 import pinlin
-from pinlin.model.scenefile import load_scene
+from pinlin.model.scene_file import load_scene
 
 WELDED = """<mujoco model="welded">
   <compiler angle="radian"/>

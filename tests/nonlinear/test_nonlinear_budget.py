@@ -9,7 +9,7 @@ import pytest
 
 import pinlin
 from pinlin.errors import ComputationError, IntegrationBudgetError, IntegrationError
-from pinlin.model.scenefile import default_scene_path, load_scene
+from pinlin.model.scene_file import default_scene_path, load_scene
 from pinlin.nonlinear import DEFAULT_MAX_STEPS, PROJECTION_FACTOR, PROJECTION_MIN_STEPS
 
 #: A hopeless request must fail within this wall time [s] (it takes about 0.3 s; generous for a loaded CI).

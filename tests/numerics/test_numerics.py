@@ -156,7 +156,7 @@ def test_checked_exp_and_chunks():
         (lambda: nm.complex_points([[1.0]], "s"), "s: expected a scalar or a 1-D array"),
         (lambda: nm.complex_points([], "s"), "s: expected at least one point"),
         (lambda: nm.complex_points([1.0, np.nan], "s"), "s: must be finite; entry 1"),
-        (lambda: nm.check_system(np.eye(2)), "sys: expected a pinlin.LinearizedSystem"),
+        (lambda: pinlin.linearization.system.check_system(np.eye(2)), "sys: expected a pinlin.LinearizedSystem"),
         (lambda: nm.check_uncertainty(-0.1), r"uncertainty: expected a relative uncertainty in \[0, 1\), got -0.1"),
         (lambda: nm.check_uncertainty("1e-3", "u"), r"u: expected a relative uncertainty in \[0, 1\), got '1e-3'"),
     ],

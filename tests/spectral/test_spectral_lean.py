@@ -22,7 +22,7 @@ from pinlin.numerics import condition_number
 from pinlin.spectral.ordering import order_spectrum
 from pinlin.spectral.qep import RawSpectrum
 from pinlin.spectral.refine import refined_eigh
-from pinlin.spectral.stability import _margin
+from pinlin.spectral.stability.decide import _margin
 from spectral_cases import chain, double_pendulum, eta_reference
 
 

@@ -24,7 +24,7 @@ import pinlin
 from pinlin.numerics.definiteness import symmetric_definiteness
 from pinlin.numerics.determinant import nonsingularity, validated_nonsingularity
 from pinlin.spectral.refine import mass_factor, refined_eigh
-from pinlin.spectral.stability_rules import ISOLATION_FACTOR, Evidence
+from pinlin.spectral.stability.rules import ISOLATION_FACTOR, Evidence
 from spectral_cases import chain
 
 EPS = np.finfo(float).eps

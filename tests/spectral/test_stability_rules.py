@@ -1,6 +1,6 @@
 """Each rule of the stability verdict, directly (issue 16; SPEC section 5).
 
-The rules of :data:`pinlin.spectral.stability_rules.RULES` are called one by
+The rules of :data:`pinlin.spectral.stability.rules.RULES` are called one by
 one on hand-made evidence: structural facts of small hand systems, and
 eigenvalues with first-order bounds chosen so that the safety factor decides.
 Each test reads from the verdict what it *used* (``error_bound`` is the bound
@@ -15,11 +15,10 @@ import pytest
 
 from pinlin import LinearizedSystem
 from pinlin.spectral import Cluster
-from pinlin.spectral import stability_rules as rules
 from pinlin.spectral.accuracy import DefectiveBound, ErrorModel
 from pinlin.spectral.problem import as_problem
 from pinlin.spectral.qualitative import structural_facts
-from pinlin.spectral.stability import decide_stability
+from pinlin.spectral.stability import decide_stability, rules
 
 I2, Z2 = np.eye(2), np.zeros((2, 2))
 SKEW = np.array([[0.0, 1.0], [-1.0, 0.0]])

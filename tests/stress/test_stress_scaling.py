@@ -156,7 +156,7 @@ def test_heavily_damped_backward_error(tau, mixed):
 
 _HWM_SCRIPT = """
 import sys, pinlin
-from pinlin.linearization.workspace import Workspace
+from pinlin.model.evaluation import Workspace
 def hwm():
     for line in open("/proc/self/status"):
         if line.startswith("VmHWM:"):

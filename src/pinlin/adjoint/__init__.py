@@ -63,9 +63,3 @@ __all__ = [
     "check_free_response",
 ]
 
-
-def __getattr__(name: str):
-    # Names that moved to pinlin.frf in 0.2; importable from here for one release.
-    from .._compat import moved_name
-
-    return moved_name(__name__, name, "pinlin.frf")

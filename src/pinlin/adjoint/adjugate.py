@@ -26,7 +26,8 @@ import time
 import numpy as np
 
 from ..errors import ParameterError
-from ..numerics.checks import check_system, complex_scalar
+from ..linearization.system import check_system
+from ..numerics.checks import complex_scalar
 from ..numerics.floating import LOG_MAX, LOG_TINY, checked_exp
 from ..results import ResultArray
 from .adjugate_series import AdjugatePolynomial, AdjugateTaylor, adjugate_polynomial, adjugate_taylor

@@ -18,7 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.checks import check_integer, check_radii, check_system, complex_scalar
+from ..linearization.system import check_system
+from ..numerics.checks import check_integer, check_radii, complex_scalar
 from ..numerics.scaling import eigenvalue_bounds, natural_scale
 from ..results import Result
 from ._circle import RADIUS_RATIO, check_points, chunks, eigenvalue_radii, fit_on_circles, ladder

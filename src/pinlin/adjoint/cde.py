@@ -24,7 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
-from ..numerics.checks import check_system, check_tolerance
+from ..linearization.system import check_system
+from ..numerics.checks import check_tolerance
 from ..numerics.clustering import find_clusters
 from ..results import Result
 from .polynomial import CharacteristicPolynomial, characteristic_polynomial

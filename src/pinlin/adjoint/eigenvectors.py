@@ -27,8 +27,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import NotAnEigenvalueError, NotSimpleError
+from ..linearization.system import check_system
 from ..numerics import accuracy
-from ..numerics.checks import check_integer, check_system, check_tolerance, complex_scalar
+from ..numerics.checks import check_integer, check_tolerance, complex_scalar
 from ..numerics.rank import ADJUGATE_RANK_TOL
 from ..results import Result
 from .adjugate_series import adjugate_taylor

@@ -21,7 +21,8 @@ import numpy as np
 from numpy.polynomial import Polynomial
 
 from ..errors import ComputationError, ParameterError
-from ..numerics.checks import check_system, check_tolerance, complex_points
+from ..linearization.system import check_system
+from ..numerics.checks import check_tolerance, complex_points
 from ..numerics.floating import EPS
 from ..numerics.stacks import chunks
 from ..results import Result

@@ -13,7 +13,7 @@ One concept per module:
 - :mod:`.verify` -- verdicts beside the value found; bisection on the verdict;
 - :mod:`.critical` -- :func:`critical_parameter`, which ties them together;
 - :mod:`.continuation` -- :func:`stability_boundary`, a boundary curve in a plane of two parameters;
-- :mod:`.plot` -- :func:`stability_map` (matplotlib, optional).
+- the stability map that draws them is :func:`pinlin.plot.stability_map`.
 """
 
 from .continuation import BoundaryFailure, StabilityBoundary, stability_boundary

@@ -19,7 +19,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import BracketError, ParameterError, PinlinError
-from ..results import Result, readonly
+from ..numerics.arrays import readonly
+from ..results import Result
 from .critical import MAX_EVALUATIONS, CriticalParameter, critical_parameter
 from .derivatives import EPS
 

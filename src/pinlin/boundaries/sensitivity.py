@@ -28,7 +28,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..results import Result, readonly
+from ..numerics.arrays import readonly
+from ..results import Result
 from ..spectral import Modes, jordan_chains
 from .derivatives import (
     EPS,

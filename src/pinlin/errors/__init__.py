@@ -40,6 +40,7 @@ from .model import (
     AssemblyError,
     ConstraintError,
     ConstraintViolationError,
+    LoopClosureError,
     MjcfError,
     OverconstrainedError,
     PrescribedJointError,
@@ -79,6 +80,7 @@ __all__ = [
     "ConstraintError",
     "ConstraintViolationError",
     "AssemblyError",
+    "LoopClosureError",
     "SingularConstraintError",
     "OverconstrainedError",
 ]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .base import InputError
 
-__all__ = ["UrdfError", "PrescribedJointError", "SceneFileError", "MjcfError", "ConstraintError", "ConstraintViolationError", "AssemblyError", "SingularConstraintError", "OverconstrainedError"]
+__all__ = ["UrdfError", "PrescribedJointError", "SceneFileError", "MjcfError", "ConstraintError", "ConstraintViolationError", "LoopClosureError", "AssemblyError", "SingularConstraintError", "OverconstrainedError"]
 
 
 class UrdfError(InputError):
@@ -67,12 +67,18 @@ class ConstraintViolationError(ConstraintError):
         self.gap, self.rotation_gap = float(gap), float(rotation_gap)
 
 
-class AssemblyError(ConstraintViolationError):
-    """Assembly could not close the constraints; ``gap`` is what the closest configuration leaves, ``history`` ||Phi||."""
+class LoopClosureError(ConstraintViolationError):
+    """The constraints could not be closed from the start; ``gap`` is what the closest configuration leaves,
+    ``history`` ||Phi|| per step."""
 
     def __init__(self, message: str, gap: float, rotation_gap: float, constraints, history):
         super().__init__(message, gap, rotation_gap, constraints)
         self.history = tuple(history)
+
+
+#: The 0.2 name of :class:`LoopClosureError` ("assembly" now means building the equations only); kept
+#: for 0.3, removed in 0.4.
+AssemblyError = LoopClosureError
 
 
 class SingularConstraintError(ConstraintError):

@@ -21,10 +21,10 @@ import numpy as np
 
 from ..adjoint.adjugate import AdjugateMatrix, adjugate_residual
 from ..errors import NotSimpleError
+from ..linearization.system import check_system
 from ..numerics import (
     LOG_MAX,
     LOG_TINY,
-    check_system,
     check_tolerance,
     checked_exp,
     complex_points,

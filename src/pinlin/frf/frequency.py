@@ -14,9 +14,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..numerics import check_system, check_tolerance, dof_indices
+from ..linearization.system import check_system
+from ..numerics import check_tolerance, dof_indices
 from ..results import Result
 from ._inputs import real_frequencies
+from .control import frequency_response_data
 from .engine import DEFAULT_METHOD, DEFAULT_TOL, solve, warn_inaccurate
 
 __all__ = ["FrequencyResponse", "frequency_response"]
@@ -106,8 +108,6 @@ class FrequencyResponse(Result):
         MissingDependencyError
             python-control is not installed (``pip install 'pinlin[control]'``).
         """
-        from ..interop.python_control import frequency_response_data
-
         return frequency_response_data(self, name)
 
     def __iter__(self):

@@ -5,7 +5,8 @@ from __future__ import annotations
 import time
 import warnings
 
-from ..numerics import check_system, check_tolerance
+from ..linearization.system import check_system
+from ..numerics import check_tolerance
 from ..numerics.arrays import check_vector
 from ..results import ResultArray
 from ._inputs import real_frequencies

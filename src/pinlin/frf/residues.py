@@ -35,11 +35,11 @@ import time
 import numpy as np
 
 from ..errors import ParameterError
+from ..linearization.system import check_system
 from ..numerics import (
     CLUSTER_TOL,
     EPS,
     check_integer,
-    check_system,
     check_tolerance,
     complex_scalar,
     natural_scale,

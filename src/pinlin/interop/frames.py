@@ -28,15 +28,13 @@ import pinocchio as pin
 
 from ..errors import InputError, ParameterError, TimePeriodicError
 from ..linearization.linearize import PERIODIC_TEST_ANGLES, generalized_force
-from ..linearization.workspace import Evaluation
+from ..model.evaluation import Evaluation
 from ..model.scene import Scene
-from .signals import Signal
+from ..numerics.norms import fro
+from .signal_names import Signal
 
 __all__ = ["OperatingPoint", "system_basis"]
 
-
-def _fro(a: np.ndarray) -> float:
-    return float(np.linalg.norm(a))
 
 
 def system_basis(sys, scene: Scene) -> np.ndarray:
@@ -142,7 +140,7 @@ class OperatingPoint:
         scale = max(scale, np.finfo(float).tiny)
         for joint, _ in self.moving:
             for offset in PERIODIC_TEST_ANGLES:
-                change = _fro(compute(joint, offset) - value) / scale
+                change = fro(compute(joint, offset) - value) / scale
                 if change > self.periodic_tol:
                     raise TimePeriodicError(
                         f"signal {signal.name!r} depends on the position of prescribed joint {joint!r} "
@@ -166,7 +164,7 @@ class OperatingPoint:
         free = self.scene.free_dofs
         J = self._jacobian(signal.target)[:3]
         for joint, idx in self.moving:
-            carried = np.linalg.norm(J[:, idx]) / max(_fro(J), np.finfo(float).tiny)
+            carried = np.linalg.norm(J[:, idx]) / max(fro(J), np.finfo(float).tiny)
             if carried > self.periodic_tol:
                 raise TimePeriodicError(
                     f"frame {signal.target!r} is carried around by prescribed joint {joint!r} "
@@ -180,7 +178,7 @@ class OperatingPoint:
             signal,
             rows,
             lambda j, o: self._jacobian(signal.target, j, o)[:3, free] @ self.T,
-            scale=_fro(rows),
+            scale=fro(rows),
         )
         return rows[signal.index]
 
@@ -205,6 +203,6 @@ class OperatingPoint:
                 lambda j, o: (
                     self.T.T @ generalized_force(self.scene, self._configuration(j, o), signal.wrench)
                 ),
-                scale=max(_fro(column), _fro(J[:, self.scene.free_dofs] @ self.T) * _fro(wrench)),
+                scale=max(fro(column), fro(J[:, self.scene.free_dofs] @ self.T) * fro(wrench)),
             )
         return column

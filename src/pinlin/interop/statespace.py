@@ -19,16 +19,17 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sla
 
 from ..errors import ParameterError
-from ..numerics.checks import check_system, check_tolerance
-from ..results import Result, readonly
+from ..extras import import_control
+from ..linearization.system import check_system
+from ..numerics.arrays import readonly
+from ..numerics.checks import check_tolerance
+from ..results import Result
 from .frames import OperatingPoint
-from .python_control import import_control
-from .signals import FRAME_KINDS, Signal, parse_inputs, parse_outputs
+from .signal_names import FRAME_KINDS, Signal, parse_inputs, parse_outputs
 
-__all__ = ["StateSpaceModel", "state_space", "first_order", "PERIODIC_TOL"]
+__all__ = ["StateSpaceModel", "state_space", "PERIODIC_TOL"]
 
 #: Default largest relative change of a frame signal when a moving prescribed joint advances:
 #: the default ``periodic_tol`` of :func:`pinlin.linearize`, so both refuse the same scenes.
@@ -53,7 +54,7 @@ class StateSpaceModel(Result):
     state_names : tuple of str
         ``dof_names`` then ``"rate:" + name`` for each.
     input_names, output_names : tuple of str
-        The signals (:mod:`pinlin.interop.signals`), in the order of B's
+        The signals (:mod:`pinlin.interop.signal_names`), in the order of B's
         columns and C's rows.
     dof_names : tuple of str
         The coordinates of the system.
@@ -137,25 +138,6 @@ class StateSpaceModel(Result):
         )
 
 
-def first_order(
-    M: np.ndarray, C: np.ndarray, K: np.ndarray, F: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, float]:
-    """A, B of the first-order form and the relative residual of the solves (see :class:`StateSpaceModel`).
-
-    M must be symmetric positive definite (a :class:`~pinlin.LinearizedSystem` guarantees it).
-    """
-    n = M.shape[0]
-    Y = np.hstack([K, C, F])
-    X = sla.cho_solve(sla.cho_factor(M), Y)
-    denom = np.linalg.norm(M) * np.linalg.norm(X) + np.linalg.norm(Y)
-    error = float(np.linalg.norm(M @ X - Y) / denom) if denom > 0 else 0.0
-    A = np.zeros((2 * n, 2 * n))
-    A[:n, n:] = np.eye(n)
-    A[n:, :n] = -X[:, :n]
-    A[n:, n:] = -X[:, n : 2 * n]
-    B = np.zeros((2 * n, F.shape[1]))
-    B[n:] = X[:, 2 * n :]
-    return A, B, error
 
 
 def _input_matrix(sys, signals: list[Signal], point: OperatingPoint | None) -> np.ndarray:
@@ -204,7 +186,7 @@ def state_space(
         frames (``"follower:tip:fz"``, ``"dead:tip:fx"``, ``"dead:tip"`` for all
         six components, a :class:`~pinlin.FollowerWrench` or
         :class:`~pinlin.DeadWrench` scaled by the input, or a pair ``(name,
-        wrench)``); see :mod:`pinlin.interop.signals` for the full table.
+        wrench)``); see :mod:`pinlin.interop.signal_names` for the full table.
     outputs : signal or list of signals, optional
         Coordinates (``"joint1"``, an index), rates (``"rate:joint1"``), the
         world-axes displacement or velocity of a frame origin
@@ -254,7 +236,7 @@ def state_space(
             )
         point = OperatingPoint(sys, scene, periodic_tol)
     F = _input_matrix(sys, ins, point)
-    A, B, error = first_order(np.asarray(sys.M), np.asarray(sys.C), np.asarray(sys.K), F)
+    A, B, error = sys.first_order(F)
     Cout = _output_matrix(sys, outs, point)
     notes = []
     if point is not None and getattr(sys, "basis", None) is not None:

@@ -7,7 +7,7 @@ One concept per module:
 - :mod:`.assembly` -- the residual r(q, v) and its analytic derivatives, running only
   the Pinocchio algorithms a scene needs;
 - :mod:`.plan` -- :class:`~.plan.LinearizationPlan`, what a linearization decides once
-  per scene (``scene.linearization_plan``);
+  per scene (``plan_of(scene)``);
 - :mod:`.time_invariance` -- do the equations depend on a prescribed joint's position?
   Proofs once per scene, the numerical check elsewhere;
 - :mod:`.equilibrium` -- Newton on the configuration manifold;
@@ -19,7 +19,7 @@ One concept per module:
   :mod:`.batch_common` (stacked norms, checks, result objects);
 - :mod:`.system` -- :class:`LinearizedSystem`, the frozen result;
 - constraints (SPEC section 10): :mod:`.constraint_set` (Phi, J_c, rank and
-  multipliers at one q), :mod:`.closure` (the assembly step, :func:`close_loops`),
+  multipliers at one q), :mod:`.closure` (closing the loops, :func:`close_loops`),
   :mod:`.singularity` (redundant constraints or a singular configuration?, probed)
   and :mod:`.constrained_structure` (redundancy proved: planar loops),
   :mod:`.coordinates` (the basis B of ker J_c), :mod:`.constrained_equilibrium`
@@ -27,13 +27,14 @@ One concept per module:
   the constraint stiffness K_lambda).
 """
 
+from ..model.evaluation import Evaluation, Workspace
 from .batch import linearize_many
 from .closure import ClosureResult, close_loops
 from .constrained import constraint_stiffness
-from .equilibrium import EquilibriumResult, equilibrium_residual, find_equilibrium
+from .equilibrium import equilibrium_residual, find_equilibrium
+from .equilibrium_result import EquilibriumResult
 from .linearize import generalized_force, linearize
 from .system import LinearizedSystem
-from .workspace import Evaluation, Workspace
 
 __all__ = [
     "Workspace",

@@ -25,43 +25,21 @@ residual only                  ``computeStaticTorque`` / ``computeGeneralizedGra
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
 
+from ..model.evaluation import Evaluation, Workspace, symmetric_from_upper
 from ..model.scene import Scene
-from .workspace import Evaluation, Workspace, symmetric_from_upper
+from ..numerics.norms import fro
+from .plan import plan_of
 
-__all__ = ["Assembly", "assemble", "external_forces", "fro"]
-
-
-#: Arrays of at most this many entries have their norm taken by ``math.hypot`` of a Python
-#: list: for a 2 x 2 or 4 x 4 matrix that is a third of a numpy reduction's fixed cost.
-SMALL_NORM = 32
+__all__ = ["Assembly", "assemble", "external_forces"]
 
 
-def fro(a: np.ndarray) -> float:
-    """Frobenius norm, overflow-safe (cheaper than ``np.linalg.norm`` on small arrays).
 
-    Up to :data:`SMALL_NORM` entries, ``math.hypot`` (overflow-safe and accurate by
-    itself); else the square root of one dot product, and when its sum of squares
-    overflows (entries beyond about 1e154; BLAS's dot does not warn) again from the scaled
-    array.  Infinite or NaN entries give a non-finite norm either way.
-    """
-    if a.size <= SMALL_NORM:  # a vector's tolist is flat already: no ravel
-        return math.hypot(*(a.tolist() if a.ndim == 1 else a.ravel().tolist()))
-    square = np.vdot(a, a)  # flattens; one call
-    if square < math.inf:  # False for inf and NaN
-        return math.sqrt(square)
-    flat = a.ravel()
-    big = float(np.max(np.abs(flat)))
-    if not math.isfinite(big) or big == 0.0:
-        return big
-    with np.errstate(over="ignore"):
-        scaled = flat / big
-        return big * math.sqrt(float(np.dot(scaled, scaled)))
+
 
 
 @dataclass(slots=True)
@@ -168,7 +146,7 @@ def assemble(
     used whenever v = 0.  Pinocchio writes into ``ws`` (default: the calling
     thread's workspace for the scene).
     """
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     if v is None:
         v0, at_rest = scene.v0, not plan.moving
     else:

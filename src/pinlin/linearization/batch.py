@@ -28,8 +28,9 @@ import pinocchio as pin
 from ..errors import ConfigurationError
 from ..model.scene import UNIT_NORM_MIN, Scene
 from . import batch_moving, batch_static
-from .constraint_set import CONSTRAINT_TOL, RANK_TOL
-from .linearize import _check_tolerances, linearize
+from .linearize import linearize
+from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .plan import plan_of
 from .system import LinearizedSystem
 
 __all__ = ["linearize_many", "configurations", "LENGTH_MARGIN", "CHUNK_ENTRIES"]
@@ -51,9 +52,9 @@ def linearize_many(
     qs,
     *,
     balancing: bool = False,
-    equilibrium_tol: float = 1e-8,
+    equilibrium_tol: float = EQUILIBRIUM_TOL,
     structure_tol: float | None = None,
-    periodic_tol: float = 1e-8,
+    periodic_tol: float = PERIODIC_TOL,
     constraint_tol: float = CONSTRAINT_TOL,
     rank_tol: float = RANK_TOL,
 ) -> tuple[LinearizedSystem, ...]:
@@ -99,7 +100,7 @@ def linearize_many(
         decides.
     """
     t0 = time.perf_counter()
-    _check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
     rows = _rows(scene, qs)
     if batch_static.applies(scene):
         path = batch_static.linearize_at_rest
@@ -110,7 +111,7 @@ def linearize_many(
                        periodic_tol=periodic_tol, constraint_tol=constraint_tol, rank_tol=rank_tol)  # fmt: skip
         return tuple(linearize(scene, q, **options) for q in rows)
     points = configurations(scene, rows)
-    tol = scene.linearization_plan.structure_tol if structure_tol is None else float(structure_tol)
+    tol = plan_of(scene).structure_tol if structure_tol is None else float(structure_tol)
     step = max(1, CHUNK_ENTRIES // scene.model.nv**2)
     systems: tuple[LinearizedSystem, ...] = ()
     for start in range(0, len(points), step):  # the first chunk's time includes the checks above

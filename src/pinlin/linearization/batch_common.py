@@ -21,8 +21,10 @@ import numpy as np
 
 from ..errors import ComputationError
 from ..model.scene import Scene
-from .assembly import Assembly, fro
-from .linearize import _check_finite_and_mass, _check_mass, _equilibrium
+from ..numerics.norms import fro
+from .assembly import Assembly
+from .checks import check_equilibrium, check_finite_and_mass, check_mass
+from .plan import plan_of
 from .system import LinearizedSystem
 
 __all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "Systems", "TINY"]
@@ -77,7 +79,7 @@ def halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray]:
-    """(force scales, relative residuals) of all points: ``_equilibrium``'s figures of linearize, stacked.
+    """(force scales, relative residuals) of all points: ``check_equilibrium``'s figures of linearize, stacked.
 
     ``r`` (P, n) is tau - Q on the free coordinates; the scale is ||tau|| + ||Q|| +
     ||K|| (0 gives a relative residual of 0).  Where a figure lies within
@@ -86,7 +88,7 @@ def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray
     force_scale = norms(tau) + norms(Q) + norms(K)
     rel = norms(r) / np.where(force_scale > 0, force_scale, 1.0)
     rel[force_scale <= 0] = 0.0
-    for i in near(rel, tol):  # as linearize's _equilibrium, where it decides
+    for i in near(rel, tol):  # as check_equilibrium, where it decides
         force_scale[i] = fro(tau[i]) + fro(Q[i]) + fro(K[i])
         rel[i] = fro(r[i]) / force_scale[i] if force_scale[i] > 0 else 0.0
     return force_scale, rel
@@ -100,24 +102,24 @@ def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, bal
     damping matrices (P, n, n), or one (n, n) matrix for all points.  The checks run
     stage by stage (every residual, then finite entries, then every mass matrix).
     """
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     if not balancing and (rel > tol).any():
         i = int(np.argmax(rel > tol))
-        _equilibrium(scene, plan, _assembly(residual[i], force_scale[i]), tol, balancing)  # raises
+        check_equilibrium(scene, plan, _assembly(residual[i], force_scale[i]), tol, balancing)  # raises
     if not (np.isfinite(force_scale).all() and np.isfinite(M).all() and np.isfinite(C).all()):
         for i in range(len(M)):  # raises at the first bad point
-            _check_finite_and_mass(scene, M[i], C[i] if C.ndim == 3 else C, _assembly(residual[i], force_scale[i]))
+            check_finite_and_mass(scene, M[i], C[i] if C.ndim == 3 else C, _assembly(residual[i], force_scale[i]))
         raise ComputationError("linearize_many: non-finite entries in M, C, K or the residual")  # pragma: no cover
     try:
         L = np.linalg.cholesky(M)  # all points at once (numpy's LAPACK potrf)
     except np.linalg.LinAlgError:
         for Mi in M:  # the single call's check, point by point, raises for the first singular M
-            _check_mass(scene, Mi)
+            check_mass(scene, Mi)
         return
     pivots = np.diagonal(L, axis1=1, axis2=2)
     close = (pivots * pivots < PIVOT_MARGIN * np.diagonal(M, axis1=1, axis2=2)).any(axis=1)
     for i in np.flatnonzero(close).tolist():  # nearly singular: the single call's own Cholesky decides
-        _check_mass(scene, M[i])
+        check_mass(scene, M[i])
 
 
 def _assembly(residual: np.ndarray, force_scale: float) -> Assembly:

@@ -2,7 +2,7 @@
 
 :func:`pinlin.linearize_many` takes this path for scenes whose prescribed joints
 move (the turntable of SPEC 7.2) when every prescribed joint's time invariance is
-proved once per scene (``scene.linearization_plan.proofs``, within the call's
+proved once per scene (``plan_of(scene).proofs``, within the call's
 ``periodic_tol``: no numerical check per call), there is no constraint and no
 world-fixed wrench, and the elements are joint springs and dampers.  Per point
 remain the configuration's normalization, the one Pinocchio pass ``linearize``
@@ -22,18 +22,19 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
+from ..model.evaluation import Evaluation, workspace
 from ..model.scene import Scene
-from .assembly import fro
+from ..numerics.norms import fro
 from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
+from .plan import plan_of
 from .system import LinearizedSystem
-from .workspace import Evaluation, workspace
 
 __all__ = ["applies", "linearize_moving"]
 
 
 def applies(scene: Scene, periodic_tol: float) -> bool:
     """True when the scene is of the kind this path linearizes with this ``periodic_tol`` (module docstring)."""
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     return (
         plan.moving
         and not plan.unproved
@@ -77,7 +78,7 @@ def _evaluate(scene: Scene, qs: np.ndarray):
 def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float,
                      balancing: bool, elapsed0: float, clock) -> tuple[LinearizedSystem, ...]:  # fmt: skip
     """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     tau, Q, K, C, M, pinocchio_K, pinocchio_C = _evaluate(scene, qs)
     scale_C, scale_K = norms(pinocchio_C), norms(pinocchio_K)
     residual = tau - Q

@@ -24,18 +24,19 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
+from ..model.evaluation import crba_is_symmetric, workspace
 from ..model.scene import Scene
-from .assembly import fro
+from ..numerics.norms import fro
 from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
+from .plan import plan_of
 from .system import LinearizedSystem
-from .workspace import crba_is_symmetric, workspace
 
 __all__ = ["applies", "linearize_at_rest"]
 
 
 def applies(scene: Scene) -> bool:
     """True when the scene is of the kind this path linearizes (see the module docstring)."""
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     return (
         plan.everything
         and not plan.moving
@@ -84,7 +85,7 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
 def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float,
                       balancing: bool, elapsed0: float, clock) -> tuple[LinearizedSystem, ...]:  # fmt: skip
     """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     tau, K, M, calls = _pinocchio(scene, qs)
     scale_K = norms(K)
     Q = np.zeros(tau.shape)

@@ -1,4 +1,4 @@
-"""Assembly: closing a scene's loops from a configuration that violates them (SPEC section 10).
+"""Loop closure: closing a scene's loops from a configuration that violates them (SPEC section 10).
 
 Levenberg-Marquardt on Phi(q) = 0 on the configuration manifold: with the exact
 J = dPhi/dq = U S V^T (singular values below ``rank_tol`` times the largest dropped),
@@ -25,11 +25,11 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..errors import AssemblyError, ParameterError
+from ..errors import LoopClosureError, ParameterError
 from ..model.scene import Scene
 from ..results import Result
 from .constraint_set import RANK_TOL, ConstraintState, evaluate_constraints
-from .equilibrium import ARMIJO
+from .newton import ARMIJO
 
 __all__ = ["ClosureResult", "close_loops", "project", "CLOSURE_TOL", "SETTLED"]
 
@@ -168,11 +168,11 @@ def close_loops(
     max_iterations: int = 100,
     rank_tol: float = RANK_TOL,
 ) -> ClosureResult:
-    """Close the scene's constraints from ``q0``: the assembly step (SPEC section 10).
+    """Close the scene's constraints from ``q0``: the loop-closure step (SPEC section 10).
 
     Levenberg-Marquardt steps q <- q (+) alpha dx (module docstring), alpha by
     Armijo backtracking on ||Phi||.  :func:`pinlin.find_equilibrium` runs it first
-    and reports it; call it yourself to assemble a linkage at a given input angle
+    and reports it; call it yourself to close a linkage at a given input angle
     (``hold=["crank"]``).
 
     Parameters
@@ -197,7 +197,7 @@ def close_loops(
         A held joint does not exist.
     ConfigurationError
         q0 has the wrong size or is not finite.
-    AssemblyError
+    LoopClosureError
         The targets cannot be reached from q0: the message and ``gap`` say by how many
         metres (and radians) the closest configuration found misses them.
     """
@@ -217,8 +217,8 @@ def close_loops(
     )
     gap, rot, worst = state.gaps()
     if not ok:
-        raise AssemblyError(
-            f"assembly failed: the constraints cannot be closed from q0; the closest configuration found "
+        raise LoopClosureError(
+            f"loop closure failed: the constraints cannot be closed from q0; the closest configuration found "
             f"leaves a gap of {gap:.6g} m" + (f" and {rot:.3g} rad" if rot > tol else "") + f" at constraint "
             f"{worst!r} (from {gap0:.6g} m at q0, after {len(history) - 1} steps); the target may be out of "
             f"reach, or the start too far from an assembled configuration",

@@ -47,7 +47,7 @@ from ..errors import (
     SingularMassError,
 )
 from ..model.scene import Scene
-from .assembly import fro
+from ..numerics.norms import fro
 from .constrained_structure import structurally_redundant
 from .constraint_set import (
     CONSTRAINT_TOL,
@@ -59,9 +59,11 @@ from .constraint_set import (
     relative_residual,
 )
 from .coordinates import PIVOTED_METHOD, coordinate_basis, pivoted_basis
+from .options import EQUILIBRIUM_TOL
 from .plan import STRUCTURE_EPS_FACTOR
 from .singularity import check_regular
-from .system import LinearizedSystem, null_motion
+from .state_form import null_motion
+from .system import LinearizedSystem
 
 __all__ = [
     "linearize_constrained",
@@ -86,7 +88,7 @@ def linearize_constrained(
     *,
     coordinates=None,
     balancing: bool = False,
-    equilibrium_tol: float = 1e-8,
+    equilibrium_tol: float = EQUILIBRIUM_TOL,
     structure_tol: float | None = None,
     constraint_tol: float = CONSTRAINT_TOL,
     rank_tol: float = RANK_TOL,

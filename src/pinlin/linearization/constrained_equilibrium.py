@@ -6,7 +6,7 @@ With constraints Phi(q) = 0 (m equations, Jacobian J_c) and multipliers lambda
 .. math::
     r(q) = J_c(q)^T \\lambda,\\qquad \\Phi(q) = 0
 
-An assembly step closes the constraints (:mod:`.closure`), then Newton on
+A loop-closure step closes the constraints (:mod:`.closure`), then Newton on
 (q, lambda) with the KKT matrix [[K - K_lambda, -J_c^T], [J_c, 0]] (independent
 rows of J_c only, chosen by a column-pivoted QR of J_c^T), each step followed by
 a re-closure onto the manifold and an Armijo line search on ||r - J_c^T lambda||
@@ -25,7 +25,7 @@ import scipy.linalg
 
 from ..errors import ConvergenceError
 from ..model.scene import Scene
-from .assembly import fro
+from ..numerics.norms import fro
 from .closure import CLOSURE_TOL, close_loops, project
 from .constraint_set import (
     RANK_TOL,
@@ -36,7 +36,8 @@ from .constraint_set import (
     evaluate_constraints,
     relative_residual,
 )
-from .equilibrium import ARMIJO, EquilibriumResult, _newton_step, check_solver_parameters
+from .equilibrium_result import EquilibriumResult
+from .newton import ARMIJO, MAX_ITERATIONS, MIN_STEP, TOL, check_solver_parameters, newton_step
 
 __all__ = ["find_constrained_equilibrium", "PROJECTION_ITERATIONS"]
 
@@ -51,7 +52,7 @@ def _kkt_step(Kt: np.ndarray, state: ConstraintState, g: np.ndarray) -> tuple[np
     rows = np.sort(scipy.linalg.qr(state.J.T, mode="r", pivoting=True, check_finite=False)[1][:r])
     Js = state.J[rows]
     A = np.block([[Kt, -Js.T], [Js, np.zeros((r, r))]])
-    step, lstsq = _newton_step(A, np.concatenate([g, state.phi[rows]]))  # solves A step = -(g, Phi_s)
+    step, lstsq = newton_step(A, np.concatenate([g, state.phi[rows]]))  # solves A step = -(g, Phi_s)
     return step[:nv], lstsq
 
 
@@ -59,9 +60,9 @@ def find_constrained_equilibrium(
     scene: Scene,
     q0=None,
     *,
-    tol: float = 1e-12,
-    max_iterations: int = 50,
-    min_step: float = 1e-10,
+    tol: float = TOL,
+    max_iterations: int = MAX_ITERATIONS,
+    min_step: float = MIN_STEP,
     closure_tol: float = CLOSURE_TOL,
     rank_tol: float = RANK_TOL,
 ) -> EquilibriumResult:
@@ -73,7 +74,7 @@ def find_constrained_equilibrium(
     ----------
     scene : Scene
     q0 : (nq,) array, optional
-        Start, which need not satisfy the constraints (the assembly step closes
+        Start, which need not satisfy the constraints (the loop-closure step closes
         them and the result's notes and ``assembly`` say so); default neutral.
     tol : float
         Stop when ||r - J_c^T lambda|| / (||tau|| + ||Q_e|| + ||J_c^T lambda|| +
@@ -92,7 +93,7 @@ def find_constrained_equilibrium(
         A bad tolerance, iteration count or ``min_step``.
     ConfigurationError
         q0 has the wrong size or is not finite.
-    AssemblyError
+    LoopClosureError
         The constraints cannot be closed from q0 (the gap in metres is attached).
     ConvergenceError
         Newton did not converge; ``.history`` holds the residual norms.
@@ -154,7 +155,7 @@ def _equilibrium_result(scene, q, state, lam, norm, rel, iteration, history, lea
             + (f" and {closure.initial_rotation_gap:.3g} rad" if closure.initial_rotation_gap else "")
             + f"; {closure.iterations} Levenberg-Marquardt steps closed them to {closure.gap:.1e} m",
         )
-    method = "newton-kkt (Newton on (q, lambda) with the KKT matrix, after an assembly step)"
+    method = "newton-kkt (Newton on (q, lambda) with the KKT matrix, after closing the loops)"
     if least_squares:
         method += f"; least-squares steps at iterations {least_squares}"
         notes.append(
@@ -174,5 +175,5 @@ def _equilibrium_result(scene, q, state, lam, norm, rel, iteration, history, lea
         contacts=contacts,
         redundant=state.m - state.rank,
         constraint_gap=state.gaps()[0],
-        assembly=closure,
+        closure=closure,
     )

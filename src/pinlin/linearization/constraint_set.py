@@ -24,9 +24,10 @@ import numpy as np
 import scipy.linalg.lapack as lapack
 
 from ..model.constraints import ConstraintForce, ContactStatus, dead_wrench_stiffness, stack_wrenches
+from ..model.evaluation import Evaluation, Workspace
 from ..model.scene import Scene
-from .assembly import Assembly, assemble, fro
-from .workspace import Evaluation, Workspace
+from ..numerics.norms import fro
+from .assembly import Assembly, assemble
 
 __all__ = [
     "ConstraintState",

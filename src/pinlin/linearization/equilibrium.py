@@ -3,108 +3,30 @@
 from __future__ import annotations
 
 import time
-import warnings
-from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
-import scipy.linalg
 
-from ..errors import ConfigurationError, ConvergenceError, ParameterError
+from ..errors import ConfigurationError, ConvergenceError
 from ..model.scene import Scene
-from ..results import Result
-from .assembly import assemble, fro
+from ..numerics.norms import fro
+from .assembly import assemble
+from .constrained_equilibrium import find_constrained_equilibrium
+from .equilibrium_result import EquilibriumResult
+from .newton import (
+    ARMIJO,
+    MAX_ITERATIONS,
+    MIN_STEP,
+    STALL_RATIO,
+    TOL,
+    check_solver_parameters,
+    newton_step,
+)
 
-__all__ = [
-    "EquilibriumResult",
-    "find_equilibrium",
-    "equilibrium_residual",
-    "check_solver_parameters",
-    "ARMIJO",
-    "STALL_RATIO",
-]
-
-#: Armijo's sufficient-decrease constant of the line search: a step is taken when
-#: ||r|| falls by at least ARMIJO * alpha of itself (the usual 1e-4 of Nocedal and
-#: Wright: almost any decrease, so full Newton steps are kept near the solution).
-ARMIJO = 1e-4
-#: The residual has stalled when three steps reduced it by less than 1 - STALL_RATIO
-#: (10 %): Newton converging would have cut it by orders of magnitude.
-STALL_RATIO = 0.9
+__all__ = ["find_equilibrium", "equilibrium_residual"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
-class EquilibriumResult(Result):
-    """An equilibrium (or steady motion) found by :func:`find_equilibrium`.
 
-    Attributes
-    ----------
-    q : (nq,) ndarray
-        The configuration (prescribed joints included, at their starting position).
-    residual : float
-        ||r(q)|| on the free coordinates [N, N m].
-    relative_residual : float
-        ||r|| / (||tau|| + ||Q_e|| + ||K||), see :class:`pinlin.assembly.Assembly`.
-    iterations : int
-        Newton steps taken.
-    history : tuple of float
-        ||r|| before each step and at the end.
-    elapsed : float
-        Seconds.
-    method : str
-        ``"newton"``, or ``"newton (least-squares steps at iterations [...])"`` when K
-        was singular at some iterate and the minimum-norm step was taken instead.
-    error : float
-        The headline error figure: ``relative_residual``.
-    notes : tuple of str
-        Anything the solver wants the user to know (least-squares steps; for
-        constraints: the assembly step, redundant equations, contacts whose force
-        the ground cannot give).
-    constraint_forces : tuple of ConstraintForce
-        With constraints (SPEC section 10): one entry per constraint, in scene
-        order, the world-axes force (``.force`` [N]) and, for a frame constraint,
-        torque (``.torque`` [N m]) that the constraint applies on its frame (at the
-        frame origin; the target frame receives the opposite).  Minimum-norm when
-        the constraints are redundant (``redundant`` > 0).  Empty without constraints.
-    contacts : tuple of ContactStatus
-        One entry per contact (``PointConstraint(..., contact=True)``): normal and
-        tangential force, whether the ground must pull or friction exceeds mu.
-    redundant : int
-        Number of redundant constraint equations, m - rank J_c.
-    constraint_gap : float
-        Largest distance [m] left between a constrained frame and its target.
-    assembly : ClosureResult or None
-        The assembly step that closed the constraints from q0 (None without constraints).
-
-    For a scene with constraints, ``residual`` is ||r - J_c^T lambda|| and the
-    relative residual divides it by ||tau|| + ||Q_e|| + ||J_c^T lambda|| + ||K - K_lambda||.
-    """
-
-    q: np.ndarray
-    residual: float
-    relative_residual: float
-    iterations: int
-    history: tuple[float, ...]
-    elapsed: float
-    method: str = "newton"
-    notes: tuple[str, ...] = ()
-    constraint_forces: tuple = ()
-    contacts: tuple = ()
-    redundant: int = 0
-    constraint_gap: float = 0.0
-    assembly: Result | None = None
-
-    @property
-    def error(self) -> float:
-        """The relative residual ||r|| / (||tau|| + ||Q_e|| + ||K||)."""
-        return self.relative_residual
-
-    def __repr__(self) -> str:
-        q = np.array2string(self.q, precision=6, threshold=12)
-        return (
-            f"EquilibriumResult(q={q}, residual={self.residual:.2e}, error={self.error:.1e}, "
-            f"iterations={self.iterations}, method={self.method!r}, elapsed={self.elapsed * 1e3:.2f} ms)"
-        )
 
 
 def _relative(r: np.ndarray, scale: float) -> float:
@@ -112,16 +34,6 @@ def _relative(r: np.ndarray, scale: float) -> float:
     return norm / scale if scale > 0 else 0.0
 
 
-def check_solver_parameters(tol, max_iterations, min_step) -> None:
-    """Raise ParameterError unless tol > 0 is finite, max_iterations >= 0 an integer and 0 < min_step < 1."""
-    if not (isinstance(tol, (int, float, np.integer, np.floating)) and 0 < tol < np.inf):
-        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
-    if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 0:
-        raise ParameterError("max_iterations", f"must be an integer >= 0, got {max_iterations!r}")
-    if not (isinstance(min_step, (int, float, np.integer, np.floating)) and 0 < min_step < 1):
-        raise ParameterError(
-            "min_step", f"must be a line-search fraction in (0, 1), got {min_step!r}"
-        )
 
 
 def _check_start(scene: Scene, q: np.ndarray, r: np.ndarray) -> None:
@@ -165,29 +77,15 @@ def equilibrium_residual(scene: Scene, q) -> np.ndarray:
     return assemble(scene, q, stiffness=False).residual[scene.free_dofs]
 
 
-def _newton_step(K: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, bool]:
-    """Solve K dx = -r; least squares (minimum norm) when K is singular or nearly so.
-
-    Returns the step and whether least squares was used (the caller reports it).
-    """
-    with warnings.catch_warnings():
-        warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
-        try:
-            step = scipy.linalg.solve(K, -r, check_finite=False)
-            if np.all(np.isfinite(step)):
-                return step, False
-        except (np.linalg.LinAlgError, scipy.linalg.LinAlgWarning):
-            pass
-    return scipy.linalg.lstsq(K, -r, check_finite=False)[0], True
 
 
 def find_equilibrium(
     scene: Scene,
     q0=None,
     *,
-    tol: float = 1e-12,
-    max_iterations: int = 50,
-    min_step: float = 1e-10,
+    tol: float = TOL,
+    max_iterations: int = MAX_ITERATIONS,
+    min_step: float = MIN_STEP,
 ) -> EquilibriumResult:
     """Newton's method for r(q) = 0 on the configuration manifold (SPEC sections 3, 10).
 
@@ -202,7 +100,7 @@ def find_equilibrium(
 
     A scene with constraints is solved by
     :func:`pinlin.linearization.constrained_equilibrium.find_constrained_equilibrium`: an
-    assembly step closes the constraints from q0, then Newton on (q, lambda) with
+    loop-closure step closes the constraints from q0, then Newton on (q, lambda) with
     the KKT matrix [[K - K_lambda, -J_c^T], [J_c, 0]] solves
     r(q) = J_c(q)^T lambda, Phi(q) = 0; the result carries the constraint forces.
 
@@ -226,13 +124,11 @@ def find_equilibrium(
         :data:`~pinlin.model.scene.ANGLE_LIMIT`), or its forces overflow.
     ConvergenceError
         No convergence; ``.history`` holds the residual norms.
-    AssemblyError
+    LoopClosureError
         (With constraints) the constraints cannot be closed from q0.
     """
     check_solver_parameters(tol, max_iterations, min_step)
     if scene.constraints:
-        from .constrained_equilibrium import find_constrained_equilibrium
-
         return find_constrained_equilibrium(scene, q0, tol=tol, max_iterations=max_iterations, min_step=min_step)
     t0 = time.perf_counter()
     q = scene.check_configuration(scene.neutral() if q0 is None else q0, "q0")
@@ -253,7 +149,7 @@ def find_equilibrium(
         if iteration == max_iterations:
             break
         dx = np.zeros(model.nv)
-        dx[f], lstsq = _newton_step(asm.K[np.ix_(f, f)], r)
+        dx[f], lstsq = newton_step(asm.K[np.ix_(f, f)], r)
         if lstsq:
             least_squares.append(iteration)
         alpha = 1.0

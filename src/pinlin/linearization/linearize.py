@@ -10,99 +10,38 @@ to exactly zero and reported.
 
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
-import scipy.linalg.lapack as lapack
 
 from ..errors import (
-    ComputationError,
-    NotAnEquilibriumError,
     ParameterError,
-    SingularMassError,
 )
 from ..model.elements import WrenchElement
+from ..model.evaluation import Evaluation
 from ..model.scene import Scene
-from .assembly import Assembly, assemble, fro
-from .constraint_set import CONSTRAINT_TOL, RANK_TOL
-from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan
+from .assembly import Assembly, assemble
+from .checks import check_equilibrium, check_finite_and_mass
+from .constrained import linearize_constrained
+from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .periodicity import PERIODIC_TEST_ANGLES, numeric_change
+from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan, plan_of
 from .split import split_damping as _split_damping
 from .split import split_stiffness as _split_stiffness
-from .system import LinearizedSystem, null_motion
-from .time_invariance import PERIODIC_TEST_ANGLES, numeric_change
-from .workspace import Evaluation
+from .system import LinearizedSystem
 
 __all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES", "STRUCTURE_EPS_FACTOR"]
 
-_TINY = float(np.finfo(float).tiny)
 
 
-def _massless_joints(scene: Scene) -> list[str]:
-    """Free joints whose whole subtree has neither mass nor rotational inertia."""
-    model = scene.model
-    mass = np.zeros(model.njoints)
-    inertia = np.zeros(model.njoints)
-    for jid in range(model.njoints - 1, 0, -1):
-        mass[jid] += model.inertias[jid].mass
-        inertia[jid] += np.abs(model.inertias[jid].inertia).sum()
-        parent = model.parents[jid]
-        mass[parent] += mass[jid]
-        inertia[parent] += inertia[jid]
-    free = set(scene.free_dofs.tolist())
-    names = []
-    for jid in range(1, model.njoints):
-        j = scene.robot.joint(model.names[jid])
-        if mass[jid] == 0 and inertia[jid] == 0 and any(i in free for i in range(j.idx_v, j.idx_v + j.nv)):
-            names.append(j.name)
-    return names
 
 
-def _check_mass(scene: Scene, M: np.ndarray) -> None:
-    if lapack.dpotrf(M, 1, 0)[1] == 0:  # lower, no clean (positional: cheaper); Cholesky succeeded: PD
-        return
-    joints = _massless_joints(scene)
-    if not joints:
-        smallest, coords = null_motion(M, scene.dof_names)
-        joints = sorted({name.split("[")[0] for name in coords})
-        why = f"the mass matrix is singular or indefinite (smallest eigenvalue {smallest:.3g}); its null motion moves"
-    else:
-        why = "the mass matrix is singular: no mass or inertia moves with"
-    raise SingularMassError(
-        f"{why} joints {joints}; give their links inertia or lock them (locked=[...])", joints
-    )
 
 
-def _number(value) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
 
 
-def _positive(name: str, value, upper: float = math.inf) -> None:
-    if not (_number(value) and 0 < value < upper):
-        bound = "" if upper == math.inf else f" below {upper:g}"
-        raise ParameterError(name, f"must be a finite positive number{bound}, got {value!r}")
 
 
-def _check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol) -> None:
-    """Raise ParameterError for a tolerance that is not a finite positive number (structure_tol: >= 0)."""
-    if (  # the common case (floats) in one expression; NaN fails every comparison
-        type(equilibrium_tol) is float
-        and type(periodic_tol) is float
-        and type(constraint_tol) is float
-        and type(rank_tol) is float
-        and (structure_tol is None or type(structure_tol) is float and 0 <= structure_tol < math.inf)
-        and 0 < equilibrium_tol < math.inf
-        and 0 < periodic_tol < math.inf
-        and 0 < constraint_tol < math.inf
-        and 0 < rank_tol < 1
-    ):
-        return
-    _positive("equilibrium_tol", equilibrium_tol)
-    _positive("periodic_tol", periodic_tol)
-    _positive("constraint_tol", constraint_tol)
-    _positive("rank_tol", rank_tol, upper=1.0)
-    if structure_tol is not None and not (_number(structure_tol) and 0 <= structure_tol < math.inf):
-        raise ParameterError("structure_tol", f"must be None or a finite number >= 0, got {structure_tol!r}")
 
 
 def linearize(
@@ -111,9 +50,9 @@ def linearize(
     *,
     coordinates=None,
     balancing: bool = False,
-    equilibrium_tol: float = 1e-8,
+    equilibrium_tol: float = EQUILIBRIUM_TOL,
     structure_tol: float | None = None,
-    periodic_tol: float = 1e-8,
+    periodic_tol: float = PERIODIC_TOL,
     constraint_tol: float = CONSTRAINT_TOL,
     rank_tol: float = RANK_TOL,
 ) -> LinearizedSystem:
@@ -169,7 +108,7 @@ def linearize(
     periodic_tol : float
         Largest relative change of M, C, K, r allowed when a prescribed joint is
         moved by :data:`PERIODIC_TEST_ANGLES`, each against the system-wide scale
-        of :func:`~pinlin.linearization.time_invariance.numeric_change`.  Joints
+        of :func:`~pinlin.linearization.periodicity.numeric_change`.  Joints
         whose position provably does not enter the equations (a root turntable
         about an axis along gravity, an axisymmetric rotor, a joint held still:
         :mod:`pinlin.linearization.time_invariance`) are not moved; ``sys.notes``
@@ -205,21 +144,19 @@ def linearize(
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
-    _check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
     if scene.constraints:
-        from .constrained import linearize_constrained
-
         return linearize_constrained(
             scene, q, coordinates=coordinates, balancing=balancing, equilibrium_tol=equilibrium_tol,
             structure_tol=structure_tol, constraint_tol=constraint_tol, rank_tol=rank_tol,
         )  # fmt: skip
     if coordinates is not None:
         raise ParameterError("coordinates", "applies to scenes with constraints only; this scene has none")
-    plan = scene.linearization_plan
+    plan = plan_of(scene)
     base = assemble(scene, q, stiffness=True, damping=True, mass=True)
-    r, rel = _equilibrium(scene, plan, base, equilibrium_tol, balancing)
+    r, rel = check_equilibrium(scene, plan, base, equilibrium_tol, balancing)
     M, C, K = (base.M, base.C, base.K) if plan.everything else (a[plan.block] for a in (base.M, base.C, base.K))
-    _check_finite_and_mass(scene, M, C, base)
+    check_finite_and_mass(scene, M, C, base)
     calls, notes = base.calls, []
     if scene.prescribed:
         notes, more = _prescribed_notes(scene, plan, q, base, periodic_tol)
@@ -245,37 +182,8 @@ def linearize(
     )  # fmt: skip
 
 
-def _equilibrium(
-    scene: Scene, plan: LinearizationPlan, base: Assembly, tol: float, balancing: bool
-) -> tuple[np.ndarray, float]:
-    """The residual on the free coordinates and its relative size; raise unless q is an equilibrium."""
-    r = base.residual if plan.everything else base.residual[plan.rows]
-    norm = fro(r)
-    rel = norm / base.force_scale if base.force_scale > 0 else 0.0
-    if rel > tol and not balancing:
-        worst = int(np.argmax(np.abs(r)))
-        raise NotAnEquilibriumError(
-            f"q is not an equilibrium of the scene: relative residual {rel:.3e} > equilibrium_tol "
-            f"{tol:g} (largest unbalanced force {r[worst]:.4g} on {scene.dof_names[worst]!r}); "
-            f"use find_equilibrium, or balancing=True to hold q with actuator forces",
-            residual=norm,
-            relative_residual=rel,
-        )
-    return r, rel
 
 
-def _check_finite_and_mass(scene: Scene, M: np.ndarray, C: np.ndarray, base: Assembly) -> None:
-    """Raise ComputationError for non-finite entries, SingularMassError for M not positive definite.
-
-    ``force_scale`` covers tau, Q_e and K; one product covers M and C (a NaN or
-    inf in either makes it non-finite), checked entry by entry only when it is.
-    """
-    if not (math.isfinite(base.force_scale) and math.isfinite(np.vdot(M, C))):
-        if not (math.isfinite(base.force_scale) and np.isfinite(M).all() and np.isfinite(C).all()):
-            raise ComputationError(
-                "linearize: non-finite entries in M, C, K or the residual (overflow from extreme parameters?)"
-            )
-    _check_mass(scene, M)
 
 
 def _prescribed_notes(

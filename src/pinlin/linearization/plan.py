@@ -1,8 +1,9 @@
 """What a linearization of one scene runs, decided once per scene (issue 14).
 
 A :class:`~pinlin.Scene` is immutable, so everything :func:`pinlin.linearize`
-decides without looking at q is decided once, on first use, and kept as
-``scene.linearization_plan``: the free coordinates and their index arrays, the
+decides without looking at q is decided once, on first use, and kept by this
+stage (:func:`plan_of`, a cache keyed by the scene: the description never
+imports the stage that reads it): the free coordinates and their index arrays, the
 Pinocchio derivative algorithm (see :mod:`.assembly`), whether the elements'
 stiffness is exactly symmetric, the default structure tolerance, and which
 prescribed joints are proved not to enter the equations
@@ -13,14 +14,17 @@ elements' damping matrix and its split into D and G (:class:`RestDamping`).
 
 from __future__ import annotations
 
+import threading
+import weakref
+
 import numpy as np
 
 from ..model.scene import Scene
-from ..results import readonly
+from ..numerics.arrays import readonly
 from .split import choose_element_parts, element_damping_parts
 from .time_invariance import InvarianceProof, invariance_proofs
 
-__all__ = ["LinearizationPlan", "RestDamping", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
+__all__ = ["plan_of", "LinearizationPlan", "RestDamping", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
 
 #: Default structure_tol is STRUCTURE_EPS_FACTOR n eps: Pinocchio's recursive algorithms
 #: accumulate a few rounding errors per joint, so an exactly (skew-)symmetric part that
@@ -164,3 +168,22 @@ class LinearizationPlan:
             f"LinearizationPlan(n={self.n}, moving={self.moving}, proved={proved}, "
             f"checked per call={list(self.unproved)})"
         )
+
+
+#: Scene -> its plan.  Weak keys: a plan lives as long as its scene; scenes compare by identity.
+_PLANS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+_PLANS_LOCK = threading.Lock()
+
+
+def plan_of(scene: Scene) -> LinearizationPlan:
+    """The linearization plan of ``scene``, made on the first call for it and kept while the scene lives.
+
+    Thread-safe: two threads asking at once may both build it (a pure function of the
+    immutable scene, so the two are equal); the first one stored is returned to both.
+    """
+    plan = _PLANS.get(scene)
+    if plan is None:
+        built = LinearizationPlan(scene)
+        with _PLANS_LOCK:
+            plan = _PLANS.setdefault(scene, built)
+    return plan

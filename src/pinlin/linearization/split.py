@@ -8,14 +8,9 @@ dropped: its size is half the difference's norm, exactly (a power-of-two scaling
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
-from .assembly import Assembly, fro
-
-if TYPE_CHECKING:  # pragma: no cover
-    from .plan import LinearizationPlan
+from ..numerics.norms import fro
 
 __all__ = ["split_stiffness", "split_damping", "element_damping_parts", "choose_element_parts"]
 
@@ -77,7 +72,7 @@ def choose_element_parts(D, G, size: float, tol: float, dropped: dict, zero: np.
 
 
 def split_damping(
-    C: np.ndarray, base: Assembly, plan: LinearizationPlan, tol: float, dropped: dict
+    C: np.ndarray, base, plan, tol: float, dropped: dict
 ) -> tuple[np.ndarray, np.ndarray]:
     """D = (C + C^T) / 2 and G = (C - C^T) / 2 with the rounding-level parts set to zero.
 

@@ -13,10 +13,12 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ParameterError, SingularMassError
+from ..numerics.arrays import readonly
+from ..numerics.norms import fro
 from ..results import Result
-from .assembly import fro
+from .state_form import first_order_form, null_motion
 
-__all__ = ["LinearizedSystem", "MATRIX_NAMES", "null_motion", "NULL_MOTION_SHARE"]
+__all__ = ["LinearizedSystem", "check_system", "MATRIX_NAMES"]
 
 #: The five matrices of the linearized equation, in the paper's order.
 MATRIX_NAMES = ("M", "D", "G", "S", "N")
@@ -25,34 +27,9 @@ MATRIX_NAMES = ("M", "D", "G", "S", "N")
 SYMMETRY_TOL = 1e-10
 
 
-#: A coordinate takes part in the null motion of a singular mass matrix when its entry in
-#: the unit eigenvector of the smallest eigenvalue exceeds this share: 0.3 names the few
-#: coordinates that dominate the motion (an equal share over 11 coordinates is 0.30).
-NULL_MOTION_SHARE = 0.3
-
-
-def null_motion(M: np.ndarray, names) -> tuple[float, list[str]]:
-    """Smallest eigenvalue of a symmetric M and the coordinates its eigenvector moves."""
-    w, V = np.linalg.eigh(M)
-    return float(w[0]), [names[i] for i in np.flatnonzero(np.abs(V[:, 0]) > NULL_MOTION_SHARE)]
-
-
-def _readonly(a: np.ndarray | None) -> np.ndarray | None:
-    if a is None:
-        return None
-    a = np.array(a, dtype=float, copy=True)
-    a.flags.writeable = False
-    return a
-
-
 def _frozen(a: np.ndarray) -> np.ndarray:
     a.setflags(write=False)
     return a
-
-
-def _fro(a: np.ndarray) -> float:
-    """Frobenius norm without a spurious overflow warning (entries beyond 1e154: rescaled, see ``fro``)."""
-    return fro(a)
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -166,11 +143,11 @@ class LinearizedSystem(Result):
             mats[name] = a
         for name, sign in (("M", 1), ("D", 1), ("S", 1), ("G", -1), ("N", -1)):
             a = mats[name]
-            defect = _fro(a - sign * a.T)
-            if defect > SYMMETRY_TOL * max(_fro(a), np.finfo(float).tiny):
+            defect = fro(a - sign * a.T)
+            if defect > SYMMETRY_TOL * max(fro(a), np.finfo(float).tiny):
                 kind = "symmetric" if sign == 1 else "skew-symmetric"
                 raise ParameterError(
-                    name, f"must be {kind}; relative defect {defect / _fro(a):.2e} > {SYMMETRY_TOL:g}"
+                    name, f"must be {kind}; relative defect {defect / fro(a):.2e} > {SYMMETRY_TOL:g}"
                 )
             mats[name] = (a + sign * a.T) / 2
         names = tuple(str(s) for s in self.dof_names) or tuple(f"x{i + 1}" for i in range(n))
@@ -188,11 +165,11 @@ class LinearizedSystem(Result):
                 weak,
             ) from None
         for name, a in mats.items():
-            object.__setattr__(self, name, _readonly(a))
+            object.__setattr__(self, name, readonly(a, float))
         object.__setattr__(self, "dof_names", names)
-        object.__setattr__(self, "q", _readonly(self.q))
-        object.__setattr__(self, "v", _readonly(self.v))
-        object.__setattr__(self, "balancing", _readonly(self.balancing))
+        object.__setattr__(self, "q", readonly(self.q, float))
+        object.__setattr__(self, "v", readonly(self.v, float))
+        object.__setattr__(self, "balancing", readonly(self.balancing, float))
         object.__setattr__(self, "dropped", dict(self.dropped))
         object.__setattr__(self, "calls", tuple(self.calls))
         object.__setattr__(self, "notes", tuple(self.notes))
@@ -209,7 +186,7 @@ class LinearizedSystem(Result):
             raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
         if self.basis_names and len(self.basis_names) != B.shape[0]:
             raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(self.basis_names)}")
-        object.__setattr__(self, "basis", _readonly(B))
+        object.__setattr__(self, "basis", readonly(B, float))
         object.__setattr__(self, "basis_names", tuple(str(x) for x in self.basis_names))
         object.__setattr__(self, "constraint_forces", tuple(self.constraint_forces))
 
@@ -374,6 +351,14 @@ class LinearizedSystem(Result):
             return x.copy()
         return np.tensordot(self.basis, x, axes=(1, 0))
 
+    def first_order(self, F=None) -> tuple[np.ndarray, np.ndarray, float]:
+        """A (2n x 2n) and B (2n x m) of z' = A z + B u with z = (x, x'), and the solves' relative residual.
+
+        ``F`` (n x m, default the identity) maps the inputs u to generalized forces
+        f = F u; see :func:`~pinlin.linearization.state_form.first_order_form`.
+        """
+        return first_order_form(self.M, self.C, self.K, np.eye(self.n) if F is None else np.asarray(F, float))
+
     # ------------------------------------------------------------------ dynamic stiffness
 
     def dynamic_stiffness(self, lam) -> np.ndarray:
@@ -395,3 +380,19 @@ class LinearizedSystem(Result):
 
 #: ``to_dict`` dumps the declared fields, then C and K (formed on access), as before they became lazy.
 LinearizedSystem._dict_fields = tuple(f.name for f in dataclasses.fields(LinearizedSystem)) + ("C", "K")
+
+def check_system(sys) -> LinearizedSystem:
+    """``sys`` itself if it is a :class:`~pinlin.LinearizedSystem`.
+
+    Raises
+    ------
+    ParameterError
+        ``sys`` is anything else.
+    """
+    if not isinstance(sys, LinearizedSystem):
+        raise ParameterError(
+            "sys",
+            f"expected a pinlin.LinearizedSystem (from linearize or LinearizedSystem.from_matrices), "
+            f"got {type(sys).__name__}",
+        )
+    return sys

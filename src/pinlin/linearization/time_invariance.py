@@ -26,9 +26,9 @@ whose class declares nothing, a subclass of a built-in element included, is
 "unknown" and stops cases 1 and 2.
 
 Everything else (elements between frames, a tilted turntable, an unbalanced
-rotor) is checked numerically at each linearization (:func:`numeric_change`):
-the equations are assembled again with the joint moved by
-:data:`PERIODIC_TEST_ANGLES` and compared against one system-wide scale, so an
+rotor) is checked numerically at each linearization
+(:func:`pinlin.linearization.periodicity.numeric_change`): the equations are assembled again
+with the joint moved by a few offsets and compared against one system-wide scale, so an
 exactly zero matrix (an undamped system's C) does not turn rounding into a huge
 relative change.
 """
@@ -41,10 +41,16 @@ from dataclasses import dataclass
 import numpy as np
 import pinocchio as pin
 
-from ..errors import ParameterError, TimePeriodicError
-from ..model.elements import Element
+from ..model.elements.invariance import (
+    BODY_FIXED_LOAD,
+    DEAD_LOAD,
+    INVARIANCE_KINDS,
+    JOINT_SPACE,
+    UNKNOWN,
+    declared_kind,
+    invariance_kind,
+)
 from ..model.scene import Scene
-from .assembly import Assembly, assemble, fro
 
 __all__ = [
     "InvarianceProof",
@@ -55,15 +61,9 @@ __all__ = [
     "BODY_FIXED_LOAD",
     "DEAD_LOAD",
     "UNKNOWN",
-    "numeric_change",
-    "PERIODIC_TEST_ANGLES",
     "SYMMETRY_TOL",
 ]
 
-#: Offsets [rad or m] of a prescribed joint at which the equations are evaluated again
-#: (when no proof applies) to check that they do not depend on its position; two offsets
-#: not commensurate with a turn, so that no periodic dependence hides at both.
-PERIODIC_TEST_ANGLES = (1.0, 2.5)
 
 #: Relative departure from an exact symmetry (gravity or a dead force across the axis, a
 #: centre of mass off it, an inertia not symmetric about it) still taken as a symmetry by
@@ -72,38 +72,8 @@ PERIODIC_TEST_ANGLES = (1.0, 2.5)
 #: proof records its departure; linearize uses it only when periodic_tol is not smaller.
 SYMMETRY_TOL = 1e-12
 
-#: The kinds an element class may declare as its ``invariance`` (:class:`~pinlin.Element`).
-JOINT_SPACE = "joint-space"
-BODY_FIXED_LOAD = "body-fixed load"
-DEAD_LOAD = "dead load"
-UNKNOWN = "unknown"
-INVARIANCE_KINDS = (JOINT_SPACE, BODY_FIXED_LOAD, DEAD_LOAD, UNKNOWN)
 _LOADS = (BODY_FIXED_LOAD, DEAD_LOAD)
 
-
-def invariance_kind(element: Element) -> str:
-    """What ``element``'s force depends on: the ``invariance`` its own class declares.
-
-    Only a declaration on ``type(element)`` itself counts, never an inherited one
-    (a subclass may read more than its parent); without one the kind is
-    :data:`UNKNOWN`.
-
-    Raises
-    ------
-    ParameterError
-        The class declares a value not in :data:`INVARIANCE_KINDS`.
-    """
-    return _declared_kind(type(element))
-
-
-def _declared_kind(cls: type) -> str:
-    """:func:`invariance_kind` of the elements of class ``cls``."""
-    kind = cls.__dict__.get("invariance", UNKNOWN)
-    if not (isinstance(kind, str) and kind in INVARIANCE_KINDS):
-        raise ParameterError(
-            f"{cls.__name__}.invariance", f"expected one of {INVARIANCE_KINDS}, got {kind!r}"
-        )
-    return kind
 
 
 @dataclass(frozen=True)
@@ -230,7 +200,7 @@ def invariance_proofs(scene: Scene) -> dict[str, InvarianceProof]:
         (checked for every scene, with or without prescribed joints).
     """
     classes = dict.fromkeys(type(element) for element in scene.elements)  # in order: the first bad one raises
-    declared = {cls: _declared_kind(cls) for cls in classes}
+    declared = {cls: declared_kind(cls) for cls in classes}
     kinds = tuple(declared[type(element)] for element in scene.elements)
     out: dict[str, InvarianceProof] = {}
     for name, omega in scene.prescribed.items():
@@ -249,59 +219,3 @@ def invariance_proofs(scene: Scene) -> dict[str, InvarianceProof]:
             out[name] = proof
     return out
 
-
-def _scales(base: Assembly, free: np.ndarray, omega: float) -> dict[str, float]:
-    """System-wide scales of M, C, K and the residual: L(w) at one frequency w of the whole system.
-
-    .. math::  w^2 = \\|K\\| / \\|M\\| + (\\|C\\| / \\|M\\|)^2 + \\Omega^2
-
-    so that C is measured against ``||C|| + w ||M||`` and K against ``||K|| + w^2 ||M||``
-    (an undamped system's exactly zero C against the inertia forces, not against zero).
-    """
-    ix = np.ix_(free, free)
-    nM, nC, nK = fro(base.M[ix]), fro(base.C[ix]), fro(base.K[ix])
-    w2 = nK / nM + (nC / nM) ** 2 + omega**2
-    return {"M": nM, "C": nC + math.sqrt(w2) * nM, "K": nK + w2 * nM, "r": base.force_scale + w2 * nM}
-
-
-def numeric_change(
-    scene: Scene, q: np.ndarray, base: Assembly, joints, tol: float
-) -> tuple[float, list[str]]:
-    """Largest relative change of M, C, K and the residual when a prescribed joint moves.
-
-    Each joint of ``joints`` is moved by :data:`PERIODIC_TEST_ANGLES` and the scene
-    assembled again; the changes are measured against the system-wide scales of
-    :func:`_scales`.  Returns the change and the Pinocchio calls made.
-
-    Raises
-    ------
-    TimePeriodicError
-        A change exceeds ``tol``.
-    """
-    free = scene.free_dofs
-    ix = np.ix_(free, free)
-    omega = max(abs(w) for w in scene.prescribed.values())
-    scale = _scales(base, free, omega)
-    worst = 0.0
-    calls: list[str] = []
-    for name in joints:
-        j = scene.robot.joint(name)
-        for offset in PERIODIC_TEST_ANGLES:
-            dq = np.zeros(scene.model.nv)
-            dq[j.idx_v] = offset
-            other = assemble(scene, pin.integrate(scene.model, q, dq), stiffness=True, damping=True, mass=True)
-            calls.extend(other.calls)
-            diffs = {key: fro(getattr(other, key)[ix] - getattr(base, key)[ix]) for key in ("M", "C", "K")}
-            diffs["r"] = fro(other.residual[free] - base.residual[free])
-            change = max(d / scale[key] if d else 0.0 for key, d in diffs.items())
-            worst = max(worst, change)
-            if not change <= tol:
-                raise TimePeriodicError(
-                    f"the linearized equations depend on the position of prescribed joint {name!r} "
-                    f"(relative change {change:.2e} after {offset} rad, against the system's scales): with its "
-                    f"prescribed velocity they are time-periodic, not constant-coefficient, and cannot be "
-                    f"analysed as M x'' + C x' + K x = f",
-                    joint=name,
-                    variation=change,
-                )
-    return worst, calls

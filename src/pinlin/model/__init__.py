@@ -9,7 +9,7 @@ One concept per module:
 - :mod:`.elements` -- force elements: a base class and one file per kind;
 - :mod:`.scene` -- :class:`Scene`, an immutable description (robot, elements,
   gravity, prescribed joints) that holds no Pinocchio workspace;
-- :mod:`.scenefile` -- scenes from TOML files;
+- :mod:`.scene_file` -- scenes from TOML files;
 - :mod:`.constraints` -- kinematic constraints (closed loops, contacts): point and frame constraints;
 - :mod:`.mjcf` -- MJCF (MuJoCo) models with their ``<connect>`` and ``<weld>`` loops.
 """
@@ -38,7 +38,7 @@ from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_str
 from .mjcf import load_mjcf
 from .robot import Robot
 from .scene import Scene
-from .scenefile import SceneSpec, load_scene
+from .scene_file import SceneSpec, load_scene
 
 __all__ = [
     "Robot",

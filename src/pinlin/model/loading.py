@@ -35,6 +35,8 @@ __all__ = [
     "EXAMPLES",
     "example_urdf_path",
     "data_path",
+    "captured_stderr",
+    "reduce_model",
 ]
 
 #: Short names of example-robot-data models: (URDF path under ``robots/``,
@@ -94,7 +96,7 @@ def _joint_value(model: pin.Model, jid: int, value: object, name: str) -> np.nda
     return arr
 
 
-def _reduce(model: pin.Model, locked, source: str) -> pin.Model:
+def reduce_model(model: pin.Model, locked, source: str) -> pin.Model:
     if not locked:
         return model
     if isinstance(locked, str):
@@ -121,7 +123,7 @@ def _reduce(model: pin.Model, locked, source: str) -> pin.Model:
 
 
 @contextlib.contextmanager
-def _captured_stderr() -> Iterator[list[str]]:
+def captured_stderr() -> Iterator[list[str]]:
     """Capture what the C++ URDF parser prints on file descriptor 2."""
     out: list[str] = []
     try:
@@ -200,7 +202,7 @@ def _report_parser_messages(messages: list[str], source: str) -> None:
 
 def _build(text: str | None, path: str | None, source: str, free_flyer: bool) -> pin.Model:
     root_joint = pin.JointModelFreeFlyer() if free_flyer else None
-    with _captured_stderr() as messages:
+    with captured_stderr() as messages:
         try:
             if path is not None:
                 model = (
@@ -236,7 +238,7 @@ def _finish(
             f"{source}: the URDF has no movable joint (all joints are fixed); nothing moves",
             source,
         )
-    model = _reduce(model, locked, source)
+    model = reduce_model(model, locked, source)
     check_memory(model.nv, memory_limit, source)
     return Robot(model, source, references if not locked else None)
 
@@ -373,7 +375,7 @@ def _reference_configurations(model: pin.Model, srdf_rel: str | None, source: st
             stacklevel=3,
         )
         return {}
-    with _captured_stderr() as messages:
+    with captured_stderr() as messages:
         try:
             pin.loadReferenceConfigurations(model, str(srdf), False)
             error = None

@@ -37,7 +37,7 @@ import pinocchio as pin
 
 from ..errors import MjcfError
 from .constraints import Constraint, FrameConstraint, PointConstraint
-from .loading import _captured_stderr, _reduce
+from .loading import captured_stderr, reduce_model
 from .memory import check_memory
 from .robot import Robot
 
@@ -193,7 +193,7 @@ def load_mjcf(
     root = _read(Path(source), source)
     _check_structure(root, source)
     entries = _equalities(root, source)
-    with _captured_stderr() as messages:
+    with captured_stderr() as messages:
         try:
             if free_flyer:
                 model, points, frames = pin.buildModelAndConstraintsFromMJCF(source, pin.JointModelFreeFlyer())
@@ -211,6 +211,6 @@ def load_mjcf(
     if model.nv == 0:
         raise MjcfError(f"{source}: the MJCF model has no movable joint; nothing moves", source)
     constraints = _constraints(model, points, frames, entries, source)
-    model = _reduce(model, locked, source)
+    model = reduce_model(model, locked, source)
     check_memory(model.nv, memory_limit, source)
     return Robot(model, source, constraints=constraints)

@@ -14,7 +14,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import FrameNotFoundError, JointNotFoundError, ParameterError
-from ..results import readonly as _readonly
+from ..numerics.arrays import readonly as _readonly
 from .constraints import Constraint
 from .memory import check_memory
 

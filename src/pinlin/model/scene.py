@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 import types
 from collections.abc import Iterable, Mapping
-from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
@@ -14,10 +13,8 @@ from ..errors import ConfigurationError, ParameterError, PrescribedJointError
 from .constraints import Constraint, PointConstraint
 from .elements import Element, JointDamper, WrenchElement
 from .elements.base import check_vector3
+from .elements.invariance import invariance_kind
 from .robot import Robot
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..linearization.plan import LinearizationPlan
 
 __all__ = ["Scene", "ANGLE_LIMIT", "UNIT_NORM_MIN"]
 
@@ -42,7 +39,7 @@ class Scene:
 
     A scene is an immutable description: it owns a copy of the robot's model
     (with the scene's gravity) and no Pinocchio ``Data``.  Each computation runs
-    in a workspace of its own thread (:mod:`pinlin.linearization.workspace`), so one
+    in a workspace of its own thread (:mod:`pinlin.model.evaluation`), so one
     scene can be shared by any number of threads.
     The coordinates of the linearized equations are the *free* degrees of
     freedom: all velocity coordinates except those of prescribed joints.
@@ -105,6 +102,7 @@ class Scene:
                     f"elements[{i}]", f"expected a pinlin element (JointSpring, ...), got {element!r}"
                 )
             element.check(robot)
+            invariance_kind(element)  # a misspelt declaration is refused now, not at the first linearize
         self._user_elements = elements
         self.urdf_damping = bool(urdf_damping)
         if self.urdf_damping:
@@ -155,10 +153,6 @@ class Scene:
         self._compile()
         self._compile_constraints()
         self._compile_configuration()
-        from ..linearization.plan import LinearizationPlan  # the linearization layer reads scenes
-
-        #: What linearize runs for this scene, decided once (:class:`~pinlin.linearization.plan.LinearizationPlan`)
-        self.linearization_plan: LinearizationPlan = LinearizationPlan(self)
         self._frozen = True
 
     def __setattr__(self, name, value):

@@ -22,7 +22,7 @@ import scipy.linalg
 
 from ..errors import ConfigurationError
 from ..linearization.assembly import external_forces
-from ..linearization.workspace import Evaluation, workspace
+from ..model.evaluation import Evaluation, workspace
 from ..model.scene import Scene
 
 __all__ = ["FreeDynamics", "initial_velocity"]
@@ -32,7 +32,7 @@ class FreeDynamics:
     """Free accelerations a_f(q, v) of a scene: M_ff a_f = Q_f - h_f, prescribed accelerations zero.
 
     Everything is computed in the calling thread's Pinocchio workspace
-    (:func:`pinlin.linearization.workspace.workspace`), fetched once: an
+    (:func:`pinlin.model.evaluation.workspace`), fetched once: an
     instance belongs to the thread that created it.
     """
 

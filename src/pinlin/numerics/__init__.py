@@ -1,14 +1,16 @@
 """Numerics shared by the analyses, each written once (issue 10).
 
-- :mod:`.checks` -- input checks: ``check_system``, ``check_tolerance(value, label, upper=None)``,
+- :mod:`.checks` -- input checks: ``check_tolerance(value, label, upper=None)``,
   ``check_uncertainty``, ``check_integer``, ``check_radii``, ``complex_scalar``, ``complex_points``,
   ``dof_indices``;
-- :mod:`.arrays` -- ``check_times``, ``check_vector``, ``check_samples``: time grids, coordinate
-  vectors and sampled signals;
+- :mod:`.arrays` -- ``readonly`` (read-only copies), ``check_times``, ``check_vector``, ``check_samples``:
+  time grids, coordinate vectors and sampled signals;
 - :mod:`.floating` -- ``EPS``, ``LOG_MAX``, ``LOG_TINY`` and ``checked_exp`` (back from logarithms);
 - :mod:`.stacks` -- ``chunks``: stacks of (n, n) matrices in pieces of bounded memory;
-- :mod:`.scaling` -- Fan-Lin-Van Dooren ``Scaling`` (gamma, delta, in logarithms), ``frobenius``
-  (norms without over- or underflow), ``natural_scale``, ``eigenvalue_bounds``;
+- :mod:`.norms` -- ``fro`` (the fast Frobenius norm), ``frobenius`` and ``column_norms`` (without over- or
+  underflow), ``coefficient_norms``;
+- :mod:`.scaling` -- Fan-Lin-Van Dooren ``Scaling`` (gamma, delta, in logarithms), ``natural_scale``,
+  ``eigenvalue_bounds``;
 - :mod:`.accuracy` -- backward error eta, condition number kappa, the Jordan-chain residual;
 - :mod:`.clustering` -- ``find_clusters``: eigenvalues that rounding cannot tell apart;
 - :mod:`.definiteness` -- ``definiteness`` (one decision for modes, stability and the report,
@@ -16,7 +18,6 @@
 - :mod:`.determinant` -- ``nonsingularity`` and ``det_sign``, decided the same way;
 - :mod:`.rank` -- the two rank tolerances (Jordan structure, adjugate rank one) and rank helpers.
 
-Read-only copies are :func:`pinlin.results.readonly`.
 """
 
 from .accuracy import (
@@ -24,7 +25,6 @@ from .accuracy import (
     backward_error,
     backward_errors,
     chain_residuals,
-    column_norms,
     condition_number,
     condition_numbers,
     eigen_weight,
@@ -34,7 +34,6 @@ from .arrays import check_samples, check_times, check_vector
 from .checks import (
     check_integer,
     check_radii,
-    check_system,
     check_tolerance,
     check_uncertainty,
     complex_points,
@@ -54,15 +53,14 @@ from .definiteness import (
 )
 from .determinant import Nonsingularity, det_sign, nonsingularity
 from .floating import EPS, LOG_MAX, LOG_TINY, checked_exp
+from .norms import coefficient_norms, column_norms, fro, frobenius
 from .rank import ADJUGATE_RANK_TOL, JORDAN_RANK_TOL, kernel_dimension, null_basis
 from .scaling import (
     INVERTIBLE_K_FACTOR,
     RANGE_MARGIN,
     Scaling,
-    coefficient_norms,
     eigenvalue_bounds,
     fan_lin_van_dooren,
-    frobenius,
     natural_scale,
     system_scaling,
 )
@@ -73,7 +71,6 @@ __all__ = [
     "check_vector",
     "check_samples",
     # checks
-    "check_system",
     "check_tolerance",
     "check_uncertainty",
     "check_integer",
@@ -91,6 +88,8 @@ __all__ = [
     # scaling
     "Scaling",
     "coefficient_norms",
+    "column_norms",
+    "fro",
     "frobenius",
     "fan_lin_van_dooren",
     "system_scaling",
@@ -102,7 +101,6 @@ __all__ = [
     "ETA_FLOOR",
     "homogeneous",
     "eigen_weight",
-    "column_norms",
     "backward_errors",
     "condition_numbers",
     "backward_error",

@@ -27,12 +27,12 @@ from collections.abc import Sequence
 import numpy as np
 
 from .floating import EPS
+from .norms import column_norms
 
 __all__ = [
     "ETA_FLOOR",
     "homogeneous",
     "eigen_weight",
-    "column_norms",
     "backward_errors",
     "residual_figures",
     "condition_numbers",
@@ -69,46 +69,8 @@ def eigen_weight(lam, norms: Norms):
     return a * a * norm_M + a * norm_C + norm_K
 
 
-#: Window of a plain sum of squares in which no square over- or underflowed enough to matter:
-#: an entry above 1e140 would square beyond 1e280, and squares that underflow (below 1e-308)
-#: change a sum above 1e-280 by less than n 1e-28 relative.  Outside it the scaled form is used.
-_SQUARES_WINDOW = (1e-280, 1e280)
 
 
-def column_norms(A: np.ndarray) -> np.ndarray:
-    r"""2-norm of each column (axis -2) of a real or complex (..., n, k) array, without over- or underflow.
-
-    .. math::  \|a\| = s\,\|a / s\|,\qquad s = \max_i |a_i|
-
-    The plain sum of squares is used where it is safely in range (see
-    ``_SQUARES_WINDOW``), the scaled form above for the other columns.
-    """
-    A = np.asarray(A)
-    if A.shape[-2] == 0:
-        return np.zeros(A.shape[:-2] + A.shape[-1:])
-    if np.iscomplexobj(A):
-        if A.dtype == np.complex128 and A.flags.c_contiguous:  # (re, im) pairs as one real array
-            f = A.view(float)
-            pairs = np.einsum("...ij,...ij->...j", f, f)  # (no overflow warning: the window below decides)
-            total = pairs[..., 0::2] + pairs[..., 1::2]
-        else:
-            total = np.einsum("...ij,...ij->...j", A.real, A.real) + np.einsum("...ij,...ij->...j", A.imag, A.imag)
-    else:
-        total = np.einsum("...ij,...ij->...j", A, A)
-    lo, hi = _SQUARES_WINDOW
-    # every sum in the window (a NaN is not: the reductions propagate it and the comparisons fail)
-    if not total.size or (lo < np.minimum.reduce(total, axis=None) and np.maximum.reduce(total, axis=None) < hi):
-        return np.sqrt(total)
-    ok = (total > lo) & (total < hi)
-    s = np.max(np.abs(A), axis=-2)
-    safe = np.where((s > 0) & np.isfinite(s), s, 1.0)
-    # real divisions: a complex one may go through 1/s, which overflows for a subnormal s
-    re = A.real / safe[..., None, :]
-    scaled = np.einsum("...ij,...ij->...j", re, re)
-    if np.iscomplexobj(A):
-        im = A.imag / safe[..., None, :]
-        scaled = scaled + np.einsum("...ij,...ij->...j", im, im)
-    return np.where(ok, np.sqrt(np.where(ok, total, 0.0)), safe * np.sqrt(scaled))
 
 
 def backward_errors(lam, X, MX, CX, KX, norms: Norms) -> np.ndarray:

@@ -1,4 +1,7 @@
-"""Input checks of arrays over time and coordinates: time grids, coordinate vectors, sampled signals.
+"""Read-only copies, and input checks of arrays over time and coordinates: time grids, coordinate vectors,
+sampled signals.
+
+Results and systems never share writable arrays: :func:`readonly` is the one way they copy.
 
 Used by the frequency responses (force amplitudes), the time responses (initial
 conditions, sampled forces) and the nonlinear simulation (time grids).  Each raises
@@ -12,7 +15,16 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["check_times", "check_vector", "check_samples"]
+__all__ = ["readonly", "check_times", "check_vector", "check_samples"]
+
+
+def readonly(a, dtype=None) -> np.ndarray | None:
+    """A read-only copy of ``a`` (None stays None): results and systems never share writable arrays."""
+    if a is None:
+        return None
+    out = np.array(a, dtype=dtype, copy=True)
+    out.flags.writeable = False
+    return out
 
 
 def _real_array(value, label: str) -> np.ndarray:

@@ -14,10 +14,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..errors import ParameterError
-from ..linearization.system import LinearizedSystem
 
 __all__ = [
-    "check_system",
     "check_tolerance",
     "check_uncertainty",
     "check_integer",
@@ -27,22 +25,6 @@ __all__ = [
     "dof_indices",
 ]
 
-
-def check_system(sys) -> LinearizedSystem:
-    """``sys`` itself if it is a :class:`~pinlin.LinearizedSystem`.
-
-    Raises
-    ------
-    ParameterError
-        ``sys`` is anything else.
-    """
-    if not isinstance(sys, LinearizedSystem):
-        raise ParameterError(
-            "sys",
-            f"expected a pinlin.LinearizedSystem (from linearize or LinearizedSystem.from_matrices), "
-            f"got {type(sys).__name__}",
-        )
-    return sys
 
 
 def check_tolerance(value, label: str, *, upper: float | None = None) -> float:
@@ -172,7 +154,7 @@ def complex_points(values, label: str) -> tuple[np.ndarray, bool]:
     return arr, scalar
 
 
-def dof_indices(sys: LinearizedSystem, which, label: str) -> np.ndarray:
+def dof_indices(sys, which, label: str) -> np.ndarray:
     """Indices of the coordinates named or numbered in ``which`` (None: all of them).
 
     Raises

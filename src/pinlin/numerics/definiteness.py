@@ -52,7 +52,6 @@ __all__ = [
     "rounding_bound",
     "cholesky_lower_bound",
     "square_matrix",
-    "det_sign",
 ]
 
 #: c of the rounding bound rho = c n eps ||A||_2 of a symmetric eigenvalue (or singular
@@ -376,17 +375,3 @@ def _with_block(out: Definiteness, block: Definiteness | None) -> Definiteness:
     object.__setattr__(out, "_block", block)
     return out
 
-
-def det_sign(A, uncertainty: float = DEFAULT_UNCERTAINTY) -> int:
-    """Sign of det A, or 0 when A is singular within rounding and ``uncertainty``.
-
-    See :func:`pinlin.numerics.determinant.nonsingularity`.
-
-    Raises
-    ------
-    ParameterError
-        A not a finite real square matrix; ``uncertainty`` not in [0, 1).
-    """
-    from .determinant import nonsingularity
-
-    return nonsingularity(A, uncertainty).sign

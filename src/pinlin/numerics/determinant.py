@@ -16,7 +16,7 @@ from scipy.linalg.lapack import dgesdd as _dgesdd
 from scipy.linalg.lapack import dgetrf as _dgetrf
 
 from .checks import check_uncertainty
-from .definiteness import DEFAULT_UNCERTAINTY, EIGENVALUE_ROUNDING, det_sign, square_matrix
+from .definiteness import DEFAULT_UNCERTAINTY, EIGENVALUE_ROUNDING, square_matrix
 from .floating import EPS
 
 __all__ = ["Nonsingularity", "nonsingularity", "validated_nonsingularity", "det_sign"]
@@ -97,3 +97,16 @@ def _orthogonal_sign(Q: np.ndarray) -> int:
     lu, piv, _ = _dgetrf(Q)
     negative = int(np.count_nonzero(np.diagonal(lu) < 0)) + int(np.count_nonzero(piv != np.arange(piv.size)))
     return -1 if negative % 2 else 1
+
+
+def det_sign(A, uncertainty: float = DEFAULT_UNCERTAINTY) -> int:
+    """Sign of det A, or 0 when A is singular within rounding and ``uncertainty``.
+
+    See :func:`nonsingularity`.
+
+    Raises
+    ------
+    ParameterError
+        A not a finite real square matrix; ``uncertainty`` not in [0, 1).
+    """
+    return nonsingularity(A, uncertainty).sign

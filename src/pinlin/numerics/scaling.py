@@ -19,17 +19,16 @@ import scipy.linalg as sla
 
 from ..errors import ComputationError
 from .floating import EPS, LOG_MAX, LOG_TINY
+from .norms import coefficient_norms
 
 __all__ = [
     "Scaling",
-    "coefficient_norms",
     "fan_lin_van_dooren",
     "system_scaling",
     "natural_scale",
     "eigenvalue_bounds",
     "INVERTIBLE_K_FACTOR",
     "RANGE_MARGIN",
-    "frobenius",
 ]
 
 #: K counts as safely invertible for the lower eigenvalue bound when
@@ -73,40 +72,10 @@ class Scaling:
 RANGE_MARGIN = float(np.log(1e6))
 
 
-#: Window of a plain sum of squares in which it is accurate: no square overflowed (an entry
-#: above 1e140 squares beyond 1e280) and the squares that underflowed change it by less than
-#: n^2 1e-28 relative.  Outside it the norm is taken of the matrix divided by its largest entry.
-SQUARES_WINDOW = (1e-280, 1e280)
 
 
-def frobenius(A) -> float:
-    r"""||A||_F without overflow or underflow of the squares (entries from 1e-300 to 1e300).
-
-    .. math::  \|A\|_F = s\,\|A / s\|_F,\qquad s = \max_{ij} |a_{ij}|
-
-    (the plain sum of squares where it is within :data:`SQUARES_WINDOW`).
-    """
-    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        return _frobenius(np.asarray(A))
 
 
-def _frobenius(A: np.ndarray) -> float:
-    """:func:`frobenius` with floating-point warnings already silenced by the caller."""
-    if A.size and A.dtype.kind == "f":
-        flat = A.ravel()
-        q = float(np.dot(flat, flat))
-        if SQUARES_WINDOW[0] < q < SQUARES_WINDOW[1]:
-            return math.sqrt(q)
-    s = float(np.max(np.abs(A))) if A.size else 0.0
-    if s == 0 or not math.isfinite(s):
-        return s
-    return float(s * np.linalg.norm(A / s))
-
-
-def coefficient_norms(M, C, K) -> tuple[float, float, float]:
-    """Frobenius norms (||M||, ||C||, ||K||): the weights of eta and kappa (SPEC section 4)."""
-    with np.errstate(over="ignore", under="ignore", invalid="ignore"):
-        return _frobenius(np.asarray(M)), _frobenius(np.asarray(C)), _frobenius(np.asarray(K))
 
 
 def fan_lin_van_dooren(norm_M: float, norm_C: float, norm_K: float) -> Scaling:

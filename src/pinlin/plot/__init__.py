@@ -7,7 +7,7 @@ compose into the user's own figures; without matplotlib each raises
 lambda [1/s] in the complex plane, frequencies omega [rad/s], phases in degrees
 on axes, positions [m].  No function here runs Pinocchio in a ``Data`` of its
 own making: kinematics go through the calling thread's workspace
-(:func:`pinlin.linearization.workspace.workspace`).
+(:func:`pinlin.model.evaluation.workspace`).
 
 One concept per module:
 
@@ -16,7 +16,7 @@ One concept per module:
   bars) and :func:`root_locus` (eigenvalues over a parameter, tracked by shape);
 - :mod:`.campbell` -- :func:`campbell`: damped frequencies against spin speed;
 - :func:`stability_map` -- verdicts over two parameters and the exact boundary
-  (from :mod:`pinlin.boundaries.plot`);
+  (:mod:`.stability_map`);
 - :mod:`.frequency` -- :func:`frequency_response`: magnitude and phase of one output;
 - :mod:`.skeleton` -- the kinematic tree as a stick figure (:class:`Skeleton`) and a
   mode's motion of it (:func:`mode_motion`);
@@ -26,13 +26,13 @@ One concept per module:
 - :mod:`.work_precision` -- :func:`work_precision`: error against run time (benchmarks).
 """
 
-from ..boundaries.plot import stability_map
 from .animation import animate_mode
 from .campbell import UNSTABLE_RTOL, campbell
 from .eigenvalues import AXIS_MARGIN, KIND_STYLE, MIN_REAL_SPAN_FRACTION, eigenvalue_map, root_locus
 from .frequency import frequency_response
 from .mode_shapes import chain_mode_shape, mode_shape
 from .skeleton import MODE_AMPLITUDE_FRACTION, ModeMotion, Skeleton, mode_motion
+from .stability_map import stability_map
 from .style import VERDICT_COLORS
 from .work_precision import work_precision
 

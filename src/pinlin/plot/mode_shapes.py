@@ -17,7 +17,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ParameterError
-from ..linearization.workspace import workspace
+from ..model.evaluation import workspace
 from .skeleton import MODE_AMPLITUDE_FRACTION, ModeMotion, Skeleton, mode_motion
 from .style import DARK, GREY, WRENCH_COLOR, new_axes, pyplot
 

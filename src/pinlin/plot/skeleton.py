@@ -5,7 +5,7 @@ the configuration): the world origin, every joint origin, a few frame origins
 (the ends of links, the frames elements and constraints attach to, the frames
 that carry wrenches), and the segments joining each point to its parent joint.
 Its geometry at a configuration q comes from Pinocchio's forward kinematics in
-the calling thread's workspace (:func:`pinlin.linearization.workspace.workspace`),
+the calling thread's workspace (:func:`pinlin.model.evaluation.workspace`),
 never from a ``Data`` of its own.
 
 :func:`mode_motion` moves it along a mode (SPEC sections 4 and 10): with the
@@ -31,7 +31,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ParameterError
-from ..linearization.workspace import workspace
+from ..model.evaluation import workspace
 
 __all__ = ["Skeleton", "ModeMotion", "mode_motion", "MODE_AMPLITUDE_FRACTION"]
 

@@ -11,7 +11,7 @@ from ..errors import MissingDependencyError
 
 __all__ = ["VERDICT_COLORS", "pyplot", "new_axes", "complex_plane_labels"]
 
-#: Colours of the stability verdicts in maps and eigenvalue plots (the one palette: pinlin.boundaries.plot uses it).
+#: Colours of the stability verdicts in maps and eigenvalue plots (the one palette).
 VERDICT_COLORS = {
     "asymptotically_stable": "#2a9d8f",
     "marginally_stable": "#8ecae6",

@@ -13,7 +13,6 @@ import time
 from pathlib import Path
 from typing import Any
 
-from .. import __version__
 from ..errors import (
     ConfigurationError,
     ConstraintError,
@@ -27,9 +26,10 @@ from ..errors import (
 )
 from ..linearization.equilibrium import find_equilibrium
 from ..linearization.linearize import linearize
-from ..model.scenefile import SceneSpec
+from ..model.scene_file import SceneSpec
 from ..results import to_jsonable
 from ..spectral import Modes, modal_analysis
+from ..version import __version__
 from .schema import REPORT_VERSION
 from .text import mode_table
 from .units import coordinate_units
@@ -144,7 +144,7 @@ def analyze(spec: SceneSpec):
     Parameters
     ----------
     spec : SceneSpec
-        A scene with its starting point (:func:`pinlin.model.scenefile.load_scene`).
+        A scene with its starting point (:func:`pinlin.model.scene_file.load_scene`).
 
     Returns
     -------

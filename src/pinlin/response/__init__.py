@@ -5,7 +5,7 @@ One concept per module:
 - :mod:`.free` -- free vibration from the modal solution (Jordan chains for defective roots);
 - :mod:`.forced` -- any sampled or callable force, by exact discretization;
 - :mod:`.energy` -- the linearized power theorem along a trajectory;
-- :mod:`.state`, :mod:`.signal` -- the first-order form and the piecewise-polynomial
+- :mod:`.state`, :mod:`.sampled_force` -- the first-order form and the piecewise-polynomial
   reading of sampled (or callable) forces they share (their input checks are in
   :mod:`pinlin.numerics.arrays`).
 
@@ -19,8 +19,7 @@ from ..frf.expansion import JordanBlock, ModalExpansion, modal_expansion
 from .energy import EnergyBudget, energy_budget
 from .forced import ForcedResponse, forced_response
 from .free import FreeResponse, free_response
-from .signal import INTERPOLATIONS, SampledForce
-from .state import first_order
+from .sampled_force import INTERPOLATIONS, SampledForce
 
 __all__ = [
     "free_response",
@@ -34,12 +33,5 @@ __all__ = [
     "JordanBlock",
     "SampledForce",
     "INTERPOLATIONS",
-    "first_order",
 ]
 
-
-def __getattr__(name: str):
-    # harmonic_response moved to pinlin.frf, simulate to pinlin.nonlinear in 0.2.
-    from .._compat import moved_name
-
-    return moved_name(__name__, name, "pinlin.frf", "pinlin.nonlinear")

@@ -19,11 +19,10 @@ import numpy as np
 import scipy.linalg
 
 from ..errors import ComputationError
-from ..linearization.system import LinearizedSystem
-from ..numerics import check_system
+from ..linearization.system import LinearizedSystem, check_system
 from ..numerics.arrays import check_samples, check_times
 from ..results import Result
-from .signal import SampledForce, check_interpolation, sample_callable
+from .sampled_force import SampledForce, check_interpolation, sample_callable
 
 __all__ = ["EnergyBudget", "energy_budget", "METHOD"]
 

@@ -17,13 +17,12 @@ import numpy as np
 import scipy.linalg
 
 from ..errors import AccuracyWarning, ParameterError
-from ..linearization.system import LinearizedSystem
-from ..numerics import check_integer, check_system, check_tolerance
+from ..linearization.system import LinearizedSystem, check_system
+from ..numerics import check_integer, check_tolerance
 from ..numerics.arrays import check_samples, check_times, check_vector
 from ..results import Result
 from .energy import EnergyBudget, energy_budget
-from .signal import INTERPOLATIONS, SampledForce, check_interpolation, sample_callable
-from .state import first_order
+from .sampled_force import INTERPOLATIONS, SampledForce, check_interpolation, sample_callable
 
 __all__ = ["ForcedResponse", "forced_response", "sample_callable", "hold_matrices", "DEFAULT_INPUT_TOL"]
 
@@ -152,7 +151,7 @@ def forced_response(
 ) -> ForcedResponse:
     """Response of M x'' + (D + G) x' + (S + N) x = f(t), exact for piecewise-polynomial f.
 
-    In first-order form z' = A z + B f (:func:`~pinlin.response.state.first_order`),
+    In first-order form z' = A z + B f (:meth:`~pinlin.LinearizedSystem.first_order`),
     over a step h from t_k with the input a polynomial of degree p there,
 
     .. math::
@@ -253,7 +252,7 @@ def _force_samples(f, times: np.ndarray, substeps: int, n: int) -> tuple[np.ndar
 
 def _propagate(sys, z0: np.ndarray, tau: np.ndarray, F: np.ndarray, interpolation: str, forcing: bool):
     """States Z (len(tau), 2n) by the exact step maps, the number of distinct steps and the exponential check."""
-    A, B = first_order(sys)
+    A, B, _ = sys.first_order()
     Z = np.empty((len(tau), z0.size))
     Z[0] = z0
     if len(tau) < 2:

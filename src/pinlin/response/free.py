@@ -11,8 +11,8 @@ import numpy as np
 from ..errors import AccuracyWarning, ComputationError, ParameterError
 from ..frf.engine import DEFAULT_TOL
 from ..frf.expansion import ModalExpansion, complex_matmul, modal_expansion
-from ..linearization.system import LinearizedSystem
-from ..numerics import check_system, check_tolerance
+from ..linearization.system import LinearizedSystem, check_system
+from ..numerics import check_tolerance
 from ..numerics.arrays import check_times, check_vector
 from ..results import ResultArray
 

@@ -19,9 +19,9 @@ One concept per module, in the order of :func:`modal_analysis`:
   multiplicities (block Toeplitz ranks);
 - :mod:`.jordan` -- Jordan chains at an eigenvalue (:func:`jordan_chains`);
 - :mod:`.qualitative` -- modal constants m, d, g, k, n and structural facts;
-- :mod:`.verdict` -- the :class:`Stability` verdict and the theorems on structure alone;
-- :mod:`.stability_rules` -- the rules of the verdict, tried in order;
-- :mod:`.stability` -- :func:`decide_stability`, :func:`stability_from_structure` (the
+- :mod:`.stability` -- the verdict: :class:`Stability` and the theorems on structure alone
+  (:mod:`.stability.verdict`), its rules tried in order (:mod:`.stability.rules`),
+  :func:`decide_stability` and :func:`stability_from_structure` (:mod:`.stability.decide`; the
   verdict's margin computed on first access);
 - :mod:`.deferred` -- what :class:`Modes` keeps to form its condition numbers, structural
   facts, verdict and notes on first access;

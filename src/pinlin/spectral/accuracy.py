@@ -33,7 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.accuracy import ETA_FLOOR, backward_errors, column_norms, homogeneous, residual_figures
+from ..numerics.accuracy import ETA_FLOOR, backward_errors, homogeneous, residual_figures
+from ..numerics.norms import column_norms
 from .problem import QuadraticProblem
 from .qualitative import quadratic_forms
 

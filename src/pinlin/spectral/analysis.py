@@ -13,11 +13,12 @@ import warnings
 import numpy as np
 
 from ..errors import ComputationError, ParameterError
-from ..numerics.accuracy import ETA_FLOOR, column_norms
+from ..numerics.accuracy import ETA_FLOOR
 from ..numerics.checks import check_tolerance, check_uncertainty
 from ..numerics.clustering import CLUSTER_TOL, find_clusters
 from ..numerics.definiteness import DEFAULT_UNCERTAINTY
 from ..numerics.floating import EPS
+from ..numerics.norms import column_norms
 from ..numerics.rank import JORDAN_RANK_TOL
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
 from .deferred import DeferredFigures, DeferredVerdict

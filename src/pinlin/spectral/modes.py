@@ -11,8 +11,9 @@ import numpy as np
 from ..errors import ParameterError
 from ..linearization.system import LinearizedSystem
 from ..numerics.accuracy import condition_numbers
+from ..numerics.arrays import readonly
 from ..numerics.scaling import Scaling
-from ..results import Result, readonly, to_jsonable
+from ..results import Result, to_jsonable
 from .deferred import DeferredFigures, DeferredVerdict
 from .multiplicity import Cluster
 from .participation import DOMINANT_COUNT, DOMINANT_SHARE, participation

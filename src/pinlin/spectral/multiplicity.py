@@ -31,8 +31,8 @@ import numpy as np
 
 from ..errors import ComputationError
 from ..numerics.floating import EPS
+from ..numerics.norms import frobenius
 from ..numerics.rank import JORDAN_RANK_TOL, kernel_dimension
-from ..numerics.scaling import frobenius
 from ..results import Result
 from .problem import QuadraticProblem
 

@@ -30,9 +30,10 @@ import numpy as np
 from ..errors import ComputationError, ParameterError, SingularMassError
 from ..linearization.system import LinearizedSystem
 from ..numerics.accuracy import eigen_weight
+from ..numerics.arrays import readonly
 from ..numerics.checks import check_tolerance
-from ..numerics.scaling import Scaling, coefficient_norms, fan_lin_van_dooren
-from ..results import readonly
+from ..numerics.norms import coefficient_norms
+from ..numerics.scaling import Scaling, fan_lin_van_dooren
 
 __all__ = ["QuadraticProblem", "Scaling", "fan_lin_van_dooren", "as_problem", "SINGULAR_MASS_RCOND"]
 

@@ -52,6 +52,7 @@ __all__ = [
     "exact_pairs",
     "tropical_scalings",
     "TROPICAL_TAU",
+    "dggev",
 ]
 
 #: Damping measure tau = ||C|| / sqrt(||M|| ||K||) above which the general path uses
@@ -134,7 +135,7 @@ def _dggev_lwork(size: int, left: bool) -> int:
     return max(lwork, int(work[0])) if info == 0 else lwork
 
 
-def _dggev(A: np.ndarray, B: np.ndarray, left: bool = True):
+def dggev(A: np.ndarray, B: np.ndarray, left: bool = True):
     """QZ of the real pencil (A, B) with right (and left) vectors; A and B are overwritten.
 
     Raises
@@ -308,7 +309,7 @@ def _solve_scaled(
     A, B = scaled_companion(problem, s)
     # L(lam)^T = L(lam) when M, C, K are symmetric: the left vectors are the right ones
     symmetric = problem.symmetric
-    alphar, alphai, beta, vl, vr = _dggev(A, B, left=not symmetric)
+    alphar, alphai, beta, vl, vr = dggev(A, B, left=not symmetric)
     first = (alphai > 0).nonzero()[0]
     if np.count_nonzero(beta) == beta.size:
         lam = exact_pairs(alphar, alphai, beta, first)

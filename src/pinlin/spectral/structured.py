@@ -28,9 +28,9 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..errors import ComputationError
-from ..numerics.scaling import frobenius
+from ..numerics.norms import frobenius
 from .problem import QuadraticProblem
-from .qep import RawSpectrum, _dggev, complex_columns, exact_pairs, products
+from .qep import RawSpectrum, complex_columns, dggev, exact_pairs, products
 from .refine import RefinedPencil, pencil_backward_errors, refined_eigh
 
 __all__ = ["solve_symmetric", "solve_squared", "solve_proportional", "proportionality_defect", "PATHS"]
@@ -94,7 +94,7 @@ def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
     """
     M, K = problem.M, problem.K
     symmetric = problem.symmetric
-    alphar, alphai, beta, vl, vr = _dggev(-K, M.copy(), left=not symmetric)
+    alphar, alphai, beta, vl, vr = dggev(-K, M.copy(), left=not symmetric)
     if np.any(beta == 0):
         raise ComputationError("QZ of (-K, M) found an infinite eigenvalue: M is numerically singular")
     mu = exact_pairs(alphar, alphai, beta)
@@ -189,7 +189,7 @@ def solve_proportional(
             Phi, MP = pencil.X, pencil.MX
             how = "eigh" if pencil.steps == 0 else "eigh + Newton"
     if Phi is None:
-        alphar, alphai, beta, _, vr = _dggev(A.copy(), M.copy(), left=False)
+        alphar, alphai, beta, _, vr = dggev(A.copy(), M.copy(), left=False)
         if np.any(alphai != 0) or np.any(beta == 0):
             return None, np.inf, "QZ"
         Phi = vr

@@ -20,7 +20,8 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import ParameterError
-from ..results import Result, readonly
+from ..numerics.arrays import readonly
+from ..results import Result
 
 __all__ = [
     "TrackedModes",

@@ -3,17 +3,13 @@
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
 from ...errors import ParameterError
 from .forces import ConstraintForce
 from .stiffness import CONSTANT_SUBSPACE_JOINTS, dead_wrench_stiffness, stack_wrenches
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = ["Constraint"]
 
@@ -45,7 +41,7 @@ class Constraint(ABC):
         """The target's frame name, or None for a fixed world target."""
         return self.target if isinstance(self.target, str) else None
 
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         """Raise when the frame or the target frame is not in ``robot`` or moves with unsupported joints.
 
         Raises
@@ -74,7 +70,7 @@ class Constraint(ABC):
                         f"joints and {sorted(CONSTANT_SUBSPACE_JOINTS)} (motion subspace constant in the joint frame)",
                     )
 
-    def _target_placement(self, ev: Evaluation) -> tuple[np.ndarray, np.ndarray, int | None]:
+    def _target_placement(self, ev) -> tuple[np.ndarray, np.ndarray, int | None]:
         """World position, rotation and frame id (None for world targets) of the target."""
         if self.target_frame is not None:
             fid = ev.robot.frame_id(self.target_frame)
@@ -84,14 +80,14 @@ class Constraint(ABC):
             return H, np.eye(3), None
         return H[:3, 3], H[:3, :3], None
 
-    def _relative_jacobian(self, ev: Evaluation) -> np.ndarray:
+    def _relative_jacobian(self, ev) -> np.ndarray:
         """Frame Jacobian minus target Jacobian, LOCAL_WORLD_ALIGNED (6 x nv)."""
         J = ev.world_aligned_jacobian(ev.robot.frame_id(self.frame))
         if self.target_frame is not None:
             J = J - ev.world_aligned_jacobian(ev.robot.frame_id(self.target_frame))
         return J
 
-    def _pair(self, ev: Evaluation, force: np.ndarray, torque: np.ndarray | None) -> list[tuple]:
+    def _pair(self, ev, force: np.ndarray, torque: np.ndarray | None) -> list[tuple]:
         """(J, force, torque) on the frame, and the opposite on a target frame."""
         out = [(ev.world_aligned_jacobian(ev.robot.frame_id(self.frame)), force, torque)]
         if self.target_frame is not None:
@@ -99,24 +95,24 @@ class Constraint(ABC):
             out.append((J_b, -force, None if torque is None else -torque))
         return out
 
-    def force_stiffness(self, ev: Evaluation, lam: np.ndarray) -> np.ndarray:
+    def force_stiffness(self, ev, lam: np.ndarray) -> np.ndarray:
         """K_lambda = d(J_c^T lam)/dq at fixed lam (nv x nv), see :func:`dead_wrench_stiffness`."""
         return dead_wrench_stiffness(*stack_wrenches(self.wrench_terms(ev, lam)), ev.robot.dof_supports)
 
     @abstractmethod
-    def residual(self, ev: Evaluation) -> np.ndarray:
+    def residual(self, ev) -> np.ndarray:
         """Phi(q) (m,): [m] for positions, [rad] for rotations."""
 
     @abstractmethod
-    def jacobian(self, ev: Evaluation) -> np.ndarray:
+    def jacobian(self, ev) -> np.ndarray:
         """J_c (m x nv) in velocity form: the frame's velocity relative to the target, world axes."""
 
-    def closure_jacobian(self, ev: Evaluation) -> np.ndarray:
+    def closure_jacobian(self, ev) -> np.ndarray:
         """dPhi/dq (m x nv, tangent space), exact also off the manifold (for closing loops)."""
         return self.jacobian(ev)
 
     @abstractmethod
-    def wrench_terms(self, ev: Evaluation, lam: np.ndarray) -> list[tuple]:
+    def wrench_terms(self, ev, lam: np.ndarray) -> list[tuple]:
         """The world-fixed wrenches J_c^T lam stands for: (J, force, torque) per frame (:func:`dead_wrench_stiffness`)."""
 
     @abstractmethod

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 import pinocchio as pin
@@ -11,9 +11,6 @@ import pinocchio as pin
 from ...errors import ParameterError
 from .base import Constraint
 from .forces import ConstraintForce
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
 
 __all__ = ["FrameConstraint", "ROTATION_TOL"]
 
@@ -83,21 +80,21 @@ class FrameConstraint(Constraint):
         if not isinstance(self.target, str):
             object.__setattr__(self, "target", _placement(self.target, f"FrameConstraint({self.frame!r}).target"))
 
-    def _error_rotation(self, ev: Evaluation) -> tuple[np.ndarray, np.ndarray]:
+    def _error_rotation(self, ev) -> tuple[np.ndarray, np.ndarray]:
         _, R_b, _ = self._target_placement(ev)
         R_a = ev.frame_rotation(ev.robot.frame_id(self.frame))
         E = R_a @ R_b.T
         return E, np.asarray(pin.log3(E), dtype=float)
 
-    def residual(self, ev: Evaluation) -> np.ndarray:
+    def residual(self, ev) -> np.ndarray:
         p_b, _, _ = self._target_placement(ev)
         _, theta = self._error_rotation(ev)
         return np.concatenate([ev.frame_position(ev.robot.frame_id(self.frame)) - p_b, theta])
 
-    def jacobian(self, ev: Evaluation) -> np.ndarray:
+    def jacobian(self, ev) -> np.ndarray:
         return self._relative_jacobian(ev)
 
-    def closure_jacobian(self, ev: Evaluation) -> np.ndarray:
+    def closure_jacobian(self, ev) -> np.ndarray:
         J_a = ev.world_aligned_jacobian(ev.robot.frame_id(self.frame))
         J = self._relative_jacobian(ev).copy()
         E, _ = self._error_rotation(ev)
@@ -106,7 +103,7 @@ class FrameConstraint(Constraint):
         J[3:] = Jlog @ (E.T @ J_a[3:] - J_wb)
         return J
 
-    def wrench_terms(self, ev: Evaluation, lam: np.ndarray) -> list[tuple]:
+    def wrench_terms(self, ev, lam: np.ndarray) -> list[tuple]:
         lam = np.asarray(lam, dtype=float)
         return self._pair(ev, lam[:3], lam[3:])
 

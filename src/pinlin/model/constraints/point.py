@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 import pinocchio as pin
@@ -14,10 +14,6 @@ from ...errors import ConfigurationError, ParameterError
 from ..elements.base import check_vector3
 from .base import Constraint
 from .forces import ConstraintForce, ContactStatus
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = ["PointConstraint", "ground_contacts"]
 
@@ -93,16 +89,16 @@ class PointConstraint(Constraint):
                 raise ParameterError(f"{label}.friction", f"must be a finite number >= 0, got {self.friction!r}")
             object.__setattr__(self, "friction", mu)
 
-    def residual(self, ev: Evaluation) -> np.ndarray:
+    def residual(self, ev) -> np.ndarray:
         p_a = ev.frame_position(ev.robot.frame_id(self.frame))
         if self.target_frame is None:
             return p_a - self.target
         return p_a - ev.frame_position(ev.robot.frame_id(self.target_frame))
 
-    def jacobian(self, ev: Evaluation) -> np.ndarray:
+    def jacobian(self, ev) -> np.ndarray:
         return self._relative_jacobian(ev)[:3]
 
-    def wrench_terms(self, ev: Evaluation, lam: np.ndarray) -> list[tuple]:
+    def wrench_terms(self, ev, lam: np.ndarray) -> list[tuple]:
         return self._pair(ev, np.asarray(lam, dtype=float), None)
 
     def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
@@ -129,7 +125,7 @@ class PointConstraint(Constraint):
 
 
 def ground_contacts(
-    robot: Robot,
+    robot,
     q,
     frames: Sequence[str],
     *,

@@ -15,17 +15,13 @@ joint frame, leaves out.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
-from ...results import readonly
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
+from ...numerics.arrays import readonly
 
 __all__ = [
     "Element",
@@ -199,22 +195,22 @@ class ElementGroup:
         self.symmetric_stiffness = all(type(e).symmetric_stiffness for e in elements)
         self.constant_damping = False
 
-    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+    def add_force(self, ev, Q: np.ndarray) -> None:
         """Add the elements' generalized forces Q_e(q, v) to Q (nv,)."""
         for element in self.elements:
             Q += element.generalized_force(ev)
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         """Add -dQ_e/dq to K (nv x nv)."""
         for element in self.elements:
             element.add_stiffness(ev, K)
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         """Add -dQ_e/dv to C (nv x nv)."""
         for element in self.elements:
             element.add_damping(ev, C)
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:
         """Add the elements' elastic stiffness (psd, Rayleigh's K_e) to K (nv x nv)."""
         for element in self.elements:
             element.add_elastic_stiffness(ev, K)
@@ -261,20 +257,20 @@ class Element(ABC):
     invariance: ClassVar[str] = "unknown"
 
     @abstractmethod
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         """Raise a :class:`~pinlin.PinlinError` if the element does not fit the robot."""
 
     @abstractmethod
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+    def generalized_force(self, ev) -> np.ndarray:
         """Generalized force Q_e(q, v) of the element (nv,) [N or N m]."""
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
+    def add_stiffness(self, ev, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
         """Add -dQ_e/dq (tangent space, nv x nv) to K; nothing by default."""
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:  # noqa: B027 (optional hook)
+    def add_damping(self, ev, C: np.ndarray) -> None:  # noqa: B027 (optional hook)
         """Add -dQ_e/dv (nv x nv) to C; nothing by default."""
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
         """Add the element's elastic stiffness to K (nv x nv); nothing by default.
 
         The elastic stiffness is the psd part that stores strain energy (a
@@ -294,7 +290,7 @@ class Element(ABC):
         return frozenset()
 
     @classmethod
-    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+    def group(cls, elements: tuple[Element, ...], robot) -> ElementGroup:
         """The elements of this class in one scene, for evaluation together."""
         return ElementGroup(elements)
 
@@ -309,17 +305,17 @@ class WrenchElement(Element):
     force: np.ndarray
     torque: np.ndarray
 
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         robot.frame_id(self.frame)
 
     def needs(self) -> frozenset[str]:
         return frozenset() if self.body_fixed else frozenset({"frame_kinematics"})
 
     @abstractmethod
-    def local_wrench(self, ev: Evaluation) -> np.ndarray:
+    def local_wrench(self, ev) -> np.ndarray:
         """The wrench (force, torque) at the frame origin, in the frame's axes (6,)."""
 
-    def joint_wrench(self, ev: Evaluation | None, model: pin.Model, robot: Robot) -> tuple[int, pin.Force]:
+    def joint_wrench(self, ev, model: pin.Model, robot) -> tuple[int, pin.Force]:
         """The wrench in its parent joint's frame, as Pinocchio's ``fext`` wants it.
 
         ``ev`` may be None for a body-fixed wrench (its local wrench does not depend on q).
@@ -328,7 +324,7 @@ class WrenchElement(Element):
         w = self.local_wrench(ev)
         return frame.parentJoint, frame.placement.act(pin.Force(w[:3], w[3:]))
 
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+    def generalized_force(self, ev) -> np.ndarray:
         """Q = J^T w with J the frame Jacobian in the frame's axes (nv,)."""
         return ev.frame_jacobian(ev.robot.frame_id(self.frame)).T @ self.local_wrench(ev)
 

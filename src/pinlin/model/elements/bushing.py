@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 from dataclasses import KW_ONLY, dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
-from ...results import readonly
+from ...numerics.arrays import readonly
 from .base import Element, ElementGroup, check_psd
 from .frame_pairs import (
     FramePairElement,
@@ -20,10 +20,6 @@ from .frame_pairs import (
     support_mask,
 )
 from .se3 import LogExpansion, ad_matrix, log_jacobian_derivative, skew
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = ["Bushing", "BushingGroup"]
 
@@ -139,12 +135,12 @@ class Bushing(FramePairElement):
     def _frozen(value) -> np.ndarray:
         return readonly(value.homogeneous if isinstance(value, pin.SE3) else value, dtype=float)
 
-    def deflection(self, ev: Evaluation) -> np.ndarray:
+    def deflection(self, ev) -> np.ndarray:
         """e = log6(X) (6,): [m] then [rad], in the frame's axes."""
         return self._one(ev).state(ev).e[0]
 
     @classmethod
-    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+    def group(cls, elements: tuple[Element, ...], robot) -> ElementGroup:
         return BushingGroup(elements, robot)
 
 
@@ -154,7 +150,7 @@ class _State:
     The second-order terms of the log are computed on first use (stiffness only).
     """
 
-    def __init__(self, group: BushingGroup, ev: Evaluation, velocity: bool):
+    def __init__(self, group: BushingGroup, ev, velocity: bool):
         nb = len(group.elements)
         H = ev.frame_homogeneous(group.frame_ids)
         R_a, p_a = H[group.ia, :3, :3], H[group.ia, :3, 3]
@@ -204,7 +200,7 @@ def _sum_quadratic(left: np.ndarray, middle: np.ndarray, right: np.ndarray) -> n
 class BushingGroup(ElementGroup):
     """All the bushings of a scene, as arrays over the bushings; one fixed-wrench product for all."""
 
-    def __init__(self, elements: tuple[Bushing, ...], robot: Robot):
+    def __init__(self, elements: tuple[Bushing, ...], robot):
         super().__init__(elements)
         model = robot.model
         self.symmetric_stiffness = False
@@ -234,25 +230,25 @@ class BushingGroup(ElementGroup):
         self.D6 = readonly(np.array([e.damping for e in elements], dtype=float).reshape(-1, 6, 6))
         self.damped = bool(np.any(self.D6))
 
-    def state(self, ev: Evaluation) -> _State:
+    def state(self, ev) -> _State:
         """The bushings at ``ev``, computed once for its force, stiffness and damping (kept on the
         evaluation, which one caller owns: the group is shared with the scene)."""
         return ev.memo(self, lambda: _State(self, ev, velocity=self.damped and not ev.at_rest))
 
-    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+    def add_force(self, ev, Q: np.ndarray) -> None:
         st = self.state(ev)
         Q += np.einsum("bik,bi->k", st.Jr, st.w)
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         if self.damped:
             B = self.state(ev).projected()
             C += _sum_quadratic(B, self.D6, B)
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:
         B = self.state(ev).projected()
         K += _sum_quadratic(B, self.K6, B)
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         st = self.state(ev)
         J0 = ev.world_jacobian()
         Ja = st.Ad @ (J0 * self.m_a[:, None, :])  # body Jacobians of the frames, their axes

@@ -29,17 +29,12 @@ on the manifold (``pinlin.testing.check_element``).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
 from .base import Element, ElementGroup, check_vector3
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = [
     "FramePairElement",
@@ -64,7 +59,7 @@ _PLACEMENT = "a pin.SE3, a 4x4 homogeneous matrix or a mapping {'xyz': [m], 'rpy
 ROTATION_TOL = 1e-9
 
 
-def check_supports(robot: Robot, frame: str, label: str) -> int:
+def check_supports(robot, frame: str, label: str) -> int:
     """The frame's id, after checking that every joint moving it follows the rule above.
 
     Raises
@@ -188,7 +183,7 @@ class FramePairElement(Element):
     frame: str
     target: object
 
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         label = f"{type(self).__name__}({self.frame!r})"
         check_supports(robot, self.frame, label)
         if isinstance(self.target, str):
@@ -197,19 +192,19 @@ class FramePairElement(Element):
     def needs(self) -> frozenset[str]:
         return frozenset({"frame_kinematics"})
 
-    def _one(self, ev: Evaluation) -> ElementGroup:
+    def _one(self, ev) -> ElementGroup:
         return type(self).group((self,), ev.robot)
 
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+    def generalized_force(self, ev) -> np.ndarray:
         Q = np.zeros(ev.model.nv)
         self._one(ev).add_force(ev, Q)
         return Q
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         self._one(ev).add_stiffness(ev, K)
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         self._one(ev).add_damping(ev, C)
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:
         self._one(ev).add_elastic_stiffness(ev, K)

@@ -3,16 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
-from ...results import readonly
+from ...numerics.arrays import readonly
 from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = ["JointDamper", "DamperGroup"]
 
@@ -41,22 +37,22 @@ class JointDamper(Element):
     def __post_init__(self):
         object.__setattr__(self, "damping", check_psd(self.damping, f"JointDamper({self.joint!r}).damping"))
 
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         j = robot.joint(self.joint)
         as_matrix(self.damping, j.nv, f"JointDamper({self.joint!r}).damping")
 
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+    def generalized_force(self, ev) -> np.ndarray:
         j = ev.robot.joint(self.joint)
         Q = np.zeros(ev.model.nv)
         Q[j.v_slice] = -np.dot(as_matrix(self.damping, j.nv, "damping"), ev.v[j.v_slice])
         return Q
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         j = ev.robot.joint(self.joint)
         C[j.v_slice, j.v_slice] += as_matrix(self.damping, j.nv, "damping")
 
     @classmethod
-    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+    def group(cls, elements: tuple[Element, ...], robot) -> ElementGroup:
         return DamperGroup(elements, robot)
 
 
@@ -70,7 +66,7 @@ class DamperGroup(ElementGroup):
     are those of the elements' own methods, bitwise.
     """
 
-    def __init__(self, elements: tuple[JointDamper, ...], robot: Robot):
+    def __init__(self, elements: tuple[JointDamper, ...], robot):
         simple = [e for e in elements if robot.joint(e.joint).nv == 1 and e.damping.ndim < 2]
         super().__init__(tuple(e for e in elements if e not in simple))
         self.iv = readonly(np.array([robot.joint(e.joint).idx_v for e in simple], dtype=int))
@@ -85,7 +81,7 @@ class DamperGroup(ElementGroup):
         self.symmetric_stiffness = True
         self.constant_damping = True  # add_damping reads only the prepared matrices
 
-    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+    def add_force(self, ev, Q: np.ndarray) -> None:
         if ev.at_rest:  # Q = -C v = 0
             return
         v = ev.v
@@ -103,7 +99,7 @@ class DamperGroup(ElementGroup):
     def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray) -> None:
         """Forces at rest (v = 0) and stiffness at each row of ``qs``: none."""
 
-    def add_damping(self, ev: Evaluation | None, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         """Add the dampers' matrices (the same at every point; ``ev`` is not read and may be None)."""
         if len(self.iv):
             self.diagonal.add(C, self.c)

@@ -3,19 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
-from ...results import readonly
+from ...numerics.arrays import readonly
 from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 from .lie_log import joint_log
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import JointInfo, Robot
 
 __all__ = ["JointSpring", "SpringGroup", "FEW_SPRINGS"]
 
@@ -67,11 +63,11 @@ class JointSpring(Element):
                 raise ParameterError(f"JointSpring({self.joint!r}).rest", f"must be finite numbers, got {self.rest!r}")
             object.__setattr__(self, "rest", readonly(rest))
 
-    def matrix(self, j: JointInfo) -> np.ndarray:
+    def matrix(self, j) -> np.ndarray:
         """The stiffness as a (nv_j x nv_j) matrix."""
         return as_matrix(self.stiffness, j.nv, f"JointSpring({self.joint!r}).stiffness")
 
-    def rest_configuration(self, robot: Robot) -> np.ndarray:
+    def rest_configuration(self, robot) -> np.ndarray:
         """Rest configuration of the joint (nq_j,)."""
         j = robot.joint(self.joint)
         jm = robot.model.joints[j.id]
@@ -87,12 +83,12 @@ class JointSpring(Element):
             )
         return rest
 
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         j = robot.joint(self.joint)
         self.matrix(j)
         self.rest_configuration(robot)
 
-    def deflection(self, ev: Evaluation) -> tuple[np.ndarray, np.ndarray | None]:
+    def deflection(self, ev) -> tuple[np.ndarray, np.ndarray | None]:
         """e (nv_j,) and de/dq (nv_j x nv_j), the latter None when it is the identity."""
         j = ev.robot.joint(self.joint)
         rest = self.rest_configuration(ev.robot)
@@ -104,26 +100,26 @@ class JointSpring(Element):
             return log.difference(qj), None
         return log.evaluate(qj)
 
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+    def generalized_force(self, ev) -> np.ndarray:
         j = ev.robot.joint(self.joint)
         Q = np.zeros(ev.model.nv)
         e, _ = self.deflection(ev)
         Q[j.v_slice] = -np.dot(self.matrix(j), e)
         return Q
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         j = ev.robot.joint(self.joint)
         _, jac = self.deflection(ev)
         Ks = self.matrix(j)
         K[j.v_slice, j.v_slice] += Ks if jac is None else np.dot(Ks, jac)
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:
         """The spring's matrix K_s: psd, the elastic stiffness in Rayleigh's beta K_e."""
         j = ev.robot.joint(self.joint)
         K[j.v_slice, j.v_slice] += self.matrix(j)
 
     @classmethod
-    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+    def group(cls, elements: tuple[Element, ...], robot) -> ElementGroup:
         return SpringGroup(elements, robot)
 
 
@@ -140,7 +136,7 @@ class SpringGroup(ElementGroup):
     bitwise.
     """
 
-    def __init__(self, elements: tuple[JointSpring, ...], robot: Robot):
+    def __init__(self, elements: tuple[JointSpring, ...], robot):
         simple = [e for e in elements if robot.joint(e.joint).nq == 1 and e.stiffness.ndim < 2]
         super().__init__(tuple(e for e in elements if e not in simple))
         joints = [robot.joint(e.joint) for e in simple]
@@ -160,7 +156,7 @@ class SpringGroup(ElementGroup):
         self.symmetric_stiffness = all(robot.joint(e.joint).nv == 1 for e in self.elements)
         self.constant_damping = True  # springs add no damping
 
-    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+    def add_force(self, ev, Q: np.ndarray) -> None:
         q = ev.q
         if self.few is not None:  # in order, as element by element: Q_iv - k (q_iq - rest), the same operations
             for iq, iv, k, rest in self.few:
@@ -183,7 +179,7 @@ class SpringGroup(ElementGroup):
             else:
                 view -= np.dot(Ks, log.difference(q[qs]))
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         if self.few is not None:
             for _, iv, k, _ in self.few:
                 K[iv, iv] = K.item(iv, iv) + k
@@ -226,17 +222,17 @@ class SpringGroup(ElementGroup):
                     view -= np.dot(Ks, log.difference(q[qs_j]))
                     block += Ks
 
-    def add_damping(self, ev: Evaluation | None, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         """Springs add no damping."""
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:
         if len(self.iv):
             np.add.at(K, (self.iv, self.iv), self.k)
         for _, vs, _, _, Ks, _ in self.prepared:
             K[vs, vs] += Ks
 
 
-def _prepare(spring: JointSpring, robot: Robot) -> tuple:
+def _prepare(spring: JointSpring, robot) -> tuple:
     """(q slice, v slice, rest, log or None, stiffness matrix, whether de/dq is not the identity).
 
     The log (:func:`_lie_log`) is None on a 1-DOF joint with nq = 1 (e = q_j - rest);

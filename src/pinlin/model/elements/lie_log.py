@@ -32,7 +32,7 @@ import math
 import numpy as np
 import pinocchio as pin
 
-from .se3 import _SERIES
+from .se3 import SERIES_COEFFICIENTS
 
 __all__ = ["beta_gamma", "se3_log", "JointLog", "joint_log", "curved_joints", "exp_chart_rate", "SERIES_BELOW"]
 
@@ -43,7 +43,7 @@ SERIES_BELOW = 4.0
 #: (largest t^2, coefficients of t^(2m) from the highest) of beta and gamma: the fewest terms whose
 #: truncation stays below 1e-18 relative there (successive terms shrink like t^2 / (4 pi^2)).
 _BUCKETS = tuple(
-    (limit, [float(c) for c in _SERIES[:terms, 0]][::-1], [float(c) for c in _SERIES[:terms, 1]][::-1])
+    (limit, [float(c) for c in SERIES_COEFFICIENTS[:terms, 0]][::-1], [float(c) for c in SERIES_COEFFICIENTS[:terms, 1]][::-1])
     for limit, terms in ((1e-6, 3), (1e-2, 5), (0.25, 9), (1.0, 12), (SERIES_BELOW, 22))
 )
 

@@ -3,16 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
 from ...errors import ParameterError
 from .base import Element
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = ["RayleighDamping"]
 
@@ -54,13 +50,13 @@ class RayleighDamping(Element):
                 raise ParameterError(f"RayleighDamping.{name}", f"must be finite and >= 0, got {value!r}")
             object.__setattr__(self, name, value)
 
-    def check(self, robot: Robot) -> None:
+    def check(self, robot) -> None:
         """Rayleigh damping fits any robot."""
 
     def needs(self) -> frozenset[str]:
         return frozenset({"mass_matrix"}) if self.alpha else frozenset()
 
-    def _matrix(self, ev: Evaluation) -> np.ndarray:
+    def _matrix(self, ev) -> np.ndarray:
         D = np.zeros((ev.model.nv, ev.model.nv))
         if self.alpha:
             D += self.alpha * ev.mass_matrix()
@@ -68,10 +64,10 @@ class RayleighDamping(Element):
             D += self.beta * ev.elastic_stiffness()
         return D
 
-    def generalized_force(self, ev: Evaluation) -> np.ndarray:
+    def generalized_force(self, ev) -> np.ndarray:
         f = ev.free
         return -self._matrix(ev)[:, f] @ ev.v[f]
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         f = ev.free
         C[:, f] += self._matrix(ev)[:, f]

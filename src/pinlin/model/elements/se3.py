@@ -38,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import zeta
 
-__all__ = ["skew", "LogExpansion", "log_expansion", "log_jacobian_derivative", "ad_matrix", "SERIES_TERMS"]
+__all__ = ["skew", "LogExpansion", "log_expansion", "log_jacobian_derivative", "ad_matrix", "SERIES_TERMS", "SERIES_COEFFICIENTS"]
 
 #: Terms of the series of beta(t): at t = pi the ratio of successive terms is 1/4,
 #: so 40 terms leave a truncation below 1e-20 even for the second derivative.
@@ -47,11 +47,11 @@ SERIES_TERMS = 40
 _n = np.arange(1, SERIES_TERMS + 1)
 _B = 2.0 * zeta(2.0 * _n) / (2.0 * np.pi) ** (2 * _n)  # coefficient of t^(2n-2) in beta(t)
 #: Coefficients of t^(2m), m = 0, 1, ... of beta, gamma = beta'(t)/t and gamma2 = gamma'(t)/t
-#: (zero-padded to SERIES_TERMS): beta, gamma, gamma2 = powers(t^2) @ _SERIES.
-_SERIES = np.zeros((SERIES_TERMS, 3))
-_SERIES[:, 0] = _B
-_SERIES[: SERIES_TERMS - 1, 1] = _B[1:] * (2 * _n[1:] - 2)
-_SERIES[: SERIES_TERMS - 2, 2] = _B[2:] * (2 * _n[2:] - 2) * (2 * _n[2:] - 4)
+#: (zero-padded to SERIES_TERMS): beta, gamma, gamma2 = powers(t^2) @ SERIES_COEFFICIENTS.
+SERIES_COEFFICIENTS = np.zeros((SERIES_TERMS, 3))
+SERIES_COEFFICIENTS[:, 0] = _B
+SERIES_COEFFICIENTS[: SERIES_TERMS - 1, 1] = _B[1:] * (2 * _n[1:] - 2)
+SERIES_COEFFICIENTS[: SERIES_TERMS - 2, 2] = _B[2:] * (2 * _n[2:] - 2) * (2 * _n[2:] - 4)
 
 #: Levi-Civita symbol: (a x b)_k = eps_ijk a_i b_j.
 _EPS = np.zeros((3, 3, 3))
@@ -111,7 +111,7 @@ class LogExpansion:
         powers[..., 0] = 1.0
         powers[..., 1:] = t2[..., None]
         np.cumprod(powers, axis=-1, out=powers)
-        self._series = np.moveaxis(powers @ _SERIES, -1, 0)  # beta, gamma, gamma2
+        self._series = np.moveaxis(powers @ SERIES_COEFFICIENTS, -1, 0)  # beta, gamma, gamma2
         beta, gamma = self._series[0], self._series[1]
         T = skew(theta)
         self._T2 = T2 = T @ T

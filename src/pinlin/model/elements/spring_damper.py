@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from dataclasses import KW_ONLY, dataclass
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
 from ...errors import ConfigurationError, ParameterError
-from ...results import readonly
+from ...numerics.arrays import readonly
 from .base import Element, ElementGroup, check_vector3
 from .frame_pairs import (
     FramePairElement,
@@ -17,10 +17,6 @@ from .frame_pairs import (
     cross_motion,
     support_mask,
 )
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
-    from ..robot import Robot
 
 __all__ = ["LinearSpringDamper", "SpringDamperGroup", "COINCIDENT_RTOL"]
 
@@ -115,7 +111,7 @@ class LinearSpringDamper(FramePairElement):
             object.__setattr__(self, name, _number(getattr(self, name), f"{label}.{name}"))
 
     @classmethod
-    def group(cls, elements: tuple[Element, ...], robot: Robot) -> ElementGroup:
+    def group(cls, elements: tuple[Element, ...], robot) -> ElementGroup:
         return SpringDamperGroup(elements, robot)
 
 
@@ -129,7 +125,7 @@ class _Line:
     prepared index arrays; no sum over springs is a loop.
     """
 
-    def __init__(self, group: SpringDamperGroup, ev: Evaluation, velocity: bool):
+    def __init__(self, group: SpringDamperGroup, ev, velocity: bool):
         self.p_f = ev.frame_positions(group.frame_ids).T  # (3, U)
         p_a = self.p_f[:, group.ia]
         p_b = np.where(group.world_b, group.world_points, self.p_f[:, group.ib_frame])
@@ -197,7 +193,7 @@ class SpringDamperGroup(ElementGroup):
     products whatever the number of springs (:meth:`_dead_force_stiffness`).
     """
 
-    def __init__(self, elements: tuple[LinearSpringDamper, ...], robot: Robot):
+    def __init__(self, elements: tuple[LinearSpringDamper, ...], robot):
         super().__init__(elements)
         model = robot.model
         self.symmetric_stiffness = False
@@ -231,7 +227,7 @@ class SpringDamperGroup(ElementGroup):
         # dof pairs (k, l) where joint(k) strictly supports joint(l): the dead-force term's second mask
         self.T_below = readonly(self.T.T * (1.0 - self.T))
 
-    def _line(self, ev: Evaluation) -> _Line:
+    def _line(self, ev) -> _Line:
         """The geometry at ``ev``, computed once for the force, stiffness and damping of one evaluation
         (kept on the evaluation, which one caller owns: the group is shared with the scene)."""
         return ev.memo(self, lambda: _Line(self, ev, velocity=self.damped and not ev.at_rest))
@@ -247,23 +243,23 @@ class SpringDamperGroup(ElementGroup):
         nv = Y.shape[2]
         return line.Jrel.reshape(-1, nv).T @ Y.reshape(-1, nv)
 
-    def add_force(self, ev: Evaluation, Q: np.ndarray) -> None:
+    def add_force(self, ev, Q: np.ndarray) -> None:
         line = self._line(ev)
         Q += np.einsum("ik,ik->k", line.J0, line.wrench_columns(self))
 
-    def add_damping(self, ev: Evaluation, C: np.ndarray) -> None:
+    def add_damping(self, ev, C: np.ndarray) -> None:
         if not self.damped:
             return
         g = self._line(ev).g
         C += g.T @ (self.c[:, None] * g)
 
-    def add_elastic_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:
         line = self._line(ev)
         K += line.g.T @ (self.k[:, None] * line.g)
         if line.any_zero:  # zero-length spring (l0 = 0): its energy k |d|^2 / 2 is isotropic
             K += self._quadratic(line, np.where(line.zero, self.k, 0.0)[:, None, None] * line.Jrel)
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         line = self._line(ev)
         # J_rel^T [k u u^T + (T / l)(I - u u^T)] J_rel; a zero-length spring: k I
         tl = np.where(line.zero, self.k, line.T / line.safe_l) if line.any_zero else line.T / line.l
@@ -302,7 +298,7 @@ class SpringDamperGroup(ElementGroup):
         at_l = cross(f, v) + s2 * w - np.einsum("ijn,jn->in", S3, w)
         return self.T * (at_k.T @ w) + self.T_below * (w.T @ at_l)
 
-    def _velocity_derivative(self, ev: Evaluation, line: _Line) -> np.ndarray:
+    def _velocity_derivative(self, ev, line: _Line) -> np.ndarray:
         """d(pdot)/dq at fixed v of each frame's origin (U, 3, nv)."""
         J0 = line.J0
         weights = self.m_f * ev.v  # (U, nv)

@@ -3,14 +3,11 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
 from .base import WrenchElement, check_vector3
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ...linearization.workspace import Evaluation
 
 __all__ = ["FollowerWrench", "DeadWrench"]
 
@@ -52,7 +49,7 @@ class FollowerWrench(WrenchElement):
         object.__setattr__(self, "force", check_vector3(self.force, f"FollowerWrench({self.frame!r}).force"))
         object.__setattr__(self, "torque", check_vector3(self.torque, f"FollowerWrench({self.frame!r}).torque"))
 
-    def local_wrench(self, ev: Evaluation) -> np.ndarray:
+    def local_wrench(self, ev) -> np.ndarray:
         return np.concatenate([self.force, self.torque])
 
 
@@ -92,11 +89,11 @@ class DeadWrench(WrenchElement):
         object.__setattr__(self, "force", check_vector3(self.force, f"DeadWrench({self.frame!r}).force"))
         object.__setattr__(self, "torque", check_vector3(self.torque, f"DeadWrench({self.frame!r}).torque"))
 
-    def local_wrench(self, ev: Evaluation) -> np.ndarray:
+    def local_wrench(self, ev) -> np.ndarray:
         R = ev.frame_rotation(ev.robot.frame_id(self.frame))
         return np.concatenate([R.T @ self.force, R.T @ self.torque])
 
-    def add_stiffness(self, ev: Evaluation, K: np.ndarray) -> None:
+    def add_stiffness(self, ev, K: np.ndarray) -> None:
         fid = ev.robot.frame_id(self.frame)
         J = ev.frame_jacobian(fid)
         w = self.local_wrench(ev)

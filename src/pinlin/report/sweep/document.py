@@ -10,9 +10,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ... import __version__
 from ...results import to_jsonable
 from ...spectral import Modes
+from ...version import __version__
 from ..document import scene_section
 from .run import SweepOutcome, headline
 from .schema import SWEEP_VERSION

@@ -41,7 +41,7 @@ import numpy as np
 from ...errors import ParameterError, SceneFileError
 from ...model.elements import RayleighDamping
 from ...model.scene import Scene
-from ...model.scenefile import SceneSpec
+from ...model.scene_file import SceneSpec
 from ..units import coordinate_units
 
 __all__ = ["SweepParameter", "SweepPlan", "sweep_plan", "MAX_POINTS", "ELEMENT_KINDS", "SWEEP_FORMAT"]

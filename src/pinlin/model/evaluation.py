@@ -20,13 +20,9 @@ import functools
 import operator
 import threading
 import weakref
-from typing import TYPE_CHECKING
 
 import numpy as np
 import pinocchio as pin
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ..model.scene import Scene
 
 __all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric"]
 
@@ -82,7 +78,7 @@ class Workspace:
 
     __slots__ = ("model", "data", "lower", "__weakref__")
 
-    def __init__(self, scene: Scene):
+    def __init__(self, scene):
         self.model = scene.model
         self.data = scene.robot.create_data(scene.model, scene.memory_limit)
         #: Mask of M's strict lower triangle, for mirroring Pinocchio's upper-triangular M in one pass.
@@ -92,7 +88,7 @@ class Workspace:
 _local = threading.local()
 
 
-def workspace(scene: Scene) -> Workspace:
+def workspace(scene) -> Workspace:
     """The calling thread's workspace for ``scene``'s robot, created on its first use.
 
     One ``Data`` serves every scene of a robot in a thread: a scene's model is a
@@ -163,7 +159,7 @@ class Evaluation:
 
     def __init__(
         self,
-        scene: Scene,
+        scene,
         q: np.ndarray,
         v: np.ndarray,
         ws: Workspace | None = None,

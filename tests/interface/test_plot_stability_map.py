@@ -14,7 +14,7 @@ from boundary_cases import double_pendulum  # noqa: E402
 from numpy.testing import assert_allclose  # noqa: E402
 
 import pinlin  # noqa: E402
-from pinlin.boundaries.plot import stability_map  # noqa: E402
+from pinlin.plot.stability_map import stability_map  # noqa: E402
 
 
 @pytest.fixture(scope="module")

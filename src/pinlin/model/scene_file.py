@@ -99,7 +99,7 @@ from .elements import (
 from .loading import data_path, load_example, load_urdf
 from .robot import Robot
 from .scene import Scene
-from .scene_reader import Reader, read_placement, read_target
+from .scene_file_values import Reader, read_placement, read_target
 
 if sys.version_info >= (3, 11):
     import tomllib

@@ -1,16 +1,15 @@
 """The stability map: verdicts over a grid of two parameters and the exact boundary over them (SPEC section 12).
 
-matplotlib is an optional extra (``pip install 'pinlin[plot]'``); it is imported
-only when a map is drawn, and its absence raises
-:class:`~pinlin.errors.MissingDependencyError`.  The verdict colours are
-:data:`pinlin.plot.VERDICT_COLORS`.
+matplotlib is imported only when a map is drawn (:func:`pinlin.plot.style.pyplot`); the verdict
+colours are :data:`pinlin.plot.style.VERDICT_COLORS`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import MissingDependencyError, ParameterError
+from ..errors import ParameterError
+from .style import VERDICT_COLORS, pyplot
 
 __all__ = ["stability_map", "BOUNDARY_STYLE"]
 
@@ -18,20 +17,10 @@ __all__ = ["stability_map", "BOUNDARY_STYLE"]
 BOUNDARY_STYLE = {"color": "#1d3557", "lw": 1.5, "marker": "o", "ms": 3.5, "zorder": 4}
 
 
-def _pyplot():
-    try:
-        import matplotlib.pyplot as plt
-    except ImportError as exc:
-        raise MissingDependencyError("stability_map needs matplotlib: pip install 'pinlin[plot]'") from exc
-    return plt
-
 
 def _verdict_grid(ax, x, y, kinds):
     from matplotlib.colors import ListedColormap
     from matplotlib.patches import Patch
-
-    # the one palette of the verdicts, imported here because pinlin.plot may import this module
-    from ..plot.style import VERDICT_COLORS
 
     names = list(VERDICT_COLORS)
     k = np.asarray(kinds, dtype=object)
@@ -90,7 +79,7 @@ def stability_map(x=None, y=None, kinds=None, ax=None, *, boundary=None, p1_axis
         raise ParameterError("boundary", "nothing to draw: give a verdict grid (x, y, kinds), a boundary, or both")
     if p1_axis not in ("x", "y"):
         raise ParameterError("p1_axis", f"expected 'x' or 'y', got {p1_axis!r}")
-    plt = _pyplot()
+    plt = pyplot()
     if ax is None:
         _, ax = plt.subplots()
     handles = []

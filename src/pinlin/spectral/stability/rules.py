@@ -18,8 +18,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .multiplicity import Cluster
-from .qualitative import StructuralFacts
+from ..multiplicity import Cluster
+from ..qualitative import StructuralFacts
 from .verdict import Stability, theorem_verdict
 
 __all__ = ["Evidence", "RULES", "ISOLATION_FACTOR"]

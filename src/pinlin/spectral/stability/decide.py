@@ -27,7 +27,7 @@ axis (D = 0 and G = 0 or N = 0), a simple eigenvalue lam whose disk of radius
 3 r holds no other computed eigenvalue (with its own bound) is its own mirror
 image -conj(lam), so it lies exactly on the axis.
 
-The verdict is the first of the rules in :data:`pinlin.spectral.stability_rules.RULES`
+The verdict is the first of the rules in :data:`pinlin.spectral.stability.rules.RULES`
 that decides; each rule is one theorem of SPEC section 5 or one numerical
 decision, and says which in its docstring.  A relative data ``uncertainty``
 (default 0: the data as stored) widens every threshold and bound, so that the
@@ -43,13 +43,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..numerics.checks import check_uncertainty
-from ..numerics.definiteness import DEFAULT_UNCERTAINTY
-from .accuracy import ErrorModel
-from .multiplicity import Cluster
-from .problem import as_problem
-from .qualitative import StructuralFacts, structural_facts
-from .stability_rules import RULES, Evidence
+from ...numerics.checks import check_uncertainty
+from ...numerics.definiteness import DEFAULT_UNCERTAINTY
+from ..accuracy import ErrorModel
+from ..multiplicity import Cluster
+from ..problem import as_problem
+from ..qualitative import StructuralFacts, structural_facts
+from .rules import RULES, Evidence
 from .verdict import KINDS, MARGIN_CAP, STABILITY_SAFETY, Stability, theorem_verdict
 
 __all__ = [
@@ -118,7 +118,7 @@ class _MarginQuestion:
 
     ``lam is None``: a verdict of the theorems alone (:func:`theorem_verdict` at
     the facts decided against delta); otherwise the rules of
-    :data:`~pinlin.spectral.stability_rules.RULES` at the evidence against delta.
+    :data:`~pinlin.spectral.stability.rules.RULES` at the evidence against delta.
     """
 
     kind: str
@@ -188,7 +188,7 @@ def decide_stability(
 ) -> Stability:
     """The verdict for eigenvalues ``lam`` with their error model (see module doc), and its margin.
 
-    The rules of :data:`pinlin.spectral.stability_rules.RULES` are tried in
+    The rules of :data:`pinlin.spectral.stability.rules.RULES` are tried in
     order; the first that decides gives the verdict (the last always does).
     The bounds are ``safety * model.bound(uncertainty)``.  The margin is the
     largest data uncertainty at which the same rules still give the same kind

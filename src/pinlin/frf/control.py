@@ -1,33 +1,17 @@
-"""python-control, imported on demand, and pinlin's frequency responses as its data (issue 17).
+"""pinlin's frequency responses as python-control data (issue 17).
 
-python-control is an optional extra (``pip install 'pinlin[control]'``): nothing
-here imports it before it is asked for.
+python-control is an optional extra (``pip install 'pinlin[control]'``), imported
+only when a conversion is asked for (:func:`pinlin.extras.import_control`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..errors import MissingDependencyError, ParameterError
+from ..errors import ParameterError
+from ..extras import import_control
 
-__all__ = ["import_control", "frequency_response_data"]
-
-
-def import_control():
-    """The ``control`` module.
-
-    Raises
-    ------
-    MissingDependencyError
-        python-control is not installed.
-    """
-    try:
-        import control
-    except ImportError as exc:
-        raise MissingDependencyError(
-            "this needs python-control (>= 0.10): pip install 'pinlin[control]'"
-        ) from exc
-    return control
+__all__ = ["frequency_response_data"]
 
 
 def frequency_response_data(resp, name: str | None = None):
@@ -38,7 +22,7 @@ def frequency_response_data(resp, name: str | None = None):
     and the outputs by the coordinate names, as in :func:`pinlin.state_space`,
     so the data and the state-space model of the same system share signal names.
 
-    Meant to be attached as ``FrequencyResponse.to_control``.
+    ``FrequencyResponse.to_control`` is this function as a method.
 
     Parameters
     ----------

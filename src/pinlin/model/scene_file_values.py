@@ -1,4 +1,4 @@
-"""Reading the values of a scene file: typed look-ups that name the key at fault (:mod:`.scenefile`).
+"""Reading the values of a scene file: typed look-ups that name the key at fault (:mod:`.scene_file`).
 
 Every failure is a :class:`~pinlin.SceneFileError` with the file and the dotted key
 (``spring[2].stiffness``); numbers are read strictly (TOML strings and booleans are

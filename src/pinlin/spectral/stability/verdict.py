@@ -3,16 +3,16 @@
 :class:`Stability` is the verdict; :func:`theorem_verdict` applies the theorems
 of SPEC section 5 that need only the structural facts (definiteness of D and S,
 N = 0, determinant signs).  The rules that also look at the computed
-eigenvalues are in :mod:`pinlin.spectral.stability_rules`.
+eigenvalues are in :mod:`pinlin.spectral.stability.rules`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from ..numerics.floating import EPS
-from ..results import Result
-from .qualitative import StructuralFacts
+from ...numerics.floating import EPS
+from ...results import Result
+from ..qualitative import StructuralFacts
 
 __all__ = ["Stability", "KINDS", "STABILITY_SAFETY", "MARGIN_CAP", "theorem_verdict", "mass_verdict"]
 

@@ -1,0 +1,84 @@
+"""The numerical time-invariance check of one linearization (where no proof of
+:mod:`.time_invariance` applies).
+
+The equations are assembled again with each unproved prescribed joint moved by
+:data:`PERIODIC_TEST_ANGLES` and compared against one system-wide scale, so an exactly
+zero matrix (an undamped system's C) does not turn rounding into a huge relative
+change.  A change beyond the tolerance means the equations are time-periodic.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+
+from ..errors import TimePeriodicError
+from ..model.scene import Scene
+from ..numerics.norms import fro
+from .assembly import Assembly, assemble
+
+__all__ = ["numeric_change", "PERIODIC_TEST_ANGLES"]
+
+#: Offsets [rad or m] of a prescribed joint at which the equations are evaluated again
+#: (when no proof applies) to check that they do not depend on its position; two offsets
+#: not commensurate with a turn, so that no periodic dependence hides at both.
+PERIODIC_TEST_ANGLES = (1.0, 2.5)
+
+
+def _scales(base: Assembly, free: np.ndarray, omega: float) -> dict[str, float]:
+    """System-wide scales of M, C, K and the residual: L(w) at one frequency w of the whole system.
+
+    .. math::  w^2 = \\|K\\| / \\|M\\| + (\\|C\\| / \\|M\\|)^2 + \\Omega^2
+
+    so that C is measured against ``||C|| + w ||M||`` and K against ``||K|| + w^2 ||M||``
+    (an undamped system's exactly zero C against the inertia forces, not against zero).
+    """
+    ix = np.ix_(free, free)
+    nM, nC, nK = fro(base.M[ix]), fro(base.C[ix]), fro(base.K[ix])
+    w2 = nK / nM + (nC / nM) ** 2 + omega**2
+    return {"M": nM, "C": nC + math.sqrt(w2) * nM, "K": nK + w2 * nM, "r": base.force_scale + w2 * nM}
+
+
+def numeric_change(
+    scene: Scene, q: np.ndarray, base: Assembly, joints, tol: float
+) -> tuple[float, list[str]]:
+    """Largest relative change of M, C, K and the residual when a prescribed joint moves.
+
+    Each joint of ``joints`` is moved by :data:`PERIODIC_TEST_ANGLES` and the scene
+    assembled again; the changes are measured against the system-wide scales of
+    :func:`_scales`.  Returns the change and the Pinocchio calls made.
+
+    Raises
+    ------
+    TimePeriodicError
+        A change exceeds ``tol``.
+    """
+    free = scene.free_dofs
+    ix = np.ix_(free, free)
+    omega = max(abs(w) for w in scene.prescribed.values())
+    scale = _scales(base, free, omega)
+    worst = 0.0
+    calls: list[str] = []
+    for name in joints:
+        j = scene.robot.joint(name)
+        for offset in PERIODIC_TEST_ANGLES:
+            dq = np.zeros(scene.model.nv)
+            dq[j.idx_v] = offset
+            other = assemble(scene, pin.integrate(scene.model, q, dq), stiffness=True, damping=True, mass=True)
+            calls.extend(other.calls)
+            diffs = {key: fro(getattr(other, key)[ix] - getattr(base, key)[ix]) for key in ("M", "C", "K")}
+            diffs["r"] = fro(other.residual[free] - base.residual[free])
+            change = max(d / scale[key] if d else 0.0 for key, d in diffs.items())
+            worst = max(worst, change)
+            if not change <= tol:
+                raise TimePeriodicError(
+                    f"the linearized equations depend on the position of prescribed joint {name!r} "
+                    f"(relative change {change:.2e} after {offset} rad, against the system's scales): with its "
+                    f"prescribed velocity they are time-periodic, not constant-coefficient, and cannot be "
+                    f"analysed as M x'' + C x' + K x = f",
+                    joint=name,
+                    variation=change,
+                )
+    return worst, calls
