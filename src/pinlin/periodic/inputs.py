@@ -31,11 +31,12 @@ def check_period(period) -> float:
 def _as_matrix(name: str, value, shape, t) -> np.ndarray:
     where = "" if t is None else f" at t = {t:.6g} s"
     try:
-        if np.iscomplexobj(value):
-            raise ParameterError(name, f"expected a real matrix{where}, got complex entries")
-        a = np.asarray(value, dtype=float)
+        complex_entries = np.iscomplexobj(value)
+        a = None if complex_entries else np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ParameterError(name, f"expected a real matrix{where}, got {type(value).__name__}") from None
+    if complex_entries:
+        raise ParameterError(name, f"expected a real matrix{where}, got complex entries")
     if shape is not None and a.shape != shape:
         raise ParameterError(name, f"expected shape {shape}{where}, got {a.shape}")
     if a.ndim != 2 or a.shape[0] != a.shape[1]:
