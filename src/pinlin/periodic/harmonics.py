@@ -23,24 +23,25 @@ from .cyclic import CyclicEigen
 __all__ = ["harmonic_content"]
 
 
-def _periodic_part_coefficients(tr, eig, k, period, harmonics, rows):
-    """(Fourier coefficients (2J+1, len(rows)), mean energy) of p_k."""
-    lam_T = np.log(complex(eig.multipliers[k])) / period
-    log_root = np.log(complex(eig.roots[k]))
+def _periodic_part_coefficients(tr, eig, period, harmonics, rows):
+    """(Fourier coefficients (modes, 2J+1, len(rows)), mean energies (modes,)) of every p_k at once."""
+    lam_T = np.log(eig.multipliers.astype(complex)) / period          # (modes,)
+    log_root = np.log(eig.roots.astype(complex))
     js = np.arange(-harmonics, harmonics + 1)
-    coeff = np.zeros((js.size, len(rows)), dtype=complex)
-    energy = 0.0
+    modes = lam_T.size
+    coeff = np.zeros((modes, js.size, len(rows)), dtype=complex)
+    energy = np.zeros(modes)
     for j, (begin, end) in enumerate(tr.segments):
         t_seg = tr.steps[begin].t0
-        # x_j = lambda^j z_j is the mode at t_j; p(t_j) = exp(-Lambda t_j) x_j
-        u = eig.right[k, j] * np.exp(j * log_root - lam_T * t_seg)
+        # x_j = lambda^j z_j is the mode at t_j; p(t_j) = exp(-Lambda t_j) x_j; columns are modes
+        U = eig.right[:, j, :].T * np.exp(j * log_root - lam_T * t_seg)[None, :]
         for step in tr.steps[begin:end]:
-            values = np.einsum("ipq,q->ip", step.stage, u) * np.exp(-lam_T * (step.nodes - step.t0))[:, None]
-            values = values[:, rows]
-            phase = np.exp(-1j * np.outer(js, step.nodes) * 2 * np.pi / period)
-            coeff += phase @ (values * step.weights[:, None])
-            energy += float(np.sum(step.weights * np.sum(np.abs(values) ** 2, axis=1)))
-            u = (step.P @ u) * np.exp(-lam_T * step.h)
+            decay = np.exp(-np.outer(step.nodes - step.t0, lam_T))      # (nodes, modes)
+            values = (step.stage @ U)[:, rows, :] * decay[:, None, :]   # (nodes, rows, modes)
+            phase = np.exp(-1j * np.outer(js, step.nodes) * 2 * np.pi / period) * step.weights[None, :]
+            coeff += np.einsum("jn,nrk->kjr", phase, values)
+            energy += np.einsum("n,nrk->k", step.weights, np.abs(values) ** 2)
+            U = (step.P @ U) * np.exp(-lam_T * step.h)[None, :]
     return coeff / period, energy / period
 
 
@@ -67,14 +68,10 @@ def harmonic_content(tr: Transitions, eig: CyclicEigen, period: float, *, harmon
     dominant : ndarray of int (m,)
         j*_k.
     """
-    m = eig.multipliers.size
     rows = np.arange(eig.right.shape[2]) if rows is None else np.asarray(rows)
-    content = np.zeros((m, 2 * harmonics + 1))
-    dominant = np.zeros(m, dtype=int)
-    for k in range(m):
-        coeff, energy = _periodic_part_coefficients(tr, eig, k, period, harmonics, rows)
-        e = np.sum(np.abs(coeff) ** 2, axis=1)
-        content[k] = e / energy if energy > 0 else e
-        dominant[k] = int(np.argmax(e)) - harmonics
+    coeff, energy = _periodic_part_coefficients(tr, eig, period, harmonics, rows)
+    e = np.sum(np.abs(coeff) ** 2, axis=2)                          # (modes, 2J+1)
+    content = e / np.where(energy > 0, energy, 1.0)[:, None]
+    dominant = np.argmax(e, axis=1) - harmonics
     principal = np.angle(eig.multipliers) / period
     return principal + dominant * 2 * np.pi / period, content, dominant

@@ -67,18 +67,25 @@ def coefficient(name: str, value, shape: tuple | None = None) -> tuple[Callable[
     if not callable(value):
         if value is None or isinstance(value, (str, bytes)):
             raise ParameterError(name, f"expected a callable t -> matrix or a constant matrix, got {value!r}")
-        a = _as_matrix(name, value, shape, None)
+        a = np.array(_as_matrix(name, value, shape, None), copy=True)
         a.flags.writeable = False
         return (lambda t: a), a.shape
 
-    def checked(t: float, _shape=[shape]) -> np.ndarray:
+    cache: dict = {}
+    expected = [shape]
+
+    def checked(t: float) -> np.ndarray:
+        if t == 0.0 and cache:       # the value at 0 that validated the callable (a function of t)
+            return cache[0.0]
         try:
             raw = value(t)
         except Exception as exc:  # the user's callable: report which argument and when
             raise ParameterError(name, f"raised {type(exc).__name__} at t = {t:.6g} s: {exc}") from exc
-        a = _as_matrix(name, raw, _shape[0], t)
-        _shape[0] = a.shape
+        a = _as_matrix(name, raw, expected[0], t)
+        expected[0] = a.shape
         return a
 
-    first = checked(0.0)
+    first = np.array(checked(0.0), copy=True)
+    first.flags.writeable = False
+    cache[0.0] = first
     return checked, first.shape
