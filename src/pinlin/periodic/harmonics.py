@@ -10,7 +10,10 @@ with j* the harmonic of largest energy ||c_j||^2 (over the chosen components, po
 content is ||c_j||^2 / ((1/T) int ||p_k||^2 dt), so a content summing well below 1 says that harmonics beyond
 the reported range carry energy.  The integrals are the steps' own Gauss quadratures at their nodes (the
 stage values there are accurate to order s); p_k is propagated inside each segment only, from the periodic
-eigenvector at the segment's start, so a decaying mode is not swamped by the growing ones.
+eigenvector at the segment's start, so a decaying mode is not swamped by the growing ones.  Harmonics near
+the node resolution (about the number of nodes per period / 2) are aliased by the quadrature: their content
+is noise of the order of the step's interpolation error (measured 1e-6 of the energy for J = 16 on a 5-step
+Mathieu period), so the content may sum slightly above 1.
 """
 
 from __future__ import annotations
