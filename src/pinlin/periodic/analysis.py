@@ -15,7 +15,7 @@ import numpy as np
 
 from ..errors import ParameterError, SingularMassError
 from ..results import readonly
-from .bounds import multiplier_bounds
+from .bounds import multiplier_bounds, relative_condition
 from .collocation import integrate_transitions
 from .cyclic import cyclic_eigen
 from .floquet_verdict import floquet_verdict
@@ -119,7 +119,7 @@ def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, sa
     form = form_after()
     trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
     stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
-                                safety=safety, trivial_note=note)
+                                condition=relative_condition(tr, eig), safety=safety, trivial_note=note)
     monodromy = np.eye(m)
     for factor in tr.factors:
         monodromy = factor @ monodromy

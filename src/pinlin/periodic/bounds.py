@@ -32,7 +32,7 @@ import numpy as np
 from .collocation import Transitions
 from .cyclic import CyclicEigen
 
-__all__ = ["multiplier_bounds", "ESTIMATE_SLACK"]
+__all__ = ["multiplier_bounds", "relative_condition", "ESTIMATE_SLACK"]
 
 #: theta: share of a step's estimated error norm allowed in any direction, beyond its projection.
 ESTIMATE_SLACK = 1e-2
@@ -87,3 +87,18 @@ def multiplier_bounds(tr: Transitions, eig: CyclicEigen) -> tuple[np.ndarray, np
     eta = np.maximum(eig.backward_error, _EPS)
     eigensolver = scale * eta * eig.cyclic_norm
     return integration + eigensolver, integration, eigensolver
+
+
+def relative_condition(tr: Transitions, eig: CyclicEigen) -> np.ndarray:
+    """kappa_k: to first order |delta mu_k| / |mu_k| <= kappa_k delta for perturbations of every segment
+    transition of relative size delta (||E_j|| <= delta ||Phi_j||),
+
+    .. math::  \\kappa_k = K \\sum_j \\|w_j\\| \\|\\Phi_j\\| \\|z_{j-1}\\| / (|\\lambda| |w^H z|).
+    """
+    K = len(tr.factors)
+    overlap = np.maximum(np.abs(np.einsum("kjp,kjp->k", eig.left.conj(), eig.right)), np.finfo(float).tiny)
+    total = np.zeros(eig.multipliers.size)
+    for j, factor in enumerate(tr.factors):
+        total += (np.linalg.norm(eig.left[:, (j + 1) % K, :], axis=1) * np.linalg.norm(factor, 2)
+                  * np.linalg.norm(eig.right[:, j, :], axis=1))
+    return K * total / (np.abs(eig.roots) * overlap)
