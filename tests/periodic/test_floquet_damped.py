@@ -80,3 +80,13 @@ def test_first_order_entry_point_gives_the_same_multipliers(result):
     res = floquet_from_first_order(lambda t: A0 + A1 * np.cos(t) + A2 * np.sin(t), 2 * np.pi)
     assert_allclose(res.multipliers, result.multipliers, rtol=1e-11)
     assert res.evaluations == result.evaluations
+
+
+def test_general_first_order_path_agrees_with_the_second_order_elimination(result):
+    """A similarity y = S w hides the [[0, I], [X, Y]] form, so the full (2 s n)-square stage solve is used;
+    the multipliers are invariant."""
+    A0, A1, A2 = second_order_parts(C_PARTS, K_PARTS)
+    S = np.eye(4) + 0.3 * np.random.default_rng(11).standard_normal((4, 4))
+    Si = np.linalg.inv(S)
+    res = floquet_from_first_order(lambda t: Si @ (A0 + A1 * np.cos(t) + A2 * np.sin(t)) @ S, 2 * np.pi)
+    assert_allclose(res.multipliers, result.multipliers, rtol=1e-10)

@@ -30,6 +30,7 @@ __all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "STRUCTURE_T
 STRUCTURE_TOLERANCE = 100.0
 
 _EPS = float(np.finfo(float).eps)
+_TINY = float(np.finfo(float).tiny)
 
 
 def _check_options(rtol, stages, growth, harmonics, safety):
@@ -138,20 +139,16 @@ def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, sa
         float(rel.max()), time.perf_counter() - start, method)
 
 
-def _structure(M, C, K) -> float:
-    """Largest relative defect of the conservative structure at one time: asym(M), sym(C), asym(K) (max-norms)."""
-    size = lambda X: max(float(np.max(np.abs(X))), np.finfo(float).tiny)  # noqa: E731
-    big = size(M) + size(C) + size(K)
-    return max(size(M - M.T) / size(M), size(C + C.T) / big, size(K - K.T) / size(K))
-
-
 class _SecondOrder:
-    """A(t) = [[0, I], [-M^-1 K, -M^-1 C]] from checked M, C, K, recording the conservative-structure defects."""
+    """A(t) = [[0, I], [-M^-1 K, -M^-1 C]] from checked M, C, K, recording the largest conservative-structure
+    defect seen: asym(M), sym(C), asym(K) and the change of M and C since t = 0, each relative (max-norms)."""
 
     def __init__(self, fM, fC, fK, n):
         self.fM, self.fC, self.fK, self.n = fM, fC, fK, n
         self.M0, self.C0 = fM(0.0), fC(0.0)
         self.defect = 0.0
+        self.template = np.zeros((2 * n, 2 * n))
+        self.template[:n, n:] = np.eye(n)
 
     def __call__(self, t: float) -> np.ndarray:
         M, C, K = self.fM(t), self.fC(t), self.fK(t)
@@ -160,11 +157,12 @@ class _SecondOrder:
             X = np.linalg.solve(M, np.hstack([K, C]))
         except np.linalg.LinAlgError:
             raise SingularMassError(f"M is singular at t = {t:.6g} s", ()) from None
-        scale = float(np.max(np.abs(M)) + np.max(np.abs(C)) + np.max(np.abs(K)))
-        drift = max(float(np.max(np.abs(M - self.M0))), float(np.max(np.abs(C - self.C0)))) / scale
-        self.defect = max(self.defect, _structure(M, C, K), drift)
-        A = np.zeros((2 * n, 2 * n))
-        A[:n, n:] = np.eye(n)
+        sizes = np.abs(np.stack([M, C, K])).max(axis=(1, 2))
+        defects = np.abs(np.stack([M - M.T, C + C.T, K - K.T, M - self.M0, C - self.C0])).max(axis=(1, 2))
+        big = sizes.sum() + _TINY
+        scales = np.array([sizes[0] + _TINY, big, sizes[2] + _TINY, big, big])
+        self.defect = max(self.defect, float(np.max(defects / scales)))
+        A = self.template.copy()
         A[n:, :n], A[n:, n:] = -X[:, :n], -X[:, n:]
         return A
 
