@@ -111,7 +111,9 @@ def cyclic_eigen(factors: list) -> CyclicEigen:
     W = W / np.linalg.norm(W, axis=0)
     cnorm = max(float(np.linalg.norm(f, 2)) for f in factors)
     residual = np.linalg.norm(C @ Z - Z * lam, axis=0) / cnorm
-    order = np.lexsort((np.angle(lam) * K, -np.abs(lam)))   # largest modulus first
+    # largest modulus first; moduli equal to 1e-8 (relative) tie, and ties go by argument (conjugates adjacent)
+    log_modulus = np.round(K * np.log(np.abs(lam)), 8)
+    order = np.lexsort((np.angle(lam) * K, -log_modulus))
     lam, W, Z, residual = lam[order], W[:, order], Z[:, order], residual[order]
     mu = np.exp(K * np.log(lam.astype(complex)))
     right = Z.T.reshape(m, K, m)
