@@ -112,10 +112,9 @@ def cyclic_eigen(factors: list) -> CyclicEigen:
     cnorm = max(float(np.linalg.norm(f, 2)) for f in factors)
     residual = np.linalg.norm(C @ Z - Z * lam, axis=0) / cnorm
     # largest modulus first; moduli equal to 1e-8 (relative) tie, and ties go by argument (conjugates adjacent)
-    log_modulus = np.round(K * np.log(np.abs(lam)), 8)
-    order = np.lexsort((np.angle(lam) * K, -log_modulus))
-    lam, W, Z, residual = lam[order], W[:, order], Z[:, order], residual[order]
     mu = np.exp(K * np.log(lam.astype(complex)))
+    order = np.lexsort((np.angle(mu), -np.round(np.log(np.abs(mu)), 8)))
+    lam, W, Z, residual, mu = lam[order], W[:, order], Z[:, order], residual[order], mu[order]
     right = Z.T.reshape(m, K, m)
     left = W.T.reshape(m, K, m)
     return CyclicEigen(mu, lam, right, left, residual, cnorm)
