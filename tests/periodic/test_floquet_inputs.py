@@ -47,7 +47,8 @@ def test_singular_mass():
 
 
 @pytest.mark.parametrize("option, value", [("rtol", 0.0), ("rtol", 0.1), ("stages", 1), ("stages", 2.5),
-                                           ("growth", 1.0), ("harmonics", -1), ("safety", np.nan)])
+                                           ("growth", 1.0), ("harmonics", -1), ("safety", np.nan),
+                                           ("conservative", "yes")])
 def test_bad_options(option, value):
     with pytest.raises(ParameterError, match=option):
         floquet_analysis_matrices(I1, None, K1, 1.0, **{option: value})

@@ -23,11 +23,15 @@ from .harmonics import harmonic_content
 from .inputs import check_period, coefficient
 from .result import FloquetAnalysis
 
-__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "STRUCTURE_TOLERANCE"]
+__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "STRUCTURE_TOLERANCE", "SYMPLECTIC_TOLERANCE"]
 
 #: Relative size [units of eps] below which an asymmetric part of K, a symmetric part of C or a change of
 #: M or C over time counts as rounding in the conservative-structure test.
 STRUCTURE_TOLERANCE = 100.0
+
+#: Relative defect ||Phi^T Omega Phi - Omega|| / (||Phi||^2 ||Omega||) allowed for ``conservative=True``
+#: (the integration's own error is about rtol per step; a damping of 1e-8 relative already exceeds it).
+SYMPLECTIC_TOLERANCE = 1e-9
 
 _EPS = float(np.finfo(float).eps)
 _TINY = float(np.finfo(float).tiny)
@@ -107,23 +111,24 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         if form.shape != (m, m) or not np.all(np.isfinite(form)):
             raise ParameterError("symplectic_form", f"expected a finite ({m}, {m}) array, got shape {form.shape}")
     options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
-    return _analyse(func, T, m, lambda: form, options, harmonics=int(harmonics), rows=rows,
+    return _analyse(func, T, m, lambda monodromy: form, options, harmonics=int(harmonics), rows=rows,
                     autonomous=autonomous, safety=safety, start=start, what="first-order A(t)")
 
 
 def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, safety, start, what):
-    """The pipeline on a checked A(t); ``form_after()`` gives Omega (or None) once the integration sampled A."""
+    """The pipeline on a checked A(t); ``form_after(monodromy)`` gives Omega (or None) once the integration
+    sampled A."""
     tr = integrate_transitions(func, T, m, **options)
     eig = cyclic_eigen(tr.factors)
     bound, b_int, b_eig = multiplier_bounds(tr, eig)
     freq, content, dominant = harmonic_content(tr, eig, T, harmonics=harmonics, rows=rows)
-    form = form_after()
-    trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
-    stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
-                                condition=relative_condition(tr, eig), safety=safety, trivial_note=note)
     monodromy = np.eye(m)
     for factor in tr.factors:
         monodromy = factor @ monodromy
+    form = form_after(monodromy)
+    trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
+    stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
+                                condition=relative_condition(tr, eig), safety=safety, trivial_note=note)
     step_errors = np.array([s.error for s in tr.steps])
     rel = step_errors / np.array([np.linalg.norm(s.P, 2) for s in tr.steps])
     times = np.array([s.t0 for s in tr.steps] + [T])
@@ -137,6 +142,16 @@ def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, sa
         readonly(dominant), readonly(trivial), form is not None, stability, readonly(monodromy), T,
         len(tr.factors), len(tr.steps), tr.evaluations, readonly(times), readonly(step_errors),
         float(rel.max()), time.perf_counter() - start, method)
+
+
+def _check_symplectic(monodromy: np.ndarray, form: np.ndarray) -> None:
+    """ParameterError unless ||Phi^T Omega Phi - Omega|| <= SYMPLECTIC_TOLERANCE ||Phi||^2 ||Omega||."""
+    defect = np.linalg.norm(monodromy.T @ form @ monodromy - form, 2)
+    scale = np.linalg.norm(monodromy, 2) ** 2 * np.linalg.norm(form, 2)
+    if not defect <= SYMPLECTIC_TOLERANCE * scale:
+        raise ParameterError("conservative", f"the monodromy is not symplectic for Omega = [[G, M], [-M, 0]] at "
+                                             f"t = 0 (relative defect {defect / scale:.2e} > {SYMPLECTIC_TOLERANCE:g}):"
+                                             f" the system is not conservative")
 
 
 class _SecondOrder:
@@ -168,9 +183,9 @@ class _SecondOrder:
 
 
 def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
-                              harmonics: int = 16, autonomous: bool = False, safety: float = 10.0,
-                              structure_tolerance: float = STRUCTURE_TOLERANCE, max_steps: int = 20000,
-                              max_time: float = 600.0) -> FloquetAnalysis:
+                              harmonics: int = 16, autonomous: bool = False, conservative: bool | None = None,
+                              safety: float = 10.0, structure_tolerance: float = STRUCTURE_TOLERANCE,
+                              max_steps: int = 20000, max_time: float = 600.0) -> FloquetAnalysis:
     """Floquet analysis of M(t) x'' + C(t) x' + K(t) x = 0 with T-periodic M, C, K.
 
     In first-order form y = (x, x'), A = [[0, I], [-M^-1 K, -M^-1 C]] (solves with M, no inverse).  The
@@ -178,7 +193,9 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
     C = G is skew and constant and K symmetric, each within ``structure_tolerance`` eps (relative): then
     Phi(T) is symplectic for Omega = [[G, M], [-M, 0]] (y1^T Omega y2 = x1^T M v2 - v1^T M x2 + x1^T G x2,
     the canonical form with p = M v + G x / 2) and the verdict uses it.  A time-varying M or G with the
-    matching D = M', N = G' / 2 (a Lagrangian variational equation) is conservative too but is not detected.
+    matching D = M', N = G' / 2 (the variational equation of a Lagrangian system: C = M' + F^T - F,
+    K = S + F'^T) is conservative too, with the same Omega at t = 0, but is not detected: pass
+    ``conservative=True`` (checked: Phi^T Omega Phi = Omega to :data:`SYMPLECTIC_TOLERANCE`).
     Harmonic content counts the position components.  Other parameters as :func:`floquet_from_first_order`.
 
     Parameters
@@ -188,11 +205,15 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
         the rotational units), or constant arrays; C and K may be None (zero).
     period : float
         T [s].
+    conservative : bool or None
+        None: detect the constant-M structure above; True: the caller asserts a Lagrangian (conservative)
+        system; False: never use structure in the verdict.
 
     Raises
     ------
     ParameterError
-        Bad callables, shapes, values, period or options (the argument is named).
+        Bad callables, shapes, values, period or options (the argument is named); ``conservative=True`` with a
+        monodromy that is not symplectic for Omega.
     SingularMassError
         M(t) singular at a sampled time.
     IntegrationBudgetError, IntegrationError
@@ -206,9 +227,20 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
     zero = np.zeros((n, n))
     fC, _ = coefficient("C", zero if C is None else C, shape)
     fK, _ = coefficient("K", zero if K is None else K, shape)
+    if conservative not in (None, True, False):
+        raise ParameterError("conservative", f"expected None, True or False, got {conservative!r}")
     A = _SecondOrder(fM, fC, fK, n)
-    form = np.block([[A.C0, A.M0], [-A.M0, zero]])
+    form = np.block([[(A.C0 - A.C0.T) / 2, A.M0], [-A.M0, zero]])
+
+    def form_after(monodromy):
+        if conservative is None:
+            return form if A.defect <= structure_tolerance * _EPS else None
+        if conservative:
+            _check_symplectic(monodromy, form)
+            return form
+        return None
+
     options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
-    return _analyse(A, T, 2 * n, lambda: form if A.defect <= structure_tolerance * _EPS else None, options,
+    return _analyse(A, T, 2 * n, form_after, options,
                     harmonics=int(harmonics), rows=np.arange(n), autonomous=autonomous, safety=safety,
                     start=start, what="M, C, K")
