@@ -59,6 +59,9 @@ def test_first_order_argument_checks():
         floquet_from_first_order(np.ones((2, 3)), 1.0)
     with pytest.raises(ParameterError, match="symplectic_form"):
         floquet_from_first_order(np.eye(2), 1.0, symplectic_form=np.eye(3))
+    for rows in ([2], [0.5], [], [[0]]):
+        with pytest.raises(ParameterError, match="rows"):
+            floquet_from_first_order(np.eye(2), 1.0, rows=rows)
 
 
 def test_step_budget():
@@ -67,3 +70,9 @@ def test_step_budget():
     err = info.value
     assert isinstance(err, PinlinError) and isinstance(err, RuntimeError)
     assert err.budget == "max_steps" and err.steps == 5 and 0 <= err.t_reached < err.t_end == 2 * np.pi
+
+
+def test_time_budget():
+    with pytest.raises(IntegrationBudgetError, match="max_time reached") as info:
+        floquet_analysis_matrices(I1, None, lambda t: np.array([[4.0 + np.cos(t)]]), 2 * np.pi, max_time=0.0)
+    assert info.value.budget == "max_time" and info.value.t_reached == 0.0

@@ -110,6 +110,10 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         form = np.asarray(symplectic_form, dtype=float)
         if form.shape != (m, m) or not np.all(np.isfinite(form)):
             raise ParameterError("symplectic_form", f"expected a finite ({m}, {m}) array, got shape {form.shape}")
+    if rows is not None:
+        rows = np.asarray(rows)
+        if rows.ndim != 1 or rows.size == 0 or rows.dtype.kind not in "iu" or rows.min() < 0 or rows.max() >= m:
+            raise ParameterError("rows", f"expected a non-empty 1-d array of indices in 0..{m - 1}, got {rows!r}")
     options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
     return _analyse(func, T, m, lambda monodromy: form, options, harmonics=int(harmonics), rows=rows,
                     autonomous=autonomous, safety=safety, start=start, what="first-order A(t)")
