@@ -1,7 +1,7 @@
 """Benchmark (run by hand, not collected): monodromy by pinlin.periodic against scipy's DOP853 on the m^2
 matrix ODE, for smooth periodic second-order systems with m = 2 n = 12 and 40.
 
-    PYTHONPATH=src python tests/periodic/bench_floquet.py [dop853_rtol]
+    OPENBLAS_NUM_THREADS=1 PYTHONPATH=src python tests/periodic/bench_floquet.py [dop853_rtol [cost_per_evaluation_s]]
 
 Accuracy: the relative 2-norm error of Phi(T) against pinlin at s = 8, rtol = 1e-15 (checked against DOP853
 at rtol = 1e-13 for m = 12), and the largest relative multiplier error.
@@ -57,14 +57,24 @@ def dop853(A, m, T, rtol):
 
 
 REPEATS = 3
-DOP_RTOL = float(sys.argv[1]) if len(sys.argv) > 1 else 1e-12
 
 
-def main(sizes=(6, 20)):
+def _costly(f, cost: float):
+    """f with ``cost`` [s] of busy waiting added per call (a Pinocchio evaluation of that price)."""
+    def g(t):
+        end = time.perf_counter() + cost
+        while time.perf_counter() < end:
+            pass
+        return f(t)
+    return g if cost > 0 else f
+
+
+def main(sizes=(6, 20), dop_rtol: float = 1e-12, cost: float = 0.0):
     T = 2 * np.pi
     for n in sizes:
         m = 2 * n
         M, C, K = system(n)
+        M = _costly(M, cost)
         ref = floquet_analysis_matrices(M, C, K, T, stages=8, rtol=1e-15)
         t_pin, t_dop = np.inf, np.inf
         for _ in range(REPEATS):         # the best of a few: the host is shared
@@ -73,7 +83,7 @@ def main(sizes=(6, 20)):
             t_pin = min(t_pin, time.perf_counter() - t0)
             A, calls = first_order(M, C, K, n)
             t0 = time.perf_counter()
-            Phi = dop853(A, m, T, DOP_RTOL)
+            Phi = dop853(A, m, T, dop_rtol)
             t_dop = min(t_dop, time.perf_counter() - t0)
         norm = np.linalg.norm(ref.monodromy, 2)
         err_pin = np.linalg.norm(res.monodromy - ref.monodromy, 2) / norm
@@ -81,12 +91,13 @@ def main(sizes=(6, 20)):
         mu_dop = np.linalg.eigvals(Phi)
         rel_mu = max(np.min(np.abs(mu_dop - x)) / abs(x) for x in ref.multipliers)
         rel_pin = np.max(np.abs(res.multipliers - ref.multipliers) / np.abs(ref.multipliers))
-        print(f"m = {m}: pinlin {t_pin * 1e3:.1f} ms, {res.evaluations} evaluations, {res.steps} steps, "
+        print(f"m = {m} (evaluation cost + {cost * 1e6:.0f} us): pinlin {t_pin * 1e3:.1f} ms, {res.evaluations} evaluations, {res.steps} steps, "
               f"Phi rel err {err_pin:.1e}, multiplier rel err {rel_pin:.1e} (bound {res.error:.1e}); "
-              f"DOP853 rtol {DOP_RTOL:g} {t_dop * 1e3:.1f} ms, {calls[0]} evaluations, Phi rel err {err_dop:.1e}, "
+              f"DOP853 rtol {dop_rtol:g} {t_dop * 1e3:.1f} ms, {calls[0]} evaluations, Phi rel err {err_dop:.1e}, "
               f"multiplier rel err {rel_mu:.1e}; speed-up {t_dop / t_pin:.1f}x")
         sys.stdout.flush()
 
 
 if __name__ == "__main__":
-    main()
+    main(dop_rtol=float(sys.argv[1]) if len(sys.argv) > 1 else 1e-12,
+         cost=float(sys.argv[2]) if len(sys.argv) > 2 else 0.0)

@@ -57,7 +57,7 @@ def _integration_sums(tr: Transitions, eig: CyclicEigen) -> np.ndarray:
             lefts[i] = V
             V = steps[i].P.conj().T @ V
         for step, U, V in zip(steps, rights, lefts):
-            projected = np.abs(np.einsum("pk,pq,qk->k", V.conj(), step.estimate, U))
+            projected = np.abs(np.sum(V.conj() * (step.estimate @ U), axis=0))
             norms = np.linalg.norm(V, axis=0) * np.linalg.norm(U, axis=0)
             slack = ESTIMATE_SLACK * float(np.linalg.norm(step.estimate, 2)) + step.rounding
             sums += 2 * projected + slack * norms

@@ -247,7 +247,7 @@ def integrate_transitions(
             rounding = ROUNDING_FACTOR * _EPS * np.sqrt(stages * m) * (
                 np.linalg.norm(P1, 2) * np.linalg.norm(P2, 2) + norm)
             nodes = np.concatenate([t + st.c * h / 2, t + h / 2 + st.c * h / 2])
-            stage = np.concatenate([Z1, np.einsum("ijk,kl->ijl", Z2, P1)])
+            stage = np.concatenate([Z1, Z2 @ P1])
             steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, np.concatenate([st.b, st.b]) * h / 2))
             t += h
         else:

@@ -42,8 +42,8 @@ def _periodic_part_coefficients(tr, eig, period, harmonics, rows):
             decay = np.exp(-np.outer(step.nodes - step.t0, lam_T))      # (nodes, modes)
             values = (step.stage @ U)[:, rows, :] * decay[:, None, :]   # (nodes, rows, modes)
             phase = np.exp(-1j * np.outer(js, step.nodes) * 2 * np.pi / period) * step.weights[None, :]
-            coeff += np.einsum("jn,nrk->kjr", phase, values)
-            energy += np.einsum("n,nrk->k", step.weights, np.abs(values) ** 2)
+            coeff += np.tensordot(phase, values, axes=(1, 0)).transpose(2, 0, 1)
+            energy += np.tensordot(step.weights, np.abs(values) ** 2, axes=(0, 0)).sum(axis=0)
             U = (step.P @ U) * np.exp(-lam_T * step.h)[None, :]
     return coeff / period, energy / period
 
