@@ -35,7 +35,8 @@ from ..errors import IntegrationBudgetError, IntegrationError
 __all__ = ["gauss_legendre", "Step", "Transitions", "integrate_transitions", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
 
 #: Rounding error of one step's transition, in units of eps ||P||_2 times sqrt(s m): the stage solve and the
-#: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15, against a 40-digit expm: the true step error is 0.03-0.13 of this floor).
+#: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15,
+#: against a 40-digit expm: the true step error is 0.03-0.13 of this floor).
 ROUNDING_FACTOR = 1.0
 
 #: Largest h ||D^-1 A D||_2 of a step (D balancing A(0)) (measured on Mathieu and damped cases against mpmath: up to 2 the
