@@ -91,7 +91,8 @@ def main(sizes=(6, 20), dop_rtol: float = 1e-12, cost: float = 0.0):
         mu_dop = np.linalg.eigvals(Phi)
         rel_mu = max(np.min(np.abs(mu_dop - x)) / abs(x) for x in ref.multipliers)
         rel_pin = np.max(np.abs(res.multipliers - ref.multipliers) / np.abs(ref.multipliers))
-        print(f"m = {m} (evaluation cost + {cost * 1e6:.0f} us): pinlin {t_pin * 1e3:.1f} ms, {res.evaluations} evaluations, {res.steps} steps, "
+        print(f"m = {m} (evaluation cost + {cost * 1e6:.0f} us): pinlin {t_pin * 1e3:.1f} ms, "
+              f"{res.evaluations} evaluations, {res.steps} steps, "
               f"Phi rel err {err_pin:.1e}, multiplier rel err {rel_pin:.1e} (bound {res.error:.1e}); "
               f"DOP853 rtol {dop_rtol:g} {t_dop * 1e3:.1f} ms, {calls[0]} evaluations, Phi rel err {err_dop:.1e}, "
               f"multiplier rel err {rel_mu:.1e}; speed-up {t_dop / t_pin:.1f}x")

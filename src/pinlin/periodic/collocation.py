@@ -39,8 +39,9 @@ __all__ = ["gauss_legendre", "Step", "Transitions", "integrate_transitions", "RO
 #: against a 40-digit expm: the true step error is 0.03-0.13 of this floor).
 ROUNDING_FACTOR = 1.0
 
-#: Largest h ||D^-1 A D||_2 of a step (D balancing A(0)) (measured on Mathieu and damped cases against mpmath: up to 2 the
-#: doubled projected estimate stays above the true error; at 2.5 it fell below it by up to 20 %).
+#: Largest h ||D^-1 A D||_2 of a step (D balancing A(0)) (measured on Mathieu and damped cases against
+#: mpmath: up to 2 the doubled projected estimate stays above the true error; at 2.5 it fell below it by up
+#: to 20 %).
 MAX_STEP_NORM = 2.0
 
 _EPS = float(np.finfo(float).eps)
@@ -249,7 +250,8 @@ def integrate_transitions(
                 np.linalg.norm(P1, 2) * np.linalg.norm(P2, 2) + norm)
             nodes = np.concatenate([t + st.c * h / 2, t + h / 2 + st.c * h / 2])
             stage = np.concatenate([Z1, Z2 @ P1])
-            steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, np.concatenate([st.b, st.b]) * h / 2))
+            weights = np.concatenate([st.b, st.b]) * h / 2
+            steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, weights))
             t += h
         else:
             rejected += 1
