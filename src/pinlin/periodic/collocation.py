@@ -40,8 +40,8 @@ __all__ = ["gauss_legendre", "Step", "Transitions", "integrate_transitions", "RO
 ROUNDING_FACTOR = 1.0
 
 #: Largest h ||D^-1 A D||_2 of a step (D balancing A(0)) (measured on Mathieu and damped cases against
-#: mpmath: up to 2 the doubled projected estimate stays above the true error; at 2.5 it fell below it by up
-#: to 20 %).
+#: mpmath: up to 2 the bounds of :mod:`.bounds` stay above the true error; at 2.5, with the projected
+#: estimate doubled, they fell below it by up to 20 %).
 MAX_STEP_NORM = 2.0
 
 _EPS = float(np.finfo(float).eps)
