@@ -30,7 +30,11 @@ def test_autonomous_orbit_sets_the_jordan_pair_at_one_apart():
     assert plain.stability.kind == "undecided" and "Krein" in plain.stability.reason
     res = floquet_analysis_matrices(np.eye(2), None, K, T, autonomous=True)
     assert res.trivial.sum() == 2
-    assert np.all(np.abs(res.multipliers[res.trivial] - 1) < 1e-5)     # a Jordan block: split ~ sqrt(eps)
+    split = np.abs(res.multipliers[res.trivial] - 1)
+    assert np.all(split < 1e-5)                         # a Jordan block: split ~ sqrt(rounding)
+    # the first-order bound at the split pair is of the split's order (1 / |w^H z| ~ 1 / split): it holds
+    bound = res.error_bound[res.trivial]
+    assert np.all((split <= bound) & (bound <= 100 * split)), (split, bound)
     assert res.stability.kind == "marginally_stable"
     assert "trivial" in res.stability.reason
     other = res.multipliers[~res.trivial]
