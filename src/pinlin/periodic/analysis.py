@@ -1,0 +1,253 @@
+"""Floquet analysis of linear T-periodic equations: :func:`floquet_from_first_order` (y' = A(t) y) and
+:func:`floquet_analysis_matrices` (M(t) x'' + C(t) x' + K(t) x = 0) (SPEC section 13).
+
+The pipeline: step transitions by Gauss-Legendre collocation with step doubling (:mod:`.collocation`),
+grouped into well-conditioned segments; multipliers and periodic eigenvectors of the segment product from the
+lifted block-cyclic matrix (:mod:`.cyclic`); error bounds (:mod:`.bounds`); frequencies by harmonic content
+(:mod:`.harmonics`); the verdict (:mod:`.floquet_verdict`).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import ParameterError, SingularMassError
+from ..results import readonly
+from .bounds import multiplier_bounds, relative_condition
+from .collocation import integrate_transitions
+from .cyclic import cyclic_eigen
+from .floquet_verdict import floquet_verdict
+from .harmonics import harmonic_content
+from .inputs import check_period, coefficient
+from .result import FloquetAnalysis
+
+__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "STRUCTURE_TOLERANCE", "SYMPLECTIC_TOLERANCE"]
+
+#: Relative size [units of eps] below which an asymmetric part of K, a symmetric part of C or a change of
+#: M or C over time counts as rounding in the conservative-structure test.
+STRUCTURE_TOLERANCE = 100.0
+
+#: Relative defect ||Phi^T Omega Phi - Omega|| / (||Phi||^2 ||Omega||) allowed for ``conservative=True``
+#: (the integration's own error is about rtol per step; a damping of 1e-8 relative already exceeds it).
+SYMPLECTIC_TOLERANCE = 1e-9
+
+_EPS = float(np.finfo(float).eps)
+_TINY = float(np.finfo(float).tiny)
+
+
+def _check_options(rtol, stages, growth, harmonics, safety):
+    checks = (("rtol", rtol, 1e-16 <= rtol < 1e-2, "in [1e-16, 1e-2)"),
+              ("stages", stages, isinstance(stages, (int, np.integer)) and 2 <= stages <= 12, "an int in 2..12"),
+              ("growth", growth, 10.0 <= growth <= 1e8, "in [10, 1e8]"),
+              ("harmonics", harmonics, isinstance(harmonics, (int, np.integer)) and harmonics >= 0, "an int >= 0"),
+              ("safety", safety, 1.0 <= safety < 1e6, "in [1, 1e6)"))
+    for name, value, ok, expected in checks:
+        if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value) and ok):
+            raise ParameterError(name, f"expected {expected}, got {value!r}")
+
+
+def _trivial_mask(mu: np.ndarray, autonomous: bool, conservative: bool) -> tuple[np.ndarray, str]:
+    """An autonomous orbit's multiplier 1 (two of them, the Jordan pair, when conservative)."""
+    mask = np.zeros(mu.size, bool)
+    if not autonomous:
+        return mask, ""
+    count = min(2 if conservative else 1, mu.size)
+    mask[np.argsort(np.abs(mu - 1))[:count]] = True
+    shown = ", ".join(f"{complex(x):.6g}" for x in mu[mask])
+    return mask, f"; trivial multiplier(s) of the autonomous orbit set apart: {shown}"
+
+
+def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
+                             harmonics: int = 16, autonomous: bool = False, symplectic_form=None, rows=None,
+                             safety: float = 10.0, max_steps: int = 20000,
+                             max_time: float = 600.0) -> FloquetAnalysis:
+    """Floquet multipliers, exponents, frequencies and verdict of y' = A(t) y with A T-periodic.
+
+    .. math::  \\Phi' = A(t)\\,\\Phi,\\quad \\Phi(0) = I, \\qquad \\mu_k \\in \\mathrm{eig}\\,\\Phi(T),
+               \\qquad \\lambda_k = \\log(\\mu_k)/T.
+
+    Parameters
+    ----------
+    A : callable or array_like
+        t [s] -> (m, m) real array [1/s] (or a constant array).
+    period : float
+        T [s].
+    rtol : float
+        Local error per step relative to the step transition's 2-norm.
+    stages : int
+        Gauss-Legendre stages s (order 2 s).
+    growth : float
+        Condition number at which a segment closes.
+    harmonics : int
+        J of the reported harmonic content (j = -J..J).
+    autonomous : bool
+        The system is an autonomous orbit's variational equation: set the multiplier 1 apart.
+    symplectic_form : (m, m) array or None
+        Omega with Phi(T)^T Omega Phi(T) = Omega, when the caller knows the system conservative.
+    rows : index array or None
+        Components whose energy counts in the harmonic content (None: all).
+    safety : float
+        Factor on the bounds before they decide the verdict.
+    max_steps, max_time : int, float
+        Integration budget (steps, wall time [s]).
+
+    Raises
+    ------
+    ParameterError
+        A not callable nor a square matrix, values of the wrong shape or non-finite, bad period or option.
+    IntegrationBudgetError, IntegrationError
+        The integration could not meet ``rtol`` within the budget.
+    """
+    start = time.perf_counter()
+    T = check_period(period)
+    _check_options(rtol, stages, growth, harmonics, safety)
+    func, shape = coefficient("A", A)
+    m = shape[0]
+    form = None
+    if symplectic_form is not None:
+        form = np.asarray(symplectic_form, dtype=float)
+        if form.shape != (m, m) or not np.all(np.isfinite(form)):
+            raise ParameterError("symplectic_form", f"expected a finite ({m}, {m}) array, got shape {form.shape}")
+    if rows is not None:
+        rows = np.asarray(rows)
+        if rows.ndim != 1 or rows.size == 0 or rows.dtype.kind not in "iu" or rows.min() < 0 or rows.max() >= m:
+            raise ParameterError("rows", f"expected a non-empty 1-d array of indices in 0..{m - 1}, got {rows!r}")
+    options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
+    return _analyse(func, T, m, lambda monodromy: form, options, harmonics=int(harmonics), rows=rows,
+                    autonomous=autonomous, safety=safety, start=start, what="first-order A(t)")
+
+
+def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, safety, start, what):
+    """The pipeline on a checked A(t); ``form_after(monodromy)`` gives Omega (or None) once the integration
+    sampled A."""
+    tr = integrate_transitions(func, T, m, **options)
+    eig = cyclic_eigen(tr.factors)
+    bound, b_int, b_eig = multiplier_bounds(tr, eig)
+    freq, content, dominant = harmonic_content(tr, eig, T, harmonics=harmonics, rows=rows)
+    monodromy = np.eye(m)
+    for factor in tr.factors:
+        monodromy = factor @ monodromy
+    form = form_after(monodromy)
+    trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
+    stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
+                                condition=relative_condition(tr, eig), safety=safety, trivial_note=note)
+    step_errors = np.array([s.error for s in tr.steps])
+    rel = step_errors / np.array([np.linalg.norm(s.P, 2) for s in tr.steps])
+    times = np.array([s.t0 for s in tr.steps] + [T])
+    stages = options["stages"]
+    method = (f"Floquet ({what}): Gauss-Legendre collocation s = {stages} (order {2 * stages}) with step "
+              f"doubling, rtol = {options['rtol']:g}; multipliers of the {len(tr.factors)}-segment product from "
+              f"the lifted block-cyclic eigenproblem")
+    return FloquetAnalysis(
+        readonly(eig.multipliers), readonly(bound), readonly(b_int), readonly(b_eig),
+        readonly(np.log(eig.multipliers.astype(complex)) / T), readonly(freq), readonly(content),
+        readonly(dominant), readonly(trivial), form is not None, stability, readonly(monodromy), T,
+        len(tr.factors), len(tr.steps), tr.evaluations, readonly(times), readonly(step_errors),
+        float(rel.max()), time.perf_counter() - start, method)
+
+
+def _check_symplectic(monodromy: np.ndarray, form: np.ndarray) -> None:
+    """ParameterError unless ||Phi^T Omega Phi - Omega|| <= SYMPLECTIC_TOLERANCE ||Phi||^2 ||Omega||."""
+    defect = np.linalg.norm(monodromy.T @ form @ monodromy - form, 2)
+    scale = np.linalg.norm(monodromy, 2) ** 2 * np.linalg.norm(form, 2)
+    if not defect <= SYMPLECTIC_TOLERANCE * scale:
+        raise ParameterError("conservative", f"the monodromy is not symplectic for Omega = [[G, M], [-M, 0]] at "
+                                             f"t = 0 (relative defect {defect / scale:.2e} > {SYMPLECTIC_TOLERANCE:g}):"
+                                             f" the system is not conservative")
+
+
+class _SecondOrder:
+    """A(t) = [[0, I], [-M^-1 K, -M^-1 C]] from checked M, C, K, recording the largest conservative-structure
+    defect seen: asym(M), sym(C), asym(K) and the change of M and C since t = 0, each relative (max-norms);
+    it stops measuring once the defect passes ``give_up`` (the structure test's tolerance)."""
+
+    def __init__(self, fM, fC, fK, n, give_up: float):
+        self.fM, self.fC, self.fK, self.n = fM, fC, fK, n
+        self.M0, self.C0 = fM(0.0), fC(0.0)
+        self.defect = 0.0
+        self.give_up = give_up
+        self.template = np.zeros((2 * n, 2 * n))
+        self.template[:n, n:] = np.eye(n)
+
+    def __call__(self, t: float) -> np.ndarray:
+        M, C, K = self.fM(t), self.fC(t), self.fK(t)
+        n = self.n
+        try:
+            X = np.linalg.solve(M, np.hstack([K, C]))
+        except np.linalg.LinAlgError:
+            raise SingularMassError(f"M is singular at t = {t:.6g} s", ()) from None
+        if self.defect <= self.give_up:    # once clearly not conservative, stop measuring
+            size = lambda X: float(np.abs(X).max())  # noqa: E731
+            sM, sK = size(M) + _TINY, size(K) + _TINY
+            big = sM + size(C) + sK
+            self.defect = max(self.defect, size(M - M.T) / sM, size(K - K.T) / sK,
+                              max(size(C + C.T), size(M - self.M0), size(C - self.C0)) / big)
+        A = self.template.copy()
+        A[n:, :n], A[n:, n:] = -X[:, :n], -X[:, n:]
+        return A
+
+
+def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
+                              harmonics: int = 16, autonomous: bool = False, conservative: bool | None = None,
+                              safety: float = 10.0, structure_tolerance: float = STRUCTURE_TOLERANCE,
+                              max_steps: int = 20000, max_time: float = 600.0) -> FloquetAnalysis:
+    """Floquet analysis of M(t) x'' + C(t) x' + K(t) x = 0 with T-periodic M, C, K.
+
+    In first-order form y = (x, x'), A = [[0, I], [-M^-1 K, -M^-1 C]] (solves with M, no inverse).  The
+    system counts as conservative when, at every time the integrator sampled, M is symmetric and constant,
+    C = G is skew and constant and K symmetric, each within ``structure_tolerance`` eps (relative): then
+    Phi(T) is symplectic for Omega = [[G, M], [-M, 0]] (y1^T Omega y2 = x1^T M v2 - v1^T M x2 + x1^T G x2,
+    the canonical form with p = M v + G x / 2) and the verdict uses it.  A time-varying M or G with the
+    matching D = M', N = G' / 2 (the variational equation of a Lagrangian system: C = M' + F^T - F,
+    K = S + F'^T) is conservative too, with the same Omega at t = 0, but is not detected: pass
+    ``conservative=True`` (checked: Phi^T Omega Phi = Omega to :data:`SYMPLECTIC_TOLERANCE`).
+    Harmonic content counts the position components.  Other parameters as :func:`floquet_from_first_order`.
+
+    Parameters
+    ----------
+    M, C, K : callable or array_like
+        t [s] -> (n, n) real arrays (mass [kg], damping+gyroscopic [N s/m], stiffness+circulatory [N/m] or
+        the rotational units), or constant arrays; C and K may be None (zero).
+    period : float
+        T [s].
+    conservative : bool or None
+        None: detect the constant-M structure above; True: the caller asserts a Lagrangian (conservative)
+        system; False: never use structure in the verdict.
+
+    Raises
+    ------
+    ParameterError
+        Bad callables, shapes, values, period or options (the argument is named); ``conservative=True`` with a
+        monodromy that is not symplectic for Omega.
+    SingularMassError
+        M(t) singular at a sampled time.
+    IntegrationBudgetError, IntegrationError
+        As :func:`floquet_from_first_order`.
+    """
+    start = time.perf_counter()
+    T = check_period(period)
+    _check_options(rtol, stages, growth, harmonics, safety)
+    fM, shape = coefficient("M", M)
+    n = shape[0]
+    zero = np.zeros((n, n))
+    fC, _ = coefficient("C", zero if C is None else C, shape)
+    fK, _ = coefficient("K", zero if K is None else K, shape)
+    if conservative not in (None, True, False):
+        raise ParameterError("conservative", f"expected None, True or False, got {conservative!r}")
+    A = _SecondOrder(fM, fC, fK, n, structure_tolerance * _EPS)
+    form = np.block([[(A.C0 - A.C0.T) / 2, A.M0], [-A.M0, zero]])
+
+    def form_after(monodromy):
+        if conservative is None:
+            return form if A.defect <= structure_tolerance * _EPS else None
+        if conservative:
+            _check_symplectic(monodromy, form)
+            return form
+        return None
+
+    options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
+    return _analyse(A, T, 2 * n, form_after, options,
+                    harmonics=int(harmonics), rows=np.arange(n), autonomous=autonomous, safety=safety,
+                    start=start, what="M, C, K")
