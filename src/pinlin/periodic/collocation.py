@@ -256,18 +256,21 @@ def integrate_transitions(
         else:
             rejected += 1
         h *= min(2.0, max(0.2, 0.9 * max(ratio, 1e-30) ** (-1.0 / (2 * stages + 1))))
-    segments, factors = _group(steps, growth)
+    segments, factors = _group(steps, growth, d)
     return Transitions(steps, segments, factors, st.evaluations, rejected)
 
 
-def _group(steps: list, growth: float) -> tuple[list, list]:
+def _group(steps: list, growth: float, d: np.ndarray) -> tuple[list, list]:
     """Consecutive steps grouped so that each segment's transition has condition number <= growth
-    (a single step above it makes a segment of its own)."""
+    (a single step above it makes a segment of its own), measured in the coordinates that balance A(0)
+    (``d``: D^-1 P D): the condition of a transition in raw units counts the coordinates' units (a stiff
+    support in m beside a velocity in m/s), not how far the multipliers' scales drift apart."""
     segments, factors = [], []
+    scaling = d[None, :] / d[:, None]
     begin, product = 0, None
     for k, step in enumerate(steps):
         trial = step.P if product is None else step.P @ product
-        if product is not None and np.linalg.cond(trial) > growth:
+        if product is not None and np.linalg.cond(trial * scaling) > growth:
             segments.append((begin, k))
             factors.append(product)
             begin, trial = k, step.P

@@ -1,6 +1,6 @@
 """The stability verdict from Floquet multipliers and their error bounds (SPEC sections 5 and 13).
 
-Mapping to :data:`pinlin.spectral.verdict.KINDS` (each multiplier mu with bound b, widened by ``safety``):
+Mapping to :data:`pinlin.spectral.stability.verdict.KINDS` (each multiplier mu with bound b, widened by ``safety``):
 
 - "asymptotically_stable": every non-trivial |mu| + safety b < 1;
 - "divergence": some |mu| - safety b > 1 and the multiplier of largest modulus among those is real positive
@@ -30,11 +30,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..spectral.verdict import Stability
+from ..spectral.stability.verdict import Stability
 
 __all__ = ["floquet_verdict", "KREIN_TOLERANCE", "MARGIN_LIMIT"]
 
-#: Largest margin reported (as :data:`pinlin.spectral.verdict.MARGIN_CAP`).
+#: Largest margin reported (as :data:`pinlin.spectral.stability.verdict.MARGIN_CAP`).
 MARGIN_LIMIT = 0.5
 
 #: Relative size below which an eigenvalue of the Krein form on a cluster counts as zero (indefinite).
