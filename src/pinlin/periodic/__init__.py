@@ -1,0 +1,24 @@
+"""Time-periodic linear equations: Floquet analysis and the multi-blade transform (SPEC section 13).
+
+One concept per module:
+
+- :mod:`.inputs` -- checked coefficient functions t -> matrix and the period;
+- :mod:`.collocation` -- step transitions of y' = A(t) y by Gauss-Legendre collocation with step doubling,
+  grouped into well-conditioned segments;
+- :mod:`.cyclic` -- multipliers and periodic eigenvectors of a segment product from the lifted block-cyclic
+  matrix (the product is never formed for them);
+- :mod:`.bounds` -- each multiplier's error bound (integration error and eigensolver backward error through
+  its periodic condition);
+- :mod:`.harmonics` -- frequencies of the Floquet modes from their harmonic content;
+- :mod:`.floquet_verdict` -- the stability verdict from multipliers, bounds and (conservative) Krein signatures;
+- :mod:`.result` -- :class:`FloquetAnalysis`, the result;
+- :mod:`.analysis` -- :func:`floquet_from_first_order` and :func:`floquet_analysis_matrices`;
+- :mod:`.multiblade` -- :func:`multiblade_transform_matrices` (Coleman coordinates of N >= 3 identical blades).
+"""
+
+from .analysis import floquet_analysis_matrices, floquet_from_first_order
+from .multiblade import multiblade_transform_matrices
+from .result import FloquetAnalysis
+
+__all__ = ["FloquetAnalysis", "floquet_from_first_order", "floquet_analysis_matrices",
+           "multiblade_transform_matrices"]

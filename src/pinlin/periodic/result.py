@@ -1,0 +1,125 @@
+"""The result of a Floquet analysis: :class:`FloquetAnalysis` (SPEC section 13)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..results import Result
+from ..spectral.verdict import Stability
+
+__all__ = ["FloquetAnalysis"]
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class FloquetAnalysis(Result):
+    """Floquet multipliers of y' = A(t) y, A T-periodic, with error bounds, exponents, frequencies, verdict.
+
+    Attributes
+    ----------
+    multipliers : ndarray, complex (m,)
+        mu_k, eigenvalues of the monodromy Phi(T), largest modulus first; computed from the segment
+        transitions (periodic eigenproblem), never from ``monodromy``.
+    error_bound : ndarray (m,)
+        Bound on |mu_k computed - mu_k exact| (absolute): ``integration_bound + eigensolver_bound``, each a
+        first-order figure (:mod:`pinlin.periodic.bounds`).
+    integration_bound, eigensolver_bound : ndarray (m,)
+        Its two parts: the integration's estimated error and the eigensolver's backward error, each through
+        the multiplier's condition in the periodic eigenproblem.
+    exponents : ndarray, complex (m,)
+        log(mu_k) / T (principal branch) [1/s]; real parts unambiguous, imaginary parts modulo 2 pi / T.
+    frequencies : ndarray (m,)
+        Im(exponent) + j* 2 pi / T [rad/s] with j* the harmonic carrying most of the mode's energy.
+    harmonic_content : ndarray (m, 2 J + 1)
+        Energy fraction of harmonic j = -J..J (column j + J) in the periodic part of each mode.
+    dominant_harmonic : ndarray of int (m,)
+        j* per mode.
+    trivial : ndarray of bool (m,)
+        Multipliers set apart as an autonomous orbit's 1 (and its Jordan partner); excluded from the verdict
+        and from ``error``.
+    conservative : bool
+        The monodromy is known symplectic (the verdict used it).
+    stability : Stability
+        The verdict (:mod:`pinlin.periodic.floquet_verdict` documents the mapping to the kinds).
+    monodromy : ndarray (m, m)
+        Phi(T), the formed product of the step transitions (for users; its own eigenvalues lose the small
+        multipliers' relative accuracy).
+    period : float
+        T [s].
+    segments : int
+        K, the number of segment transitions in the periodic eigenproblem.
+    steps : int
+        Accepted integration steps.
+    evaluations : int
+        Calls of the coefficient function(s) (each: one A(t), or one M, C, K triple).
+    step_times : ndarray (steps + 1,)
+        Step boundaries [s].
+    step_errors : ndarray (steps,)
+        Estimated 2-norm error of each step transition (absolute; rounding floor included).
+    integration_error : float
+        max over steps of step_errors / ||P_step||_2: the largest relative local error estimate (what
+        ``rtol`` controls).
+    elapsed : float
+        Wall time [s].
+    method : str
+    error : float
+        max over non-trivial k of error_bound_k / |mu_k|: the largest relative error bound of a multiplier
+        (each multiplier's own relative accuracy, whatever its size).
+    """
+
+    multipliers: np.ndarray
+    error_bound: np.ndarray
+    integration_bound: np.ndarray
+    eigensolver_bound: np.ndarray
+    exponents: np.ndarray
+    frequencies: np.ndarray
+    harmonic_content: np.ndarray
+    dominant_harmonic: np.ndarray
+    trivial: np.ndarray
+    conservative: bool
+    stability: Stability
+    monodromy: np.ndarray
+    period: float
+    segments: int
+    steps: int
+    evaluations: int
+    step_times: np.ndarray
+    step_errors: np.ndarray
+    integration_error: float
+    elapsed: float
+    method: str
+
+    @property
+    def error(self) -> float:
+        keep = ~self.trivial
+        if not keep.any():
+            return 0.0
+        return float(np.max(self.error_bound[keep] / np.abs(self.multipliers[keep])))
+
+    @property
+    def harmonics(self) -> np.ndarray:
+        """The harmonic numbers j = -J..J of the columns of ``harmonic_content``."""
+        J = (self.harmonic_content.shape[1] - 1) // 2
+        return np.arange(-J, J + 1)
+
+    def __repr__(self) -> str:
+        r = np.abs(self.multipliers)
+        return (f"FloquetAnalysis(m={r.size}, period={self.period:.6g} s, |mu| in [{r.min():.3g}, {r.max():.3g}], "
+                f"stability={self.stability.kind!r}, error={self.error:.2e}, steps={self.steps}, "
+                f"segments={self.segments}, evaluations={self.evaluations}, elapsed={self.elapsed * 1e3:.3g} ms)")
+
+    def table(self) -> str:
+        """One line per multiplier: mu, |mu|, its bound, the exponent, the chosen frequency and its share."""
+        lines = [f"{'k':>3} {'multiplier':>34} {'|mu|':>11} {'bound':>9} {'Re exponent':>12} "
+                 f"{'frequency':>12} {'j*':>4} {'share':>6}",
+                 f"{'':>3} {'':>34} {'':>11} {'':>9} {'[1/s]':>12} {'[rad/s]':>12}"]
+        J = (self.harmonic_content.shape[1] - 1) // 2
+        for k, mu in enumerate(self.multipliers):
+            share = self.harmonic_content[k, self.dominant_harmonic[k] + J]
+            note = "  trivial" if self.trivial[k] else ""
+            lines.append(f"{k:>3} {complex(mu):>34.10g} {abs(mu):>11.4e} {self.error_bound[k]:>9.2e} "
+                         f"{self.exponents[k].real:>12.5e} {self.frequencies[k]:>12.6g} "
+                         f"{self.dominant_harmonic[k]:>4d} {share:>6.3f}{note}")
+        lines.append(f"stability: {self.stability}")
+        return "\n".join(lines)
