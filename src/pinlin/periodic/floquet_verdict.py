@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..spectral.verdict import Stability
+from ..spectral.stability.verdict import Stability
 
 __all__ = ["floquet_verdict", "KREIN_TOLERANCE"]
 

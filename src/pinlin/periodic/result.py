@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..results import Result
-from ..spectral.verdict import Stability
+from ..spectral.stability.verdict import Stability
 
 __all__ = ["FloquetAnalysis"]
 
