@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 from ..errors import ParameterError, SingularMassError
-from ..results import readonly
+from ..numerics.arrays import readonly
 from .bounds import multiplier_bounds
 from .collocation import integrate_transitions
 from .cyclic import cyclic_eigen
