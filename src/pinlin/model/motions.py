@@ -22,6 +22,8 @@ __all__ = [
     "PeriodicMotion",
     "common_period",
     "split_prescribed",
+    "harmonic_from_table",
+    "HARMONIC_KEYS",
     "DERIVATIVE_RTOL",
     "DERIVATIVE_CHECK_TIMES",
     "MAX_PERIOD_DENOMINATOR",
@@ -298,6 +300,31 @@ def split_prescribed(robot, prescribed) -> tuple[dict[str, float], dict[str, Mot
             raise ParameterError(f"prescribed[{name!r}]", f"must be finite, got {omega!r}")
         pres[name] = omega
     return pres, motions
+
+
+#: The keys of a harmonic motion's table in a scene file's ``[prescribed]`` (amplitude and omega required).
+HARMONIC_KEYS = ("amplitude", "omega", "offset", "phase")
+
+
+def harmonic_from_table(table: dict) -> Harmonic:
+    """A :class:`Harmonic` from a scene file's table ``{ amplitude = 0.02, omega = 60.0 }``
+    (optional ``offset``, ``phase``).
+
+    Raises
+    ------
+    ParameterError
+        An unknown or missing key, or a value :class:`Harmonic` refuses (naming the key).
+    """
+    unknown = sorted(set(table) - set(HARMONIC_KEYS))
+    if unknown:
+        raise ParameterError(unknown[0], f"unknown key of a harmonic motion; valid: {list(HARMONIC_KEYS)}")
+    for key in ("amplitude", "omega"):
+        if key not in table:
+            raise ParameterError(key, "missing: a harmonic motion needs amplitude [rad or m] and omega [rad/s]")
+    for key, value in table.items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ParameterError(key, f"expected a number, got {value!r}")
+    return Harmonic(**table)
 
 
 def _ratio(x: float) -> tuple[int, int] | None:
