@@ -98,7 +98,7 @@ def test_coefficients_against_finite_differences_of_the_free_dynamics():
         q, v = orbit.q(t), orbit.v(t)
         p = co.point(t)
 
-        def acc(dq, dv):
+        def acc(dq, dv, q=q, v=v, t=t):
             qq = pin.integrate(scene.model, q, dq)
             vv = v + dv
             a_p = dyn.apply_motions(t, qq, vv)
