@@ -119,3 +119,12 @@ def test_scene_file_harmonics(tmp_path):
     f.write_text('[robot]\nurdf = "p.urdf"\n[prescribed]\npivot_x = 2.0\npivot_z = { amplitude = 0.1, omega = 5.0, phase = 0.5 }\n')
     scene = load_scene(f).scene
     assert scene.prescribed["pivot_x"] == 2.0 and scene.motions["pivot_z"].phase == 0.5
+
+
+def test_batch_linearization_and_equilibrium_refuse_periodic_motions():
+    scene = pivot_scene({"pivot_z": pinlin.Harmonic(0.01, 30.0)})
+    q0 = np.zeros(scene.model.nq)
+    with pytest.raises(pinlin.TimePeriodicError, match="pinlin.periodic_orbit"):
+        pinlin.linearize_many(scene, [q0])
+    with pytest.raises(pinlin.TimePeriodicError, match="pinlin.floquet_analysis"):
+        pinlin.find_equilibrium(scene, q0)

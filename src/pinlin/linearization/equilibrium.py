@@ -13,6 +13,7 @@ from ..numerics.norms import fro
 from .assembly import assemble
 from .constrained_equilibrium import find_constrained_equilibrium
 from .equilibrium_result import EquilibriumResult
+from .periodicity import refuse_motions
 from .newton import (
     ARMIJO,
     MAX_ITERATIONS,
@@ -126,8 +127,12 @@ def find_equilibrium(
         No convergence; ``.history`` holds the residual norms.
     LoopClosureError
         (With constraints) the constraints cannot be closed from q0.
+    TimePeriodicError
+        The scene has periodic prescribed motions (use :func:`pinlin.periodic_orbit`).
     """
     check_solver_parameters(tol, max_iterations, min_step)
+    if scene.motions:  # no steady equilibrium: the periodic reference motion is pinlin.periodic_orbit's
+        refuse_motions(scene)
     if scene.constraints:
         return find_constrained_equilibrium(scene, q0, tol=tol, max_iterations=max_iterations, min_step=min_step)
     t0 = time.perf_counter()
