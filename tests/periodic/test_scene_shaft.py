@@ -81,3 +81,26 @@ def test_inertial_floquet_equals_rotating_linearization(omega):
     assert (np.max(np.abs(flo.multipliers)) > 1 + 1e-6) == unstable
     print(f"shaft omega={omega}: max |mu| = {np.max(np.abs(flo.multipliers)):.6f}, "
           f"difference from rotating {np.max(np.abs(np.sort_complex(flo.multipliers) - np.sort_complex(mu_r))):.1e}")
+
+
+def test_offset_anchor_forces_the_disk_and_the_orbit_turns_with_the_rotor():
+    """One spring anchored off its rest length pulls the disk round with the rotor: the orbit is not
+    constant (the equilibrium residual is zero at spin angle 0 only if the force vanishes there: here it does
+    not), and the forced orbit in inertial coordinates is the rotating equilibrium turned by Omega t."""
+    omega = 2.0
+    robot = pinlin.load_urdf_string(_urdf(False))
+    springs = [pinlin.LinearSpringDamper("anchor1", "disk", stiffness=K1, rest_length=0.9 * R, damping=0.5),
+               pinlin.LinearSpringDamper("anchor2", "disk", stiffness=K2, rest_length=R, damping=0.5)]
+    scene = pinlin.Scene(robot, springs, gravity=(0.0, 0.0, 0.0), prescribed={"spin": omega})
+    q0 = scene.neutral()
+    orbit = pinlin.periodic_orbit(scene, q0)
+    assert not orbit.constant and orbit.residual <= 1e-10
+    assert_allclose(orbit.period, 2 * math.pi / omega, rtol=1e-15)
+    # the disk's radius stays constant along a circular orbit (the rotating equilibrium, turned)
+    radii = [np.hypot(*orbit.q(t)[2:4]) for t in np.linspace(0.0, orbit.period, 7)]
+    assert_allclose(radii, radii[0], rtol=1e-8)
+    assert radii[0] > 0.01
+    rotating = pinlin.Scene(pinlin.load_urdf_string(_urdf(True)), springs, gravity=(0.0, 0.0, 0.0),
+                            prescribed={"spin": omega})
+    eq = pinlin.find_equilibrium(rotating, rotating.neutral())
+    assert_allclose(radii[0], np.hypot(*eq.q[2:4]), rtol=1e-8)

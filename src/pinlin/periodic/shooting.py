@@ -137,8 +137,12 @@ def _constant_residual(scene: Scene, q0: np.ndarray, v0: np.ndarray, T: float) -
     """Largest relative free residual at rest along the period (q_f, v_f held; prescribed joints moving)."""
     dyn = FreeDynamics(scene)
     worst = 0.0
+    turning = [(scene.robot.joint(name).idx_v, omega) for name, omega in scene.prescribed.items()]
     for t in np.linspace(0.0, T, 33)[:-1] + 0.0123 * T:
-        q, v = q0.copy(), v0.copy()
+        dq = np.zeros(scene.model.nv)
+        for i, omega in turning:  # constant-speed joints advance with time
+            dq[i] = omega * t
+        q, v = pin.integrate(scene.model, q0, dq), v0.copy()
         a_p = dyn.apply_motions(t, q, v)
         asm = assemble(scene, q, v, stiffness=True, a=a_p)
         r = float(np.linalg.norm(asm.residual[scene.free_dofs]))
