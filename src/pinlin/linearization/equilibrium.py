@@ -13,7 +13,6 @@ from ..numerics.norms import fro
 from .assembly import assemble
 from .constrained_equilibrium import find_constrained_equilibrium
 from .equilibrium_result import EquilibriumResult
-from .periodicity import refuse_motions
 from .newton import (
     ARMIJO,
     MAX_ITERATIONS,
@@ -23,6 +22,7 @@ from .newton import (
     check_solver_parameters,
     newton_step,
 )
+from .periodicity import refuse_motions
 
 __all__ = ["find_equilibrium", "equilibrium_residual"]
 

@@ -26,8 +26,8 @@ Scenes (a URDF model with periodic prescribed motions or an autonomous free osci
 """
 
 from .analysis import floquet_analysis_matrices, floquet_from_first_order
-from .multiblade import multiblade_transform_matrices
 from .coefficients import VariationalCoefficients, variational_coefficients
+from .multiblade import multiblade_transform_matrices
 from .orbit_result import PeriodicOrbit
 from .period import scene_period
 from .result import FloquetAnalysis
