@@ -129,6 +129,15 @@ def closed_pendulum_scene() -> pinlin.Scene:
     return pinlin.Scene(robot, pendulum_scene().elements, constraints=[pinlin.PointConstraint("tip", tip)])
 
 
+@functools.cache
+def kapitza_orbit() -> pinlin.PeriodicOrbit:
+    """The bundled Kapitza scene's (constant) periodic orbit (SPEC section 13)."""
+    from pinlin.model.scene_file import load_scene
+
+    spec = load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    return pinlin.periodic_orbit(spec.scene, spec.q0)
+
+
 def refuse_negative(P: float):
     if P < 0:
         raise pinlin.ParameterError("P", "must be >= 0")
@@ -170,6 +179,9 @@ BUILDERS = {
     "Simulation": lambda: pinlin.simulate(pendulum_scene(), equilibrium().q + np.array([0.01, 0.0]), None,
                                           np.linspace(0.0, 0.05, 6)),
     "StateSpaceModel": lambda: pinlin.state_space(damped()),
+    # time-periodic motions (issue 23)
+    "PeriodicOrbit": kapitza_orbit,
+    "FloquetAnalysis": lambda: pinlin.floquet_analysis(kapitza_orbit().scene, kapitza_orbit()),
     # parameter studies
     "CriticalParameter": lambda: pinlin.critical_parameter(softening, (0.0, 2.0)),
     "StabilityBoundary": lambda: pinlin.stability_boundary(softening2, [1.0, 1.5], (0.0, 3.0)),

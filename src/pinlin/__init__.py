@@ -11,6 +11,7 @@ The packages follow the data flow:
 - :mod:`pinlin.frf` -- H(s), frequency and harmonic responses, residues;
 - :mod:`pinlin.response` -- free and forced responses in time, energy budgets;
 - :mod:`pinlin.nonlinear` -- the nonlinear reference simulation;
+- :mod:`pinlin.periodic` -- time-periodic motions: periodic orbits by shooting, Floquet analysis;
 - :mod:`pinlin.studies` -- parameter sweeps (on any executor: threads, processes, Dask,
   Ray) and mode tracking;
 - :mod:`pinlin.boundaries` -- eigenvalue sensitivities, exact stability boundaries;
@@ -62,13 +63,17 @@ from .errors import (
     MjcfError,
     ModelTooLargeError,
     NameNotFoundError,
+    NoPeriodError,
     NotAnEigenvalueError,
     NotAnEquilibriumError,
     NotSimpleError,
+    OrbitLimitError,
     OverconstrainedError,
     ParameterError,
+    PeriodicOrbitError,
     PinlinError,
     PrescribedJointError,
+    QuasiPeriodicError,
     SceneFileError,
     SingularConstraintError,
     SingularMassError,
@@ -115,8 +120,19 @@ from .model.elements import (
 )
 from .model.generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
 from .model.mjcf import load_mjcf
+from .model.motions import FourierMotion, Harmonic, PeriodicMotion
 from .model.scene import Scene
 from .nonlinear import Simulation, linear_coordinates, simulate
+from .periodic import (
+    FloquetAnalysis,
+    PeriodicOrbit,
+    floquet_analysis,
+    floquet_analysis_matrices,
+    floquet_from_first_order,
+    periodic_orbit,
+    scene_period,
+    variational_coefficients,
+)
 from .response import (
     EnergyBudget,
     ForcedResponse,
@@ -251,4 +267,20 @@ __all__ = [
     # other tools' forms (issue 17)
     "state_space",
     "StateSpaceModel",
+    # time-periodic motions (SPEC section 13, issue 23)
+    "Harmonic",
+    "FourierMotion",
+    "PeriodicMotion",
+    "scene_period",
+    "periodic_orbit",
+    "PeriodicOrbit",
+    "variational_coefficients",
+    "floquet_analysis",
+    "floquet_analysis_matrices",
+    "floquet_from_first_order",
+    "FloquetAnalysis",
+    "QuasiPeriodicError",
+    "NoPeriodError",
+    "PeriodicOrbitError",
+    "OrbitLimitError",
 ]

@@ -48,6 +48,7 @@ from .model import (
     SingularConstraintError,
     UrdfError,
 )
+from .periodic_motion import NoPeriodError, OrbitLimitError, PeriodicOrbitError, QuasiPeriodicError
 
 __all__ = [
     "PinlinError",
@@ -83,6 +84,10 @@ __all__ = [
     "LoopClosureError",
     "SingularConstraintError",
     "OverconstrainedError",
+    "QuasiPeriodicError",
+    "NoPeriodError",
+    "PeriodicOrbitError",
+    "OrbitLimitError",
 ]
 
 

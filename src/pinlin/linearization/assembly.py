@@ -100,16 +100,17 @@ def external_forces(scene: Scene, ev: Evaluation) -> pin.StdVec_Force | None:
     return fext
 
 
-def _dynamics(ev: Evaluation, fext, stiffness: bool, derivatives: bool):
-    """Pinocchio's part at (q, v, a = 0): (tau, K, C, M or None); only the algorithm the point needs.
+def _dynamics(ev: Evaluation, fext, stiffness: bool, derivatives: bool, a: np.ndarray | None = None):
+    """Pinocchio's part at (q, v, a) (a = 0 unless given): (tau, K, C, M or None); only the algorithm the
+    point needs.
 
-    ``derivatives``: any of K, C, M asked for (with a velocity, one RNEA-derivative
-    pass gives all three).  tau, K and C are fresh arrays the caller may modify.
+    ``derivatives``: any of K, C, M asked for (with a velocity or an acceleration, one
+    RNEA-derivative pass gives all three).  tau, K and C are fresh arrays the caller may modify.
     """
     model, data, q = ev.model, ev.data, ev.q
     extra = () if fext is None else (fext,)
-    if not ev.at_rest:
-        zero = np.zeros(model.nv)
+    if not ev.at_rest or a is not None:
+        zero = np.zeros(model.nv) if a is None else a
         if not derivatives:
             return np.array(ev.call("rnea", pin.rnea, model, data, q, ev.v, zero, *extra)), None, None, None
         dq, dv, Mu = ev.call("computeRNEADerivatives", pin.computeRNEADerivatives, model, data, q, ev.v, zero, *extra)
@@ -138,12 +139,16 @@ def assemble(
     damping: bool = False,
     mass: bool = False,
     ws: Workspace | None = None,
+    a: np.ndarray | None = None,
 ) -> Assembly:
-    """Evaluate r and, as asked, K, C and M of ``scene`` at (q, v), with a = 0.
+    """Evaluate r and, as asked, K, C and M of ``scene`` at (q, v, a), with a = 0 unless given.
 
     ``q`` must already be checked (:meth:`Scene.check_configuration`); ``v``
     defaults to the steady velocity ``scene.v0``.  The static algorithms are
-    used whenever v = 0.  Pinocchio writes into ``ws`` (default: the calling
+    used whenever v = 0 and no acceleration is given.  ``a`` (nv,): the actual
+    acceleration of a motion (SPEC section 13: the variational equation along a
+    periodic orbit), evaluated with ``computeRNEADerivatives(q, v, a)``; the residual is
+    then tau(q, v, a) - Q_e.  Pinocchio writes into ``ws`` (default: the calling
     thread's workspace for the scene).
     """
     plan = plan_of(scene)
@@ -154,7 +159,7 @@ def assemble(
         at_rest = not np.count_nonzero(v0)
     ev = Evaluation(scene, q, v0, ws, at_rest=at_rest)
     nv = scene.model.nv
-    tau, K, C, M = _dynamics(ev, external_forces(scene, ev), stiffness, stiffness or damping or mass)
+    tau, K, C, M = _dynamics(ev, external_forces(scene, ev), stiffness, stiffness or damping or mass, a)
     coriolis_D = None
     scale_C = 0.0
     each_damping = damping  # the groups add their damping at this point

@@ -30,6 +30,7 @@ from ..model.scene import UNIT_NORM_MIN, Scene
 from . import batch_moving, batch_static
 from .linearize import linearize
 from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .periodicity import refuse_motions
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -101,6 +102,8 @@ def linearize_many(
     """
     t0 = time.perf_counter()
     check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    if scene.motions:  # time-periodic: as linearize refuses it
+        refuse_motions(scene)
     rows = _rows(scene, qs)
     if batch_static.applies(scene):
         path = batch_static.linearize_at_rest

@@ -22,6 +22,7 @@ from .newton import (
     check_solver_parameters,
     newton_step,
 )
+from .periodicity import refuse_motions
 
 __all__ = ["find_equilibrium", "equilibrium_residual"]
 
@@ -126,8 +127,12 @@ def find_equilibrium(
         No convergence; ``.history`` holds the residual norms.
     LoopClosureError
         (With constraints) the constraints cannot be closed from q0.
+    TimePeriodicError
+        The scene has periodic prescribed motions (use :func:`pinlin.periodic_orbit`).
     """
     check_solver_parameters(tol, max_iterations, min_step)
+    if scene.motions:  # no steady equilibrium: the periodic reference motion is pinlin.periodic_orbit's
+        refuse_motions(scene)
     if scene.constraints:
         return find_constrained_equilibrium(scene, q0, tol=tol, max_iterations=max_iterations, min_step=min_step)
     t0 = time.perf_counter()

@@ -24,7 +24,7 @@ from .assembly import Assembly, assemble
 from .checks import check_equilibrium, check_finite_and_mass
 from .constrained import linearize_constrained
 from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
-from .periodicity import PERIODIC_TEST_ANGLES, numeric_change
+from .periodicity import PERIODIC_TEST_ANGLES, numeric_change, refuse_motions
 from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan, plan_of
 from .split import split_damping as _split_damping
 from .split import split_stiffness as _split_stiffness
@@ -152,6 +152,8 @@ def linearize(
         )  # fmt: skip
     if coordinates is not None:
         raise ParameterError("coordinates", "applies to scenes with constraints only; this scene has none")
+    if scene.motions:
+        refuse_motions(scene)
     plan = plan_of(scene)
     base = assemble(scene, q, stiffness=True, damping=True, mass=True)
     r, rel = check_equilibrium(scene, plan, base, equilibrium_tol, balancing)

@@ -19,7 +19,31 @@ from ..model.scene import Scene
 from ..numerics.norms import fro
 from .assembly import Assembly, assemble
 
-__all__ = ["numeric_change", "PERIODIC_TEST_ANGLES"]
+__all__ = ["numeric_change", "refuse_motions", "PERIODIC_TEST_ANGLES", "FLOQUET_HINT"]
+
+#: How a time-periodic scene is analysed instead (SPEC section 13), named in every :class:`TimePeriodicError`.
+FLOQUET_HINT = (
+    "; analyse it with pinlin.periodic_orbit(scene, q0) (the periodic reference motion) and "
+    "pinlin.floquet_analysis(scene, orbit) (Floquet multipliers)"
+)
+
+
+def refuse_motions(scene: Scene) -> None:
+    """Refuse a scene with periodic prescribed motions (:class:`~pinlin.Harmonic` etc.).
+
+    Raises
+    ------
+    TimePeriodicError
+        Always, naming the first such joint and its period.
+    """
+    name, motion = next(iter(scene.motions.items()))
+    raise TimePeriodicError(
+        f"prescribed joint {name!r} follows a periodic motion {motion!r} (period {motion.period:.6g} s): the "
+        f"linearized equations are time-periodic, not constant-coefficient, and cannot be analysed as "
+        f"M x'' + C x' + K x = f" + FLOQUET_HINT,
+        joint=name,
+        variation=float("inf"),
+    )
 
 #: Offsets [rad or m] of a prescribed joint at which the equations are evaluated again
 #: (when no proof applies) to check that they do not depend on its position; two offsets
@@ -77,7 +101,7 @@ def numeric_change(
                     f"the linearized equations depend on the position of prescribed joint {name!r} "
                     f"(relative change {change:.2e} after {offset} rad, against the system's scales): with its "
                     f"prescribed velocity they are time-periodic, not constant-coefficient, and cannot be "
-                    f"analysed as M x'' + C x' + K x = f",
+                    f"analysed as M x'' + C x' + K x = f" + FLOQUET_HINT,
                     joint=name,
                     variation=change,
                 )

@@ -14,6 +14,7 @@ from .constraints import Constraint, PointConstraint
 from .elements import Element, JointDamper, WrenchElement
 from .elements.base import check_vector3
 from .elements.invariance import invariance_kind
+from .motions import common_period, split_prescribed
 from .robot import Robot
 
 __all__ = ["Scene", "ANGLE_LIMIT", "UNIT_NORM_MIN"]
@@ -51,9 +52,13 @@ class Scene:
         Springs, dampers, Rayleigh damping, follower and dead wrenches.
     gravity : 3 floats
         Gravity vector [m/s^2] in world axes; zero is allowed.
-    prescribed : mapping of str to float, optional
+    prescribed : mapping of str to float or Motion, optional
         Joint name -> constant velocity [rad/s or m/s] of a 1-DOF joint (a
-        turntable, a rotor).  These joints are not coordinates of the result.
+        turntable, a rotor), or a periodic motion q_p(t) (:class:`~pinlin.Harmonic`,
+        :class:`~pinlin.FourierMotion`, :class:`~pinlin.PeriodicMotion`; SPEC section 13).
+        These joints are not coordinates of the result.  Constant velocities are
+        kept in ``prescribed``, periodic motions in ``motions``; ``motion_period`` is the
+        common period of the motions (None without any), ``v0`` holds their velocity at t = 0.
         Not allowed together with constraints: the steady motion of a constrained
         system needs the J_c-dot terms, which pinlin does not linearize; such a
         scene is refused rather than linearized approximately.
@@ -79,6 +84,9 @@ class Scene:
     PrescribedJointError
         A prescribed joint is not 1-DOF, every joint is prescribed, or the scene
         has both prescribed joints and constraints.
+    QuasiPeriodicError
+        Periodic motions without a common period
+        (:func:`pinlin.model.motions.common_period` gives the rule).
     """
 
     def __init__(
@@ -112,22 +120,10 @@ class Scene:
         self.gravity.flags.writeable = False
         self._has_gravity = bool(np.any(self.gravity != 0))
 
-        pres: dict[str, float] = {}
-        for name, omega in dict(prescribed or {}).items():
-            j = robot.joint(name)
-            if j.nv != 1:
-                raise PrescribedJointError(
-                    f"prescribed joint {name!r} is a {j.kind} with {j.nv} degrees of freedom; "
-                    f"only 1-DOF joints (revolute, continuous, prismatic) can have a prescribed velocity"
-                )
-            try:
-                omega = float(omega)
-            except (TypeError, ValueError):
-                raise ParameterError(f"prescribed[{name!r}]", f"expected a number, got {omega!r}") from None
-            if not np.isfinite(omega):
-                raise ParameterError(f"prescribed[{name!r}]", f"must be finite, got {omega!r}")
-            pres[name] = omega
+        pres, motions = split_prescribed(robot, prescribed)
         self.prescribed = types.MappingProxyType(pres)
+        self.motions = types.MappingProxyType(motions)
+        self.motion_period = common_period({name: m.period for name, m in motions.items()})
         self.memory_limit = memory_limit
         self._user_constraints = None if constraints is None else tuple(constraints)
         self.constraints = self._check_constraints(robot, self._user_constraints)
@@ -137,6 +133,10 @@ class Scene:
             j = robot.joint(name)
             mask[j.idx_v] = False
             self.v0[j.idx_v] = omega
+        for name, motion in motions.items():  # the velocity at t = 0
+            j = robot.joint(name)
+            mask[j.idx_v] = False
+            self.v0[j.idx_v] = motion.v(0.0)
         if not mask.any():
             raise PrescribedJointError("every joint is prescribed: no free degree of freedom is left")
         self.v0.flags.writeable = False
@@ -253,9 +253,10 @@ class Scene:
                     f"constraints[{i}]", f"expected a PointConstraint or FrameConstraint, got {constraint!r}"
                 )
             constraint.check(robot)
-        if constraints and self.prescribed:
+        if constraints and (self.prescribed or self.motions):
             raise PrescribedJointError(
-                f"a scene with constraints cannot have prescribed joint velocities ({sorted(self.prescribed)}): "
+                f"a scene with constraints cannot have prescribed joint velocities or motions "
+                f"({sorted(self.prescribed) + sorted(self.motions)}): "
                 f"the steady motion of a constrained system needs the J_c-dot terms, which pinlin does not "
                 f"linearize; remove the prescribed velocities or the constraints"
             )
@@ -306,7 +307,7 @@ class Scene:
             robot=self.robot,
             elements=self._user_elements,
             gravity=self.gravity,
-            prescribed=dict(self.prescribed),
+            prescribed={**self.prescribed, **self.motions},
             urdf_damping=self.urdf_damping,
             memory_limit=self.memory_limit,
             constraints=self._user_constraints,
@@ -389,6 +390,7 @@ class Scene:
         for e in self.elements:
             kinds[e.kind] = kinds.get(e.kind, 0) + 1
         parts = ", ".join(f"{v} {k}" for k, v in kinds.items()) or "no elements"
-        pres = f", prescribed={dict(self.prescribed)}" if self.prescribed else ""
+        given = {**self.prescribed, **self.motions}
+        pres = f", prescribed={given}" if given else ""
         loops = f", {len(self.constraints)} constraints (m = {self.constraint_size})" if self.constraints else ""
         return f"Scene({self.robot.name!r}, n={self.n}, {parts}{loops}, gravity={self.gravity.tolist()}{pres})"

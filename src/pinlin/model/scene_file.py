@@ -14,6 +14,7 @@ Format (every table is optional except ``[robot]``)::
 
     [prescribed]                    # joint = constant velocity [rad/s or m/s]
     # table = 3.0                   # (a turntable's joint: see the bundled scenes/turntable.toml)
+    # pivot = { amplitude = 0.02, omega = 60.0 }  # offset + amplitude sin(omega t + phase) (kapitza.toml)
 
     [start]
     q = [0.0, 0.0]                  # full configuration (nq); or joints = { joint1 = 0.1 }
@@ -97,6 +98,7 @@ from .elements import (
     RayleighDamping,
 )
 from .loading import data_path, load_example, load_urdf
+from .motions import harmonic_from_table
 from .robot import Robot
 from .scene import Scene
 from .scene_file_values import Reader, read_placement, read_target
@@ -375,9 +377,14 @@ def load_scene(path) -> SceneSpec:
     if not isinstance(prescribed, dict):
         r.fail("prescribed", "expected a table joint = velocity")
     for name in prescribed:
-        r.get(prescribed, name, "prescribed", float)
-        try:
+        try:  # a table is a harmonic motion (SPEC section 13), a number a constant velocity
+            if isinstance(prescribed[name], dict):
+                prescribed[name] = harmonic_from_table(prescribed[name])
+            else:
+                r.get(prescribed, name, "prescribed", float)
             robot.joint(name)
+        except SceneFileError:
+            raise
         except PinlinError as exc:
             r.fail(f"prescribed.{name}", str(exc), exc)
     try:

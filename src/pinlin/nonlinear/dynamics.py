@@ -10,7 +10,8 @@ with every scene element: joint springs, dampers and Rayleigh damping through
 their generalized forces Q_e, follower and dead wrenches through Pinocchio's
 ``fext`` (:func:`pinlin.linearization.assembly.external_forces`), gravity in the
 scene's model.  Prescribed joints keep their constant velocity (zero
-acceleration; the torque that takes is not computed).  Without prescribed
+acceleration) or follow their periodic motion q_p(t), v_p(t), a_p(t)
+(:meth:`FreeDynamics.apply_motions`, SPEC section 13); the torque that takes is not computed.  Without prescribed
 joints the accelerations come from ``aba`` directly.
 """
 
@@ -42,11 +43,35 @@ class FreeDynamics:
         self.ws = workspace(scene)
         self.data = self.ws.data
         self.free = scene.free_dofs
-        self.prescribed = bool(scene.prescribed)
+        self.prescribed = bool(scene.prescribed or scene.motions)
         self.zero = np.zeros(self.model.nv)
+        self.motions = tuple(
+            (scene.robot.joint(name).idx_q, scene.robot.joint(name).nq, scene.robot.joint(name).idx_v, m)
+            for name, m in scene.motions.items()
+        )
 
-    def acceleration(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
-        """The full acceleration (nv,) on the aba path, or the free accelerations (n,) with prescribed joints."""
+    def apply_motions(self, t: float, q: np.ndarray, v: np.ndarray) -> np.ndarray | None:
+        """Set the periodically moving joints of q and v (in place) to q_p(t), v_p(t); return the full
+        acceleration vector holding a_p(t) on them and zero elsewhere (None without periodic motions).
+
+        A continuous joint (nq = 2) gets (cos q_p, sin q_p)."""
+        if not self.motions:
+            return None
+        a = np.zeros(self.model.nv)
+        for iq, nq, iv, m in self.motions:
+            angle = m.q(t)
+            if nq == 1:
+                q[iq] = angle
+            else:
+                q[iq], q[iq + 1] = np.cos(angle), np.sin(angle)
+            v[iv], a[iv] = m.v(t), m.a(t)
+        return a
+
+    def acceleration(self, q: np.ndarray, v: np.ndarray, a_p: np.ndarray | None = None) -> np.ndarray:
+        """The full acceleration (nv,) on the aba path, or the free accelerations (n,) with prescribed joints.
+
+        ``a_p``: the full acceleration vector of the prescribed joints (zero on the free ones), from
+        :meth:`apply_motions`; None for constant prescribed velocities."""
         model, data = self.model, self.data
         ev = Evaluation(self.scene, q, v, self.ws)
         fext = external_forces(self.scene, ev)
@@ -56,9 +81,9 @@ class FreeDynamics:
         extra = () if fext is None else (fext,)
         if not self.prescribed:
             return np.array(pin.aba(model, data, q, v, Q, *extra))
-        # Prescribed joints move at constant velocity (zero acceleration): the actuator
+        # Prescribed joints move at constant velocity (zero acceleration) or follow q_p(t): the actuator
         # holding them supplies whatever torque that takes, so only the free rows count.
-        h = np.array(pin.rnea(model, data, q, v, self.zero, *extra))
+        h = np.array(pin.rnea(model, data, q, v, self.zero if a_p is None else a_p, *extra))
         f = self.free
         M = ev.mass_matrix()[np.ix_(f, f)]
         return scipy.linalg.cho_solve(scipy.linalg.cho_factor(M), Q[f] - h[f])
@@ -95,7 +120,7 @@ def initial_velocity(scene: Scene, v0) -> np.ndarray:
     if arr.shape == (n,):
         v[scene.free_dofs] = arr
         return v
-    for name, omega in scene.prescribed.items():
+    for name, omega in {**scene.prescribed, **{k: m.v(0.0) for k, m in scene.motions.items()}}.items():
         i = scene.robot.joint(name).idx_v
         if arr[i] != omega:
             raise ConfigurationError(

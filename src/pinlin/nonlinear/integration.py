@@ -74,8 +74,9 @@ class _Problem:
         dq = y[: self.nv]
         self.v_full[self.free] = y[self.nv :]
         q = self.chart.configuration(dq)
+        a_p = self.dyn.apply_motions(t, q, self.v_full)
         out = np.concatenate(
-            [self.chart.coordinate_rate(dq, self.v_full), self.dyn.acceleration(q, self.v_full)]
+            [self.chart.coordinate_rate(dq, self.v_full), self.dyn.acceleration(q, self.v_full, a_p)]
         )
         if not np.all(np.isfinite(out)):
             raise _NonFinite(t)
@@ -156,6 +157,7 @@ def integrate(
         out.q[row] = problem.chart.configuration(dq)
         out.v[row] = v_init
         out.v[row, free] = v_free
+        problem.dyn.apply_motions(times[row], out.q[row], out.v[row])  # the prescribed motions exactly
 
     while done < len(times):
         sol = _solve(problem, t_now, y, times[done:], settings, solver)

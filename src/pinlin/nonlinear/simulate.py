@@ -22,7 +22,7 @@ from ..numerics.arrays import check_times
 from ..numerics.checks import check_integer, check_tolerance
 from .charts import MAX_CHART_RADIUS
 from .coordinates import linear_coordinates
-from .dynamics import initial_velocity
+from .dynamics import FreeDynamics, initial_velocity
 from .integration import Settings, Trajectory, integrate
 from .result import Simulation
 
@@ -116,7 +116,9 @@ def _error_estimate(scene: Scene, run: Trajectory, reference: Trajectory, atol: 
 
 
 def _describe(scene: Scene, s: Settings, estimate_error: bool) -> str:
-    path = "aba" if not scene.prescribed else "rnea and M_ff (prescribed joints at constant velocity)"
+    path = "aba" if not (scene.prescribed or scene.motions) else "rnea and M_ff (prescribed joints at constant velocity)"
+    if scene.motions:
+        path = "rnea and M_ff (prescribed joints at constant velocity or following q_p(t), v_p(t), a_p(t))"
     error = (
         f"error against a run at tolerances / {ERROR_TOL_FACTOR:g}"
         if estimate_error
@@ -154,7 +156,10 @@ def simulate(
     with every scene element (:mod:`pinlin.nonlinear.dynamics`): springs,
     dampers and Rayleigh damping through their generalized forces Q_e, follower
     and dead wrenches through Pinocchio's ``fext``, gravity in the scene's
-    model.  Prescribed joints keep their constant velocity.  The computation
+    model.  Prescribed joints keep their constant velocity, or follow their
+    periodic motion exactly (:class:`~pinlin.Harmonic` etc.: q_p(t), v_p(t) and
+    a_p(t) enter the dynamics; q0 and v0's entries of those joints are replaced
+    by q_p(t[0]), v_p(t[0])).  The computation
     runs in the calling thread's Pinocchio workspace, so one scene can be
     simulated from many threads at once.
 
@@ -247,6 +252,8 @@ def simulate(
     times = check_times(t)
     q_init = scene.check_configuration(q0, "q0")
     v_init = initial_velocity(scene, v0)
+    if scene.motions:  # the periodically moving joints start where their motion is at t[0]
+        FreeDynamics(scene).apply_motions(times[0], q_init, v_init)
     settings = _settings(method, rtol, atol, max_step, chart_radius, bool(estimate_error), (max_steps, max_time))
     run = integrate(scene, q_init, v_init, times, settings)
     error_q = error_v = float("nan")

@@ -14,11 +14,26 @@ One concept per module:
 - :mod:`.result` -- :class:`FloquetAnalysis`, the result;
 - :mod:`.analysis` -- :func:`floquet_from_first_order` and :func:`floquet_analysis_matrices`;
 - :mod:`.multiblade` -- :func:`multiblade_transform_matrices` (Coleman coordinates of N >= 3 identical blades).
+
+Scenes (a URDF model with periodic prescribed motions or an autonomous free oscillation):
+
+- :mod:`.period` -- :func:`scene_period`, the common period of everything that moves;
+- :mod:`.coefficients` -- :func:`variational_coefficients`: M(t), C(t), K(t) along a motion from Pinocchio's
+  RNEA derivatives at the actual acceleration;
+- :mod:`.orbit_result` -- :class:`PeriodicOrbit`, the periodic reference motion;
+- :mod:`.shooting` -- :func:`periodic_orbit`, that motion by Newton shooting with the monodromy;
+- :mod:`.scene_floquet` -- :func:`floquet_analysis`, the Floquet analysis of a scene along its orbit.
 """
 
 from .analysis import floquet_analysis_matrices, floquet_from_first_order
+from .coefficients import VariationalCoefficients, variational_coefficients
 from .multiblade import multiblade_transform_matrices
+from .orbit_result import PeriodicOrbit
+from .period import scene_period
 from .result import FloquetAnalysis
+from .scene_floquet import floquet_analysis
+from .shooting import periodic_orbit
 
 __all__ = ["FloquetAnalysis", "floquet_from_first_order", "floquet_analysis_matrices",
-           "multiblade_transform_matrices"]
+           "multiblade_transform_matrices", "PeriodicOrbit", "periodic_orbit", "floquet_analysis",
+           "variational_coefficients", "VariationalCoefficients", "scene_period"]

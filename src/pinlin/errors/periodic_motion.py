@@ -1,0 +1,61 @@
+"""Errors of periodic prescribed motions and periodic reference orbits (SPEC section 13)."""
+
+from __future__ import annotations
+
+from .base import ComputationError, InputError
+
+__all__ = ["QuasiPeriodicError", "NoPeriodError", "PeriodicOrbitError", "OrbitLimitError"]
+
+
+class QuasiPeriodicError(InputError):
+    """The prescribed motions have no common period (incommensurate periods): the motion is quasi-periodic.
+
+    Attributes
+    ----------
+    periods : dict of str to float
+        Joint name -> period [s] of each periodic prescribed motion.
+    """
+
+    def __init__(self, message: str, periods: dict):
+        super().__init__(message)
+        self.periods = dict(periods)
+
+
+class NoPeriodError(InputError):
+    """No period to look for: an autonomous scene without a period guess, or a period that does not
+    match the scene's forcing."""
+
+
+class PeriodicOrbitError(ComputationError):
+    """The shooting for a periodic orbit failed (did not converge, diverged, or found no orbit).
+
+    Attributes
+    ----------
+    history : tuple of float
+        The relative residual ||x(T) - x(0)|| of each Newton step (the start first).
+    period : float
+        The last period tried [s].
+    """
+
+    def __init__(self, message: str, history=(), period: float = float("nan")):
+        super().__init__(message)
+        self.history = tuple(float(h) for h in history)
+        self.period = float(period)
+
+
+class OrbitLimitError(PeriodicOrbitError):
+    """The motion leaves a joint's position limits of the model.
+
+    Attributes
+    ----------
+    joint : str
+    time : float
+        Time [s] at which the limit is crossed.
+    value, lower, upper : float
+        The joint position and its limits [rad or m].
+    """
+
+    def __init__(self, message: str, joint: str, time: float, value: float, lower: float, upper: float,
+                 history=(), period: float = float("nan")):
+        super().__init__(message, history, period)
+        self.joint, self.time, self.value, self.lower, self.upper = joint, float(time), float(value), float(lower), float(upper)

@@ -1,0 +1,140 @@
+"""The variational equation along a motion, from Pinocchio (SPEC section 13): :func:`variational_coefficients`.
+
+Along a motion q*(t), v*(t) of the free coordinates (prescribed joints at q_p(t), v_p(t), a_p(t)), small
+deviations x in the tangent space of the free coordinates obey
+
+.. math::
+    M(t)\\, \\ddot x + C(t)\\, \\dot x + K(t)\\, x = 0, \\qquad
+    M = \\partial r / \\partial a, \\quad C = \\partial r / \\partial v, \\quad K = \\partial r / \\partial q
+
+with r(q, v, a) = tau(q, v, a, f_ext) - Q_e(q, v) evaluated at the *actual* acceleration a*(t)
+(``computeRNEADerivatives(q*, v*, a*)``, elements' stiffness and damping included: the same assembly as
+:func:`pinlin.linearize`, :func:`pinlin.linearization.assembly.assemble` with ``a``), restricted to the
+free coordinates.  Each point costs one forward-dynamics pass (``rnea`` and ``crba``, or ``aba``, for a*)
+and one RNEA-derivative pass.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from ..linearization.assembly import assemble
+from ..model.scene import Scene
+from ..nonlinear.dynamics import FreeDynamics
+
+__all__ = ["Point", "VariationalCoefficients", "evaluate_point", "variational_coefficients"]
+
+
+@dataclass(frozen=True)
+class Point:
+    """The variational coefficients at one point of a motion.
+
+    Attributes
+    ----------
+    a_free : (n,) ndarray
+        The free accelerations a*_f [rad/s^2 or m/s^2].
+    a : (nv,) ndarray
+        The full acceleration (prescribed joints: a_p(t); constant-speed ones 0).
+    M, C, K : (n, n) ndarray
+        dr/da, dr/dv, dr/dq on the free coordinates.
+    """
+
+    a_free: np.ndarray
+    a: np.ndarray
+    M: np.ndarray
+    C: np.ndarray
+    K: np.ndarray
+
+    def first_order(self) -> np.ndarray:
+        """A = [[0, I], [-M^-1 K, -M^-1 C]] (2n, 2n), by a Cholesky solve with M."""
+        n = self.M.shape[0]
+        X = scipy.linalg.cho_solve(scipy.linalg.cho_factor(self.M), np.hstack([self.K, self.C]))
+        A = np.zeros((2 * n, 2 * n))
+        A[:n, n:] = np.eye(n)
+        A[n:, :n], A[n:, n:] = -X[:, :n], -X[:, n:]
+        return A
+
+
+def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray, t: float) -> Point:
+    """The coefficients at (q, v) and time t; q and v (full, nq and nv) get the prescribed motions at t
+    (in place).  ``dyn``: the thread's :class:`~pinlin.nonlinear.dynamics.FreeDynamics` of ``scene``."""
+    a_p = dyn.apply_motions(t, q, v)
+    a_f = dyn.acceleration(q, v, a_p)
+    free = scene.free_dofs
+    a = np.zeros(scene.model.nv) if a_p is None else a_p.copy()
+    if a_f.shape[0] == scene.model.nv:  # the aba path: no prescribed joint
+        a = a_f
+        a_f = a_f[free]
+    else:
+        a[free] = a_f
+    asm = assemble(scene, q, v, stiffness=True, damping=True, mass=True, a=a)
+    ix = np.ix_(free, free)
+    M = asm.M[ix]  # symmetric: Pinocchio's upper triangle mirrored
+    return Point(a_f, a, M.copy(), asm.C[ix].copy(), asm.K[ix].copy())
+
+
+class VariationalCoefficients:
+    """M(t), C(t), K(t) and A(t) along a periodic orbit (callables of t [s], periodic extension).
+
+    Each distinct t is one Pinocchio evaluation (:func:`evaluate_point`); the last ``cache`` points are
+    kept, so that M(t), C(t) and K(t) at one node cost one evaluation.  An instance belongs to the thread
+    that created it (it holds that thread's Pinocchio workspace).
+
+    Attributes
+    ----------
+    evaluations : int
+        Pinocchio evaluations made so far.
+    """
+
+    def __init__(self, scene: Scene, orbit, cache: int = 16):
+        self.scene, self.orbit = scene, orbit
+        self.dyn = FreeDynamics(scene)
+        self._cache: OrderedDict[float, Point] = OrderedDict()
+        self._size = int(cache)
+        self.evaluations = 0
+
+    def point(self, t: float) -> Point:
+        t = float(t)
+        hit = self._cache.get(t)
+        if hit is not None:
+            return hit
+        p = evaluate_point(self.scene, self.dyn, self.orbit.q(t), self.orbit.v(t), t)
+        self.evaluations += 1
+        self._cache[t] = p
+        if len(self._cache) > self._size:
+            self._cache.popitem(last=False)
+        return p
+
+    def M(self, t: float) -> np.ndarray:
+        return self.point(t).M
+
+    def C(self, t: float) -> np.ndarray:
+        return self.point(t).C
+
+    def K(self, t: float) -> np.ndarray:
+        return self.point(t).K
+
+    def A(self, t: float) -> np.ndarray:
+        return self.point(t).first_order()
+
+
+def variational_coefficients(scene: Scene, orbit) -> VariationalCoefficients:
+    """The coefficients M(t), C(t), K(t) (and A(t)) of the variational equation along ``orbit``.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene the orbit belongs to.
+    orbit : PeriodicOrbit
+        From :func:`pinlin.periodic_orbit` (anything with ``q(t)``, ``v(t)`` full arrays works).
+
+    Returns
+    -------
+    VariationalCoefficients
+        ``.M(t)``, ``.C(t)``, ``.K(t)`` (n, n), ``.A(t)`` (2n, 2n), ``.point(t)`` (all at once).
+    """
+    return VariationalCoefficients(scene, orbit)

@@ -1,0 +1,120 @@
+"""The periodic reference motion of a scene: :class:`PeriodicOrbit` (SPEC section 13)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pinocchio as pin
+
+from ..model.scene import Scene
+from ..nonlinear.dynamics import FreeDynamics
+from ..results import Result
+
+__all__ = ["PeriodicOrbit"]
+
+
+@dataclass(frozen=True, repr=False, eq=False)
+class PeriodicOrbit(Result):
+    """A T-periodic motion q*(t) of a scene's free coordinates (forced, or an autonomous orbit).
+
+    ``q(t)``, ``v(t)`` and ``a(t)`` are the full configuration (nq), velocity and acceleration (nv) at any
+    time t [s] (periodic extension of the free coordinates; prescribed joints exactly at their motion, a
+    constant-speed joint at its angle Omega t).  Between the integrator's steps q and v come from the
+    DOP853 dense output (7th-order interpolant, error of the order of the integration's ``rtol`` relative
+    to the motion); ``a(t)`` is the dynamics evaluated at (q(t), v(t), t), not an interpolant.
+
+    Attributes
+    ----------
+    period : float
+        T [s].
+    q0 : (nq,) ndarray
+        q*(0).
+    v0 : (nv,) ndarray
+        v*(0).
+    residual : float
+        ||x(T) - x(0)|| / max_t ||x(t) - x(0)|| with x = (dq_f, v_f) the free coordinates [rad or m] and
+        velocities stacked: the shooting's last relative defect.  For a constant orbit: the largest relative
+        equilibrium residual ||r_f|| / (||tau|| + ||Q_e|| + ||K||) found along the period.
+    integration_error : float
+        ||x_T - x_T'|| / max_t ||x(t) - x(0)||: the final flow against one at ``rtol * 10`` (an over-estimate
+        of the returned flow's error for an 8th-order method); 0 for a constant orbit.
+    error : float
+        ``residual + integration_error``: the headline figure, a relative bound on how far x(T) misses x(0)
+        in exact arithmetic.
+    iterations : int
+        Newton steps taken (0 for a constant orbit).
+    history : tuple of float
+        The residual before each Newton step and after the last.
+    constant : bool
+        The free coordinates stay at an equilibrium: the prescribed motion does not reach them (no shooting).
+    autonomous : bool
+        A free oscillation (the period was unknown); its variational equation has the trivial multiplier 1.
+    monodromy : (2n, 2n) ndarray or None
+        The shooting's last Phi(T) of the free coordinates (from the variational equation integrated with
+        the orbit); None for a constant orbit.
+    elapsed : float
+        Wall time [s].
+    method : str
+    """
+
+    period: float
+    q0: np.ndarray
+    v0: np.ndarray
+    residual: float
+    integration_error: float
+    error: float
+    iterations: int
+    history: tuple
+    constant: bool
+    autonomous: bool
+    monodromy: np.ndarray | None
+    elapsed: float
+    method: str
+    scene: Scene = field(repr=False)
+    base: np.ndarray = field(repr=False)
+    solution: object = field(repr=False)
+
+    _dict_exclude = ("scene", "base", "solution")
+
+    def _state(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        scene = self.scene
+        model = scene.model
+        tau = float(t) % self.period
+        dq = np.zeros(model.nv)
+        v = np.array(scene.v0, dtype=float)
+        if self.solution is not None:
+            y = self.solution(tau)
+            dq[:] = y[: model.nv]
+            v[scene.free_dofs] = y[model.nv : model.nv + scene.n]
+        for name, omega in scene.prescribed.items():  # the advancing angle, exactly
+            dq[scene.robot.joint(name).idx_v] = omega * float(t)
+        q = pin.integrate(model, self.base, dq)
+        FreeDynamics(scene).apply_motions(float(t), q, v)
+        return q, v
+
+    def q(self, t: float) -> np.ndarray:
+        """Configuration q*(t) (nq,)."""
+        return self._state(t)[0]
+
+    def v(self, t: float) -> np.ndarray:
+        """Velocity v*(t) (nv,)."""
+        return self._state(t)[1]
+
+    def a(self, t: float) -> np.ndarray:
+        """Acceleration a*(t) (nv,): the free accelerations from the dynamics at (q*(t), v*(t)), the
+        prescribed ones a_p(t) (constant-speed joints 0)."""
+        q, v = self._state(t)
+        dyn = FreeDynamics(self.scene)
+        a_p = dyn.apply_motions(float(t), q, v)
+        a_f = dyn.acceleration(q, v, a_p)
+        if a_f.shape[0] == self.scene.model.nv:
+            return a_f
+        a = np.zeros(self.scene.model.nv) if a_p is None else a_p
+        a[self.scene.free_dofs] = a_f
+        return a
+
+    def __repr__(self) -> str:
+        kind = "constant" if self.constant else ("autonomous" if self.autonomous else "forced")
+        return (f"PeriodicOrbit({kind}, period={self.period:.10g} s, n={self.scene.n}, "
+                f"iterations={self.iterations}, residual={self.residual:.2e}, error={self.error:.2e})")
