@@ -1,11 +1,17 @@
 """Sphinx configuration of pinlin's documentation (build: see index.md, "Building these pages").
 
 Sphinx with autodoc and numpydoc, MyST for the Markdown pages, MyST-NB for the
-notebooks (rendered from their stored outputs, never executed here). Strict:
+notebooks: the stored notebooks (``notebooks/*.ipynb``) are rendered from their
+outputs, never executed here; the user-guide pages are MyST text notebooks whose
+``{code-cell}`` examples run during the build and show their output (an example
+that raises fails the build). The package documented, and imported by those
+examples, is the one of this source tree (``../src``), whatever is installed.
+Math is rendered by MathJax served from the built pages themselves
+(``sphinx-mathjax-offline``), never from a CDN. Strict:
 ``sphinx-build -W`` turns every warning into an error, and numpydoc's
 validation warns when a docstring's Parameters drift from the signature
 (PR01: a parameter not documented; PR02: a documented parameter that does not exist).
-No network: no intersphinx, no remote images.
+No network: no intersphinx, no remote images, no CDN scripts.
 """
 
 from __future__ import annotations
@@ -16,13 +22,24 @@ import io
 import logging as std_logging
 import os
 import re
+import sys
+from pathlib import Path
 
 from docutils import nodes
 from docutils.statemachine import StringList
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
 
-import pinlin
+#: This tree's sources: documented by autodoc and imported by the executed examples (their kernels
+#: inherit PYTHONPATH), ahead of any installed pinlin (an editable install may point at another tree).
+SRC = Path(__file__).resolve().parents[1] / "src"
+sys.path.insert(0, str(SRC))
+os.environ["PYTHONPATH"] = os.pathsep.join([str(SRC), *filter(None, [os.environ.get("PYTHONPATH")])])
+
+import pinlin  # noqa: E402
+
+if Path(pinlin.__file__).resolve().parents[1] != SRC:
+    raise ImportError(f"the docs would document {pinlin.__file__}, not this tree's {SRC}")
 
 os.environ.setdefault("MPLBACKEND", "Agg")  # the examples draw figures: no display needed
 std_logging.getLogger("matplotlib.animation").setLevel(std_logging.WARNING)  # its INFO line per saved animation
@@ -32,7 +49,8 @@ author = "pinlin developers"
 copyright = "pinlin developers"
 release = version = pinlin.__version__
 
-extensions = ["sphinx.ext.autodoc", "sphinx.ext.mathjax", "numpydoc", "myst_nb"]
+#: ``sphinx-mathjax-offline`` sets ``mathjax_path`` to its bundled MathJax 3 and copies it into ``_static``.
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.mathjax", "sphinx-mathjax-offline", "numpydoc", "myst_nb"]
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
 exclude_patterns = ["_build", "notebooks/README.md", "README.md", "**/.ipynb_checkpoints"]
@@ -65,9 +83,15 @@ _ATTRIBUTES = r"Attributes\n\s*-{5,}"
 _NO_PARAMETERS = r"\A(?![\s\S]*Parameters\n\s*-{5,})"
 numpydoc_validation_overrides = {"PR01": [_ATTRIBUTES, _NO_PARAMETERS], "PR02": [_ATTRIBUTES]}
 
-# --- MyST and MyST-NB: the notebooks are stored with their outputs; render them as they are
-myst_enable_extensions = ["dollarmath"]
-nb_execution_mode = "off"
+# --- MyST and MyST-NB: $...$ and $$...$$ math (amsmath environments too), labelled equations;
+# the text notebooks of the guide are executed, the stored notebooks rendered as they are
+myst_enable_extensions = ["dollarmath", "amsmath"]
+myst_dmath_double_inline = True
+nb_execution_mode = "force"
+nb_execution_excludepatterns = ["notebooks/*"]  # stored with their outputs; the test suite executes them
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_execution_timeout = 300
 nb_merge_streams = True
 suppress_warnings: list[str] = []
 
