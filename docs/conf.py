@@ -41,7 +41,9 @@ import pinlin  # noqa: E402
 if Path(pinlin.__file__).resolve().parents[1] != SRC:
     raise ImportError(f"the docs would document {pinlin.__file__}, not this tree's {SRC}")
 
-os.environ.setdefault("MPLBACKEND", "Agg")  # the examples draw figures: no display needed
+#: The executed pages' kernels show their figures inline (their output); this process, which runs the
+#: remaining ```python blocks, needs no display (its figures are drawn and closed).
+os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 std_logging.getLogger("matplotlib.animation").setLevel(std_logging.WARNING)  # its INFO line per saved animation
 
 project = "pinlin"
@@ -215,6 +217,9 @@ def run_examples(app, doctree) -> None:
     docname = app.env.docname
     if not docname.startswith(EXAMPLE_PAGES):
         return
+    import matplotlib
+
+    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     namespace: dict = {"__name__": f"pinlin_docs_{docname.replace('/', '_')}"}
