@@ -237,7 +237,30 @@ def run_examples(app, doctree) -> None:
         plt.close("all")
 
 
+#: The project's planning document is not shipped: a page that names it sends readers nowhere.
+#: The theory part (``theory/``) is where the mathematics lives; link its sections (``theory-*`` labels).
+_INTERNAL_REFERENCE = re.compile(r"\bSPEC\b")
+#: Also check the docstrings (autodoc) -- True once the code's own references point at the theory.
+CHECK_DOCSTRINGS = False
+
+
+def no_internal_references(app, docname, source) -> None:
+    """Warn (an error under -W) when a documentation page refers to the unshipped SPEC."""
+    for number, line in enumerate(source[0].splitlines(), 1):
+        if _INTERNAL_REFERENCE.search(line):
+            logger.warning(f"{docname} refers to SPEC, which is not shipped: link a theory section instead",
+                           location=(docname, number))
+
+
+def no_internal_references_in_docstrings(app, what, name, obj, options, lines) -> None:
+    """The same check on a docstring."""
+    if CHECK_DOCSTRINGS and any(_INTERNAL_REFERENCE.search(line) for line in lines):
+        logger.warning(f"the docstring of {name} refers to SPEC, which is not shipped: link a theory section instead")
+
+
 def setup(app):
+    app.connect("source-read", no_internal_references)
+    app.connect("autodoc-process-docstring", no_internal_references_in_docstrings)
     app.connect("doctree-read", run_examples)
     app.connect("autodoc-process-docstring", escape_bars, priority=600)  # after numpydoc's rewrite (500)
     app.add_directive("pinlin-package", PackageDirective)
