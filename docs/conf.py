@@ -1,11 +1,17 @@
 """Sphinx configuration of pinlin's documentation (build: see index.md, "Building these pages").
 
 Sphinx with autodoc and numpydoc, MyST for the Markdown pages, MyST-NB for the
-notebooks (rendered from their stored outputs, never executed here). Strict:
+notebooks: the stored notebooks (``notebooks/*.ipynb``) are rendered from their
+outputs, never executed here; the user-guide pages are MyST text notebooks whose
+``{code-cell}`` examples run during the build and show their output (an example
+that raises fails the build). The package documented, and imported by those
+examples, is the one of this source tree (``../src``), whatever is installed.
+Math is rendered by MathJax served from the built pages themselves
+(``sphinx-mathjax-offline``), never from a CDN. Strict:
 ``sphinx-build -W`` turns every warning into an error, and numpydoc's
 validation warns when a docstring's Parameters drift from the signature
 (PR01: a parameter not documented; PR02: a documented parameter that does not exist).
-No network: no intersphinx, no remote images.
+No network: no intersphinx, no remote images, no CDN scripts.
 """
 
 from __future__ import annotations
@@ -16,15 +22,28 @@ import io
 import logging as std_logging
 import os
 import re
+import sys
+from pathlib import Path
 
 from docutils import nodes
 from docutils.statemachine import StringList
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
 
-import pinlin
+#: This tree's sources: documented by autodoc and imported by the executed examples (their kernels
+#: inherit PYTHONPATH), ahead of any installed pinlin (an editable install may point at another tree).
+SRC = Path(__file__).resolve().parents[1] / "src"
+sys.path.insert(0, str(SRC))
+os.environ["PYTHONPATH"] = os.pathsep.join([str(SRC), *filter(None, [os.environ.get("PYTHONPATH")])])
 
-os.environ.setdefault("MPLBACKEND", "Agg")  # the examples draw figures: no display needed
+import pinlin  # noqa: E402
+
+if Path(pinlin.__file__).resolve().parents[1] != SRC:
+    raise ImportError(f"the docs would document {pinlin.__file__}, not this tree's {SRC}")
+
+#: The executed pages' kernels show their figures inline (their output); this process, which runs the
+#: remaining ```python blocks, needs no display (its figures are drawn and closed).
+os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
 std_logging.getLogger("matplotlib.animation").setLevel(std_logging.WARNING)  # its INFO line per saved animation
 
 project = "pinlin"
@@ -32,7 +51,8 @@ author = "pinlin developers"
 copyright = "pinlin developers"
 release = version = pinlin.__version__
 
-extensions = ["sphinx.ext.autodoc", "sphinx.ext.mathjax", "numpydoc", "myst_nb"]
+#: ``sphinx-mathjax-offline`` sets ``mathjax_path`` to its bundled MathJax 3 and copies it into ``_static``.
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.mathjax", "sphinx-mathjax-offline", "numpydoc", "myst_nb"]
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
 exclude_patterns = ["_build", "notebooks/README.md", "README.md", "**/.ipynb_checkpoints"]
@@ -65,9 +85,15 @@ _ATTRIBUTES = r"Attributes\n\s*-{5,}"
 _NO_PARAMETERS = r"\A(?![\s\S]*Parameters\n\s*-{5,})"
 numpydoc_validation_overrides = {"PR01": [_ATTRIBUTES, _NO_PARAMETERS], "PR02": [_ATTRIBUTES]}
 
-# --- MyST and MyST-NB: the notebooks are stored with their outputs; render them as they are
-myst_enable_extensions = ["dollarmath"]
-nb_execution_mode = "off"
+# --- MyST and MyST-NB: $...$ and $$...$$ math (amsmath environments too), labelled equations;
+# the text notebooks of the guide are executed, the stored notebooks rendered as they are
+myst_enable_extensions = ["dollarmath", "amsmath"]
+myst_dmath_double_inline = True
+nb_execution_mode = "force"
+nb_execution_excludepatterns = ["notebooks/*"]  # stored with their outputs; the test suite executes them
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_execution_timeout = 300
 nb_merge_streams = True
 suppress_warnings: list[str] = []
 
@@ -191,6 +217,9 @@ def run_examples(app, doctree) -> None:
     docname = app.env.docname
     if not docname.startswith(EXAMPLE_PAGES):
         return
+    import matplotlib
+
+    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     namespace: dict = {"__name__": f"pinlin_docs_{docname.replace('/', '_')}"}
@@ -208,7 +237,30 @@ def run_examples(app, doctree) -> None:
         plt.close("all")
 
 
+#: The project's planning document is not shipped: a page that names it sends readers nowhere.
+#: The theory part (``theory/``) is where the mathematics lives; link its sections (``theory-*`` labels).
+_INTERNAL_REFERENCE = re.compile(r"\bSPEC\b")
+#: Also check the docstrings (autodoc) -- True once the code's own references point at the theory.
+CHECK_DOCSTRINGS = False
+
+
+def no_internal_references(app, docname, source) -> None:
+    """Warn (an error under -W) when a documentation page refers to the unshipped SPEC."""
+    for number, line in enumerate(source[0].splitlines(), 1):
+        if _INTERNAL_REFERENCE.search(line):
+            logger.warning(f"{docname} refers to SPEC, which is not shipped: link a theory section instead",
+                           location=(docname, number))
+
+
+def no_internal_references_in_docstrings(app, what, name, obj, options, lines) -> None:
+    """The same check on a docstring."""
+    if CHECK_DOCSTRINGS and any(_INTERNAL_REFERENCE.search(line) for line in lines):
+        logger.warning(f"the docstring of {name} refers to SPEC, which is not shipped: link a theory section instead")
+
+
 def setup(app):
+    app.connect("source-read", no_internal_references)
+    app.connect("autodoc-process-docstring", no_internal_references_in_docstrings)
     app.connect("doctree-read", run_examples)
     app.connect("autodoc-process-docstring", escape_bars, priority=600)  # after numpydoc's rewrite (500)
     app.add_directive("pinlin-package", PackageDirective)
