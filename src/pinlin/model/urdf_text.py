@@ -19,7 +19,7 @@ from ..errors import ModelTooLargeError, UrdfError
 from .inertia import check_inertials
 from .memory import check_memory, pinocchio_data_bytes
 
-__all__ = ["check_urdf_xml", "check_urdf_size", "MAX_URDF_DEPTH", "JOINT_NV"]
+__all__ = ["check_urdf_xml", "check_urdf_size", "count_links", "MAX_URDF_DEPTH", "MAX_URDF_LINKS", "JOINT_NV"]
 
 #: Deepest chain of links accepted.  Pinocchio 4.1 and urdfdom recurse once per level of
 #: the tree; measured on an 8 MiB main-thread stack, a chain of 3000 links parses and one of
@@ -27,6 +27,12 @@ __all__ = ["check_urdf_xml", "check_urdf_size", "MAX_URDF_DEPTH", "JOINT_NV"]
 #: model that deep would need nv >= 1000, 72 GB for Pinocchio's data
 #: (:func:`~pinlin.model.memory.pinocchio_data_bytes`): beyond any memory guard's budget.
 MAX_URDF_DEPTH = 1000
+
+#: Most links accepted: 75 times the largest robot of example-robot-data (tiago_dual, 130
+#: links).  Counted while streaming through the XML (:func:`count_links`), so a file of
+#: 100000 links (55 MB) is refused after reading its first 10001 links, not after
+#: building its whole element tree (seconds, and hundreds of MB).
+MAX_URDF_LINKS = 10_000
 
 #: Velocity coordinates of each URDF joint type.
 JOINT_NV = {"revolute": 1, "continuous": 1, "prismatic": 1, "fixed": 0, "floating": 6, "planar": 3}
@@ -50,6 +56,7 @@ def check_urdf_xml(text: str, source: str, *, free_flyer: bool = False,
     ModelTooLargeError
         Deeper than :data:`MAX_URDF_DEPTH`, or too many degrees of freedom for memory.
     """
+    count_links(text, source)
     try:
         root = ET.fromstring(text)
     except ET.ParseError as exc:
@@ -61,6 +68,41 @@ def check_urdf_xml(text: str, source: str, *, free_flyer: bool = False,
     parents = _check_tree(root, source)
     check_urdf_size(root, parents, source, free_flyer=free_flyer, memory_limit=memory_limit)
     return check_inertials(root, source)
+
+
+def count_links(text: str, source: str, limit: int = MAX_URDF_LINKS) -> int:
+    """The number of ``<link>`` children of the root, counted while streaming; refused past ``limit``.
+
+    Malformed XML stops the count where it is (:func:`check_urdf_xml` then says why).
+
+    Raises
+    ------
+    ModelTooLargeError
+        More than ``limit`` links.
+    """
+    parser = ET.XMLPullParser(events=("start", "end"))
+    depth = count = 0
+    for start in range(0, len(text), 1 << 16):
+        try:
+            parser.feed(text[start:start + (1 << 16)])
+            events = list(parser.read_events())
+        except ET.ParseError:
+            return count
+        for event, element in events:
+            if event == "start":
+                depth += 1
+                count += depth == 2 and element.tag == "link"
+            else:
+                depth -= 1
+                element.clear()
+        if count > limit:
+            raise ModelTooLargeError(
+                f"{source}: the URDF has more than {limit} links; pinlin refuses it before building its element tree "
+                f"or parsing it (MAX_URDF_LINKS, 75 times the largest robot of example-robot-data)",
+                required=pinocchio_data_bytes(count),
+                available=pinocchio_data_bytes(limit),
+            )
+    return count
 
 
 def _check_tree(root: ET.Element, source: str) -> dict[str, str]:
@@ -100,9 +142,10 @@ def _depth(parents: dict[str, str]) -> int:
     """Longest chain of links (a loop, refused by the parser later, counts as its length)."""
     depth: dict[str, int] = {}
     for start in parents:
-        path, link = [], start
-        while link in parents and link not in depth and link not in path:
+        path, on_path, link = [], set(), start
+        while link in parents and link not in depth and link not in on_path:
             path.append(link)
+            on_path.add(link)
             link = parents[link]
         base = depth.get(link, 0)
         for k, name in enumerate(reversed(path), start=1):
