@@ -40,8 +40,8 @@ from .elements import (
 )
 from .examples import ExampleInfo, ExampleNotFoundError, examples
 from .generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
-from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
 from .inertia import InertiaWarning
+from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
 from .mjcf import load_mjcf
 from .robot import Robot
 from .scene import Scene

@@ -29,6 +29,7 @@ from .robot import Robot
 from .urdf_text import check_urdf_xml
 from .xacro import expand_xacro, is_xacro
 
+
 def _discovered():
     try:
         return discover_examples()
