@@ -1,6 +1,7 @@
 """Every robot of example-robot-data by name; every URDF it ships that is physically valid loads (issue 24)."""
 
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -141,3 +142,9 @@ def test_every_example_loads_and_linearizes(row):
     if row.free_flyer:
         weight = G * sum(inertia.mass for inertia in robot.model.inertias)
         assert_allclose(np.linalg.norm(sys.balancing[:3]), weight, rtol=1e-12)
+
+
+def test_the_docs_table_lists_every_example():
+    text = (Path(__file__).parents[2] / "docs" / "guide" / "model.md").read_text()
+    missing = [row.name for row in ROWS if f"| `{row.name}` | `{row.file}` | {row.nv} |" not in text]
+    assert not missing
