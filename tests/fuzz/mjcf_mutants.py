@@ -27,9 +27,11 @@ BASE = pinlin.data_path("mjcf/four_bar.xml").read_text()
 #: Attribute values that a parser may read wrongly (the URDF list, and MJCF's counted numbers).
 VALUES = ["nan", "inf", "-inf", "1e999", "abc", "", " ", "-1", "0", "1e-300", "1e300", "-0", "1 2", "0 0 0",
           "1 1 1 1", "0x10", "1,5", "NaN", "a b c", "nan 0 0", "0 0 1", "1 0 0 0", "0 0 0 0", "1e-320", "5",
-          "0.3 0 0", "hinge", "ball", "slide", "free", "world", "crank", "rocker", "loop", "false"]
+          "0.3 0 0", "hinge", "ball", "slide", "free", "world", "crank", "rocker", "loop", "false", "main",
+          "1 0 0 0 1 0"]
 ATTRIBUTES = ["name", "pos", "euler", "quat", "axis", "type", "mass", "diaginertia", "body1", "body2", "anchor",
-              "site1", "site2", "relpose", "active", "range", "angle", "fullinertia"]
+              "site1", "site2", "relpose", "active", "range", "angle", "fullinertia", "class", "childclass",
+              "size", "fromto", "xyaxes", "zaxis", "axisangle"]
 ENTITIES = ['<!DOCTYPE mujoco [<!ENTITY v "0.5">]>', '<!DOCTYPE mujoco [<!ENTITY v SYSTEM "file:///etc/hostname">]>',
             '<!DOCTYPE mujoco [<!ENTITY a "1e300"><!ENTITY v "&a;&a;&a;&a;&a;&a;&a;&a;">]>']
 

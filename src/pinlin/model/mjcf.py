@@ -178,10 +178,10 @@ def load_mjcf(
             else:
                 model, points, frames = pin.buildModelAndConstraintsFromMJCF(source)
             error = None
-        except (ValueError, RuntimeError) as exc:
+        except (ValueError, RuntimeError, IndexError, KeyError) as exc:  # C++ out_of_range arrives as IndexError
             error = exc
     if error is not None:
-        detail = " ".join(m for m in messages if m) or str(error)
+        detail = " ".join(m for m in messages if m) or f"{type(error).__name__}: {error}"
         raise MjcfError(f"{source}: not a valid MJCF model for Pinocchio ({detail})", source) from None
     said = " ".join(" ".join(m for m in messages if m).split())
     if said:  # what the parser printed while building a model it did build: never dropped

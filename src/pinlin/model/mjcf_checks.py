@@ -10,7 +10,8 @@ pinlin or Pinocchio reads is checked here first, with an
 
 - numbers (:data:`NUMBERS`): finite, and as many as the attribute takes; masses and
   diagonal inertias >= 0; quaternions and joint axes not zero;
-- keywords: a joint's ``type``, the compiler's ``angle``;
+- keywords: a joint's and a geom's ``type``, the compiler's ``angle``; ``class`` and
+  ``childclass`` name a defined ``<default>`` class;
 - names: bodies, joints and sites unique; an ``<equality>`` entry's ``body1``,
   ``body2``, ``site1``, ``site2`` exist; a connect has ``body1`` and ``anchor`` or
   ``site1`` and ``site2``, a weld ``body1`` or both sites; no body constrained to itself;
@@ -44,7 +45,11 @@ NUMBERS: dict[str, dict[str, tuple[int, ...]]] = {
 
 _NON_NEGATIVE = {("inertial", "mass"), ("inertial", "diaginertia"), ("geom", "mass"), ("geom", "density")}
 _NON_ZERO = {("body", "quat"), ("inertial", "quat"), ("site", "quat"), ("geom", "quat"), ("joint", "axis")}
-_KEYWORDS = {("joint", "type"): ("hinge", "slide", "ball", "free"), ("compiler", "angle"): ("radian", "degree")}
+_KEYWORDS = {
+    ("joint", "type"): ("hinge", "slide", "ball", "free"),
+    ("compiler", "angle"): ("radian", "degree"),
+    ("geom", "type"): ("plane", "hfield", "sphere", "capsule", "ellipsoid", "cylinder", "box", "mesh", "sdf"),
+}
 
 
 def _where(element: ET.Element) -> str:
@@ -67,6 +72,15 @@ def _numbers(element: ET.Element, attribute: str, counts: tuple[int, ...], sourc
     return values
 
 
+def _degenerate_axes(values: list[float]) -> bool:
+    x = values[:3]
+    if len(values) == 4:  # axisangle: the axis, then the angle
+        return not any(x)
+    y = values[3:]
+    cross = (x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0])
+    return not any(cross)
+
+
 def _check_values(element: ET.Element, source: str) -> None:
     for attribute, counts in NUMBERS.get(element.tag, {}).items():
         if element.get(attribute) is None:
@@ -76,9 +90,12 @@ def _check_values(element: ET.Element, source: str) -> None:
         if key in _NON_NEGATIVE and min(values) < 0:
             raise MjcfError(f"{source}: {_where(element)} attribute {attribute}={element.get(attribute)!r}: "
                             f"expected numbers >= 0", source)
-        if key in _NON_ZERO and not any(values):
+        if (key in _NON_ZERO or attribute == "zaxis") and not any(values):
             raise MjcfError(f"{source}: {_where(element)} attribute {attribute}={element.get(attribute)!r}: "
                             f"expected a non-zero vector", source)
+        if attribute in ("axisangle", "xyaxes") and _degenerate_axes(values):
+            raise MjcfError(f"{source}: {_where(element)} attribute {attribute}={element.get(attribute)!r}: "
+                            f"expected a non-zero axis (axisangle) or two non-parallel axes (xyaxes)", source)
     for (tag, attribute), allowed in _KEYWORDS.items():
         value = element.get(attribute)
         if element.tag == tag and value is not None and value not in allowed:
@@ -190,6 +207,19 @@ def equality_entries(root: ET.Element, source: str) -> tuple[list[EqualityEntry]
     return out, others
 
 
+def _check_classes(root: ET.Element, source: str) -> None:
+    """Every ``class`` and ``childclass`` names a ``<default class=...>`` (Pinocchio 4.1 raised IndexError)."""
+    defined = {"main"} | {d.get("class") for d in root.iter("default") if d.get("class") is not None}
+    for element in root.iter():
+        if element.tag == "default":
+            continue
+        for attribute in ("class", "childclass"):
+            value = element.get(attribute)
+            if value is not None and value not in defined:
+                raise MjcfError(f"{source}: {_where(element)} attribute {attribute}={value!r}: no such default "
+                                f"class; classes: {sorted(defined)}", source)
+
+
 def check_mjcf(root: ET.Element, source: str) -> None:
     """Every attribute pinlin or Pinocchio reads, and the structure (module docstring).
 
@@ -199,5 +229,6 @@ def check_mjcf(root: ET.Element, source: str) -> None:
         Naming the element and the attribute at fault.
     """
     _check_structure(root, source)
+    _check_classes(root, source)
     for element in root.iter():
         _check_values(element, source)
