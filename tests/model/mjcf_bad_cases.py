@@ -84,6 +84,8 @@ CASES = [
      r"<body name='b'> attribute xyaxes='1 0 0 2 0 0': expected a non-zero axis \(axisangle\) or two non-parallel"),
     ("zero axisangle", MODEL.format(equality="").replace('name="b" pos="0 0 -1"', 'name="b" pos="0 0 -1" axisangle="0 0 0 1"'),
      r"attribute axisangle='0 0 0 1'"),
+    ("impossible inertia", MODEL.format(equality="").replace('diaginertia="0.1 0.1 0.01"', 'diaginertia="0.1 0.1 0.5"', 1),
+     r"the inertia tensor of link 'a' breaks the triangle inequality .*moved by joint 'j1'.*inertia='repair'"),
     ("site connect (valid)", MODEL.format(equality='<connect name="loop" site1="sb" site2="sa"/>'), None),
     ("weld to the world (valid)", MODEL.format(equality='<weld name="w" body1="b" relpose="0 0 1 1 0 0 0"/>'), None),
 ]

@@ -68,3 +68,15 @@ def test_the_same_answer_in_20_fresh_processes(tmp_path):
     for (label, _, match), line in zip(CASES, lines):
         assert line.startswith(f"{label}: "), line
         assert ("MjcfError" in line) == (match is not None), line
+
+
+def test_an_impossible_mjcf_body_is_repaired_on_request(tmp_path):
+    """diaginertia 0.1 0.1 0.5 breaks I1 + I2 >= I3; the nearest valid moments are e + 0.1 (1, 1, -1)."""
+    text = MODEL.format(equality="").replace('diaginertia="0.1 0.1 0.01"', 'diaginertia="0.1 0.1 0.5"', 1)
+    path = tmp_path / "model.xml"
+    path.write_text(text)
+    with pytest.warns(pinlin.InertiaWarning, match=r"link 'a' \(the body moved by joint 'j1'\).*repaired"):
+        robot = pinlin.load_mjcf(path, inertia="repair")
+    assert_allclose(np.linalg.eigvalsh(robot.model.inertias[1].inertia), [0.2, 0.2, 0.4], atol=1e-12)
+    with pytest.raises(pinlin.ParameterError, match="inertia: expected one of"):
+        pinlin.load_mjcf(path, inertia="ignore")

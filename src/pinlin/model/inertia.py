@@ -36,7 +36,7 @@ import numpy as np
 import pinocchio as pin
 from scipy.optimize import nnls
 
-from ..errors import ParameterError, UrdfError
+from ..errors import MjcfError, ParameterError, UrdfError
 
 __all__ = [
     "check_inertials",
@@ -188,7 +188,8 @@ def _where(model: pin.Model, jid: int, links: list[str]) -> str:
     return f"{merged}the body moved by joint {model.names[jid]!r}"
 
 
-def check_bodies(model: pin.Model, link_faults: dict[str, str | None], source: str, inertia: str = "check") -> None:
+def check_bodies(model: pin.Model, link_faults: dict[str, str | None], source: str, inertia: str = "check",
+                 error: type[UrdfError] | type[MjcfError] = UrdfError) -> None:
     """Check (or repair, in place) the inertia of every body the dynamics uses.
 
     Parameters
@@ -204,10 +205,13 @@ def check_bodies(model: pin.Model, link_faults: dict[str, str | None], source: s
         Refuse an impossible body, or replace its tensor by the nearest valid one
         (:func:`nearest_valid_moments`, principal axes kept) with an
         :class:`InertiaWarning` giving the old and new principal moments.
+    error : exception class
+        Raised for an impossible body: :class:`~pinlin.UrdfError` (URDF) or
+        :class:`~pinlin.MjcfError` (MJCF, whose bodies the messages call links).
 
     Raises
     ------
-    UrdfError
+    UrdfError or MjcfError
         ``inertia="check"`` and a body has a negative or non-finite mass, or an
         impossible tensor; the message names its links and joint.
     """
@@ -219,7 +223,7 @@ def check_bodies(model: pin.Model, link_faults: dict[str, str | None], source: s
         name, where = _body_name(links.get(jid, [])), _where(model, jid, links.get(jid, []))
         tensor = np.asarray(body.inertia, dtype=float)
         if not (math.isfinite(body.mass) and body.mass >= 0 and np.all(np.isfinite(tensor))):
-            raise UrdfError(f"{source}: {name} ({where}) has mass {body.mass!r} kg and tensor "
+            raise error(f"{source}: {name} ({where}) has mass {body.mass!r} kg and tensor "
                             f"{tensor.tolist()}; expected finite numbers and a mass >= 0", source)
         moments, axes = np.linalg.eigh(tensor)
         fault = inertia_fault(moments)
@@ -227,7 +231,7 @@ def check_bodies(model: pin.Model, link_faults: dict[str, str | None], source: s
             continue
         faulty.add(jid)
         if inertia == "check":
-            raise UrdfError(
+            raise error(
                 f"{source}: the inertia tensor of {name} {fault} ({where}; principal moments "
                 f"{moments.tolist()} kg m^2); "
                 f"load with inertia='repair' for the nearest valid tensor",

@@ -38,6 +38,7 @@ import pinocchio as pin
 
 from ..errors import MjcfError
 from .constraints import Constraint, FrameConstraint, PointConstraint
+from .inertia import check_bodies, check_inertia_option
 from .loading import captured_stderr, reduce_model
 from .memory import check_memory
 from .mjcf_checks import EqualityEntry, check_mjcf, equality_entries
@@ -133,6 +134,7 @@ def load_mjcf(
     free_flyer: bool = False,
     locked: Sequence[str] | Mapping[str, object] | None = None,
     memory_limit: int | None = None,
+    inertia: str = "check",
 ) -> Robot:
     """Load an MJCF file as a :class:`Robot` whose ``constraints`` are its ``<connect>`` and ``<weld>``.
 
@@ -148,6 +150,10 @@ def load_mjcf(
         Joints to remove through Pinocchio's reduced model (as in :func:`pinlin.load_urdf`).
     memory_limit : int, optional
         Bytes allowed for the peak of Pinocchio's data.
+    inertia : {"check", "repair"}
+        As in :func:`pinlin.load_urdf`: each body of the model (bodies without a
+        joint merged into their parent's) must be physically possible, or is
+        repaired to the nearest valid tensor with an :class:`~pinlin.InertiaWarning`.
 
     Returns
     -------
@@ -161,13 +167,18 @@ def load_mjcf(
     ------
     MjcfError
         Missing file, malformed XML, a model Pinocchio cannot parse or would
-        parse wrongly (see the module docstring), no movable joint.
+        parse wrongly (see the module docstring), an attribute that is not what
+        it must be (:mod:`.mjcf_checks`: the message names element and attribute),
+        no movable joint, a body whose inertia is impossible (``inertia="check"``).
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
         Pinocchio's data would not fit in memory.
+    ParameterError
+        ``inertia`` is not "check" or "repair".
     """
     source = os.fspath(path)
+    check_inertia_option(inertia)
     root = _read(Path(source), source)
     check_mjcf(root, source)
     entries = _equalities(root, source)
@@ -188,6 +199,8 @@ def load_mjcf(
         warnings.warn(f"{source}: the MJCF parser says: {said}", UserWarning, stacklevel=2)
     if model.nv == 0:
         raise MjcfError(f"{source}: the MJCF model has no movable joint; nothing moves", source)
+    with_inertial = {b.get("name"): None for b in root.iter("body") if b.find("inertial") is not None}
+    check_bodies(model, with_inertial, source, inertia, error=MjcfError)
     constraints = _constraints(model, points, frames, entries, source)
     model = reduce_model(model, locked, source)
     check_memory(model.nv, memory_limit, source)
