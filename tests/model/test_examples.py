@@ -109,7 +109,8 @@ def test_examples_table():
 def test_unknown_example_lists_close_matches():
     with pytest.raises(pinlin.ExampleNotFoundError, match=r"unknown example 'anymall'; did you mean 'anymal'") as info:
         pinlin.load_example("anymall")
-    assert isinstance(info.value, pinlin.ParameterError) and "go1" in info.value.valid
+    assert isinstance(info.value, pinlin.ParameterError) and isinstance(info.value, pinlin.NameNotFoundError)
+    assert "go1" in info.value.valid and info.value.close[0] == "anymal" and info.value.parameter == "name"
     with pytest.raises(pinlin.ParameterError, match=r"unknown example 'r2d2'; known examples: \[.*'ur5'"):
         pinlin.load_example("r2d2")
 

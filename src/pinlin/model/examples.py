@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 
-from ..errors import ParameterError
+from ..errors import InputError, NameNotFoundError, ParameterError
 from .inertia import inertia_fault
 
 __all__ = [
@@ -93,8 +93,11 @@ FLOATING_PACKAGES = frozenset({
 FIXED_FILES = frozenset({"talos_data/robots/talos_left_arm.urdf"})
 
 
-class ExampleNotFoundError(ParameterError):
+class ExampleNotFoundError(NameNotFoundError, ParameterError):
     """No example robot has this name; the message lists close matches and every name.
+
+    A :class:`~pinlin.NameNotFoundError` and a :class:`~pinlin.ParameterError`
+    (``parameter = "name"``), as unknown examples were before.
 
     Attributes
     ----------
@@ -105,10 +108,13 @@ class ExampleNotFoundError(ParameterError):
         The close matches (:func:`difflib.get_close_matches`).
     """
 
+    what = "example"
+
     def __init__(self, name: str, valid, close):
         self.name, self.valid, self.close = str(name), tuple(valid), tuple(close)
+        self.parameter = "name"
         hint = f"did you mean {', '.join(repr(c) for c in self.close)}? " if self.close else ""
-        super().__init__("name", f"unknown example {self.name!r}; {hint}known examples: {list(self.valid)}")
+        InputError.__init__(self, f"name: unknown example {self.name!r}; {hint}known examples: {list(self.valid)}")
 
 
 @dataclass(frozen=True)
