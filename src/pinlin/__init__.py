@@ -99,7 +99,21 @@ from .linearization.equilibrium import equilibrium_residual, find_equilibrium
 from .linearization.equilibrium_result import EquilibriumResult
 from .linearization.linearize import generalized_force, linearize
 from .linearization.system import LinearizedSystem
-from .model import EXAMPLES, Robot, data_path, load_example, load_urdf, load_urdf_string
+from .model import (
+    EXAMPLES,
+    ExampleInfo,
+    ExampleNotFoundError,
+    InertiaWarning,
+    Robot,
+    Standing,
+    data_path,
+    examples,
+    expand_xacro,
+    load_example,
+    load_urdf,
+    load_urdf_string,
+    standing_scene,
+)
 from .model.constraints import (
     Constraint,
     ConstraintForce,
@@ -153,6 +167,13 @@ __all__ = [
     "load_urdf_string",
     "load_example",
     "EXAMPLES",
+    "examples",
+    "ExampleInfo",
+    "ExampleNotFoundError",
+    "InertiaWarning",
+    "expand_xacro",
+    "Standing",
+    "standing_scene",
     "data_path",
     "pendulum_chain_urdf",
     "double_pendulum_urdf",

@@ -11,7 +11,12 @@ One concept per module:
   gravity, prescribed joints) that holds no Pinocchio workspace;
 - :mod:`.scene_file` -- scenes from TOML files;
 - :mod:`.constraints` -- kinematic constraints (closed loops, contacts): point and frame constraints;
-- :mod:`.mjcf` -- MJCF (MuJoCo) models with their ``<connect>`` and ``<weld>`` loops.
+- :mod:`.mjcf` -- MJCF (MuJoCo) models with their ``<connect>`` and ``<weld>`` loops;
+- :mod:`.loading` -- URDF files, strings and example robots; :mod:`.urdf_text` the checks
+  of the XML before parsing (tree, size, depth), :mod:`.inertia` the physical validity
+  of links and bodies, :mod:`.xacro` xacro files and ROS package paths;
+- :mod:`.examples` -- every robot of example-robot-data by short name (:func:`examples`);
+- :mod:`.standing` -- legged robots standing on the ground (:func:`standing_scene`).
 """
 
 from .constraints import (
@@ -33,12 +38,16 @@ from .elements import (
     RayleighDamping,
     WrenchElement,
 )
+from .examples import ExampleInfo, ExampleNotFoundError, examples
 from .generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring_urdf, turntable_urdf
+from .inertia import InertiaWarning
 from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
 from .mjcf import load_mjcf
 from .robot import Robot
 from .scene import Scene
 from .scene_file import SceneSpec, load_scene
+from .standing import Standing, standing_scene
+from .xacro import expand_xacro
 
 __all__ = [
     "Robot",
@@ -70,4 +79,11 @@ __all__ = [
     "ContactStatus",
     "ground_contacts",
     "load_mjcf",
+    "examples",
+    "ExampleInfo",
+    "ExampleNotFoundError",
+    "InertiaWarning",
+    "expand_xacro",
+    "Standing",
+    "standing_scene",
 ]

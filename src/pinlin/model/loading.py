@@ -12,11 +12,9 @@ models, with their closed loops (``<connect>``, ``<weld>``), load through
 from __future__ import annotations
 
 import contextlib
-import importlib.metadata
 import os
 import tempfile
 import warnings
-import xml.etree.ElementTree as ET
 from collections.abc import Iterator, Mapping, Sequence
 from pathlib import Path
 
@@ -24,9 +22,20 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import JointNotFoundError, ParameterError, UrdfError
-from .inertia import check_inertials
-from .memory import check_memory
+from .examples import discover_examples, example_file, find_example
+from .inertia import check_bodies, check_inertia_option
+from .memory import check_memory, check_memory_limit
 from .robot import Robot
+from .urdf_text import check_urdf_xml
+from .xacro import expand_xacro, is_xacro
+
+
+def _discovered():
+    try:
+        return discover_examples()
+    except ParameterError:  # example-robot-data missing: load_example says so
+        return {}
+
 
 __all__ = [
     "load_urdf",
@@ -39,28 +48,11 @@ __all__ = [
     "reduce_model",
 ]
 
-#: Short names of example-robot-data models: (URDF path under ``robots/``,
-#: SRDF path or None, floating base by default).
+#: Short names of example-robot-data models: (URDF path under ``robots/``, SRDF path or None,
+#: floating base by default), discovered from the installed files (:mod:`.examples`).
 EXAMPLES: dict[str, tuple[str, str | None, bool]] = {
-    "double_pendulum": ("double_pendulum_description/urdf/double_pendulum.urdf", None, False),
-    "double_pendulum_continuous": (
-        "double_pendulum_description/urdf/double_pendulum_continuous.urdf",
-        None,
-        False,
-    ),
-    "ur3": ("ur_description/urdf/ur3_robot.urdf", None, False),
-    "ur5": ("ur_description/urdf/ur5_robot.urdf", "ur_description/srdf/ur5.srdf", False),
-    "ur10": ("ur_description/urdf/ur10_robot.urdf", None, False),
-    "panda": ("panda_description/urdf/panda.urdf", "panda_description/srdf/panda.srdf", False),
-    "talos_reduced": (
-        "talos_data/robots/talos_reduced.urdf",
-        "talos_data/srdf/talos.srdf",
-        True,
-    ),
-    "solo12": ("solo_description/robots/solo12.urdf", "solo_description/srdf/solo.srdf", True),
+    name: (entry.urdf, entry.srdf, entry.free_flyer) for name, entry in _discovered().items()
 }
-
-_ERD_ROOT = "cmeel.prefix/share/example-robot-data/robots/"
 
 
 def data_path(name: str) -> Path:
@@ -142,50 +134,6 @@ def captured_stderr() -> Iterator[list[str]]:
             out.append(tmp.read().decode(errors="replace").strip())
 
 
-def _check_xml(text: str, source: str) -> None:
-    """Well-formed XML with a <robot> root, a <link>, and physically valid inertial data."""
-    try:
-        root = ET.fromstring(text)
-    except ET.ParseError as exc:
-        raise UrdfError(f"{source}: malformed XML ({exc})", source) from None
-    if root.tag != "robot":
-        raise UrdfError(f"{source}: root element is <{root.tag}>, expected <robot>", source)
-    if root.find("link") is None:
-        raise UrdfError(f"{source}: the URDF has no <link>", source)
-    _check_tree(root, source)
-    check_inertials(root, source)
-
-
-def _check_tree(root: ET.Element, source: str) -> None:
-    """Unique link and joint names, and at most one parent joint per link: a tree.
-
-    urdfdom accepts a link that is the child of two joints (a loop written as a
-    tree); Pinocchio then builds a model with repeated joint names, which a
-    name lookup cannot tell apart.  Closed loops are constraints
-    (:class:`~pinlin.PointConstraint`, :func:`~pinlin.load_mjcf`).
-    """
-    for tag in ("link", "joint"):
-        seen: set[str] = set()
-        for element in root.findall(tag):  # direct children: <transmission> names joints too
-            name = element.get("name")
-            if name in seen:
-                raise UrdfError(f"{source}: two <{tag}> elements are named {name!r}", source)
-            seen.add(name)
-    parents: dict[str, str] = {}
-    for joint in root.findall("joint"):
-        child = joint.find("child")
-        link = None if child is None else child.get("link")
-        if link in parents:
-            raise UrdfError(
-                f"{source}: link {link!r} is the child of two joints ({parents[link]!r} and "
-                f"{joint.get('name')!r}); a URDF is a tree: close loops with constraints "
-                f"(pinlin.PointConstraint, or an MJCF <equality>)",
-                source,
-            )
-        if link is not None:
-            parents[link] = joint.get("name")
-
-
 def _report_parser_messages(messages: list[str], source: str) -> None:
     """What urdfdom printed while building a model that it did build: errors raise, the rest warn.
 
@@ -243,19 +191,33 @@ def _finish(
     return Robot(model, source, references if not locked else None)
 
 
+def _load_text(text: str, path: str | None, source: str, free_flyer: bool, memory_limit, inertia: str) -> pin.Model:
+    """The checks before parsing, Pinocchio's parser, the checks of the bodies after it."""
+    inertia = check_inertia_option(inertia)
+    memory_limit = check_memory_limit(memory_limit)
+    link_faults = check_urdf_xml(text, source, free_flyer=free_flyer, memory_limit=memory_limit)
+    model = _build(text if path is None else None, path, source, free_flyer)
+    check_bodies(model, link_faults, source, inertia)
+    return model
+
+
 def load_urdf(
     path: str | os.PathLike,
     *,
     free_flyer: bool = False,
     locked: Sequence[str] | Mapping[str, object] | None = None,
     memory_limit: int | None = None,
+    inertia: str = "check",
+    xacro_args: Mapping[str, object] | None = None,
+    package_dirs: Sequence[str | os.PathLike] | None = None,
 ) -> Robot:
-    """Load a URDF file as a :class:`Robot` (kinematics and inertia only).
+    """Load a URDF (or xacro) file as a :class:`Robot` (kinematics and inertia only).
 
     Parameters
     ----------
     path : path-like
-        The URDF file.  Meshes it names are never opened.
+        The URDF file, or a ``.xacro`` file (expanded with :func:`pinlin.model.xacro.expand_xacro`).
+        Meshes it names are never opened.
     free_flyer : bool
         Mount the root link on a free-flyer joint (floating base, nq = nv + 1).
     locked : sequence of str or mapping, optional
@@ -263,28 +225,49 @@ def load_urdf(
     memory_limit : int, optional
         Bytes allowed for the peak of Pinocchio's data; default 80 % of the
         available memory.
+    inertia : {"check", "repair"}
+        What to do with a body of the model (the links merged by fixed joints into
+        one joint's body) whose inertia is not physically possible: refuse it
+        (default) or replace it by the nearest valid tensor with an
+        :class:`~pinlin.InertiaWarning` (:mod:`pinlin.model.inertia`).
+    xacro_args : mapping, optional
+        Arguments of a ``.xacro`` file (``$(arg name)``).
+    package_dirs : sequence of path-like, optional
+        Directories searched first for ``package://`` and ``$(find pkg)`` in a
+        ``.xacro`` file, before ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``
+        (:func:`pinlin.model.xacro.package_search_path`).
 
     Raises
     ------
     UrdfError
         Missing file, malformed XML, invalid URDF, no movable joint, a link whose
-        inertial data is not finite or not physically possible (see
-        :mod:`pinlin.model.inertia`), anything the URDF parser could not read.
+        inertial data is not finite, a body whose inertia is not physically possible
+        (``inertia="check"``), anything the URDF parser or xacro could not read.
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
-        Pinocchio's data would not fit in memory.
+        Too deep for the parser, or Pinocchio's data would not fit in memory; said
+        before parsing (:mod:`pinlin.model.urdf_text`).
+    ParameterError
+        A bad ``inertia``, ``memory_limit``, ``xacro_args`` or ``package_dirs``.
+    MissingDependencyError
+        A ``.xacro`` file without the ``xacro`` package (``pip install 'pinlin[xacro]'``).
     """
     source = os.fspath(path)
     p = Path(source)
     if not p.is_file():
         raise UrdfError(f"URDF file not found: {source}", source)
+    if is_xacro(source):
+        text = expand_xacro(p, xacro_args, package_dirs)
+        model = _load_text(text, None, source, free_flyer, memory_limit, inertia)
+        return _finish(model, source, locked, memory_limit)
+    if xacro_args is not None:
+        raise ParameterError("xacro_args", f"{source} is not a .xacro file; xacro_args apply to .xacro files only")
     try:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise UrdfError(f"cannot read URDF file {source}: {exc}", source) from None
-    _check_xml(text, source)
-    model = _build(None, str(p), source, free_flyer)
+    model = _load_text(text, str(p), source, free_flyer, memory_limit, inertia)
     return _finish(model, source, locked, memory_limit)
 
 
@@ -294,35 +277,29 @@ def load_urdf_string(
     free_flyer: bool = False,
     locked: Sequence[str] | Mapping[str, object] | None = None,
     memory_limit: int | None = None,
+    inertia: str = "check",
 ) -> Robot:
     """Load URDF text as a :class:`Robot`; same options as :func:`load_urdf`."""
     source = "<string>"
     if not isinstance(text, str):
         raise UrdfError(f"URDF text must be a str, got {type(text).__name__}", source)
-    _check_xml(text, source)
-    model = _build(text, None, source, free_flyer)
+    model = _load_text(text, None, source, free_flyer, memory_limit, inertia)
     return _finish(model, source, locked, memory_limit)
 
 
 def example_urdf_path(name: str) -> Path:
-    """Path of an example-robot-data URDF by short name (see :data:`EXAMPLES`).
+    """Path of an example-robot-data URDF by short name (see :func:`pinlin.examples`).
 
-    example-robot-data ships its URDFs as data files of the wheel, located through
-    the package metadata (SPEC section 1).
+    Raises
+    ------
+    ExampleNotFoundError
+        Unknown name (a :class:`~pinlin.ParameterError`); the message lists close matches.
     """
-    if name not in EXAMPLES:
-        raise ParameterError("name", f"unknown example {name!r}; known examples: {sorted(EXAMPLES)}")
-    return _erd_file(EXAMPLES[name][0])
+    return _erd_file(find_example(name).urdf)
 
 
 def _erd_file(relative: str) -> Path:
-    try:
-        dist = importlib.metadata.distribution("example-robot-data")
-    except importlib.metadata.PackageNotFoundError:
-        raise ParameterError(
-            "name", "example-robot-data is not installed (pip install example-robot-data)"
-        ) from None
-    return Path(str(dist.locate_file(_ERD_ROOT + relative)))
+    return example_file(relative)
 
 
 def load_example(
@@ -331,25 +308,35 @@ def load_example(
     free_flyer: bool | None = None,
     locked: Sequence[str] | Mapping[str, object] | None = None,
     memory_limit: int | None = None,
+    inertia: str = "check",
 ) -> Robot:
     """Load an example-robot-data model by short name, without meshes.
 
     Parameters
     ----------
     name : str
-        One of :data:`EXAMPLES`: ``double_pendulum``, ``ur5``, ``panda``,
-        ``talos_reduced``, ``solo12``, ...
+        One of :func:`pinlin.examples` (every robot of the installed
+        example-robot-data): ``double_pendulum``, ``ur5``, ``panda``, ``go1``,
+        ``anymal``, ``talos``, ``tiago``, ...
     free_flyer : bool, optional
-        Default: True for legged robots (talos_reduced, solo12), else False.
-    locked, memory_limit
+        Default: on for legged robots, humanoids and flying robots
+        (:func:`pinlin.model.examples.floating_by_default`), else off.
+    locked, memory_limit, inertia
         As in :func:`load_urdf`.
 
     The SRDF's named configurations (``half_sitting``, ``standing``, ...) are kept
     in :attr:`Robot.reference_configurations` when the SRDF exists.
+
+    Raises
+    ------
+    ExampleNotFoundError
+        Unknown name; the message lists close matches (a :class:`~pinlin.ParameterError`).
+    UrdfError, ModelTooLargeError, JointNotFoundError
+        As in :func:`load_urdf`.
     """
-    path = example_urdf_path(name)
-    urdf_rel, srdf_rel, floating = EXAMPLES[name]
-    ff = floating if free_flyer is None else bool(free_flyer)
+    entry = find_example(name)
+    path = _erd_file(entry.urdf)
+    ff = entry.free_flyer if free_flyer is None else bool(free_flyer)
     source = f"example:{name}"
     if not path.is_file():
         raise UrdfError(f"example-robot-data file missing: {path}", source)
@@ -357,9 +344,8 @@ def load_example(
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise UrdfError(f"cannot read URDF file {path}: {exc}", source) from None
-    _check_xml(text, source)
-    model = _build(None, str(path), source, ff)
-    refs = _reference_configurations(model, srdf_rel, source)
+    model = _load_text(text, str(path), source, ff, memory_limit, inertia)
+    refs = _reference_configurations(model, entry.srdf, source)
     return _finish(model, source, locked, memory_limit, refs)
 
 

@@ -33,12 +33,15 @@ import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+import numpy as np
 import pinocchio as pin
 
 from ..errors import MjcfError
 from .constraints import Constraint, FrameConstraint, PointConstraint
+from .inertia import check_bodies, check_inertia_option
 from .loading import captured_stderr, reduce_model
 from .memory import check_memory
+from .mjcf_checks import EqualityEntry, check_mjcf, equality_entries
 from .robot import Robot
 
 __all__ = ["load_mjcf", "MJCF_CONSTRAINTS"]
@@ -61,48 +64,16 @@ def _read(path: Path, source: str) -> ET.Element:
     return root
 
 
-def _check_structure(root: ET.Element, source: str) -> None:
-    """Refuse what Pinocchio 4.1's parser would drop or get wrong (module docstring)."""
-    if root.find(".//include") is not None:
-        raise MjcfError(f"{source}: <include> is not followed by Pinocchio's MJCF parser; inline the included file", source)
-    tops = [b.get("name", "?") for wb in root.findall("worldbody") for b in wb.findall("body")]
-    if len(tops) > 1:
-        raise MjcfError(
-            f"{source}: {len(tops)} bodies directly under <worldbody> ({tops}); Pinocchio's MJCF parser keeps only "
-            f"the first and drops the others: put them all under one body",
-            source,
+def _equalities(root: ET.Element, source: str) -> list[EqualityEntry]:
+    """The active connects and welds (:func:`.mjcf_checks.equality_entries`); other kinds are said, left out."""
+    entries, others = equality_entries(root, source)
+    for tag in others:
+        warnings.warn(
+            f"{source}: <equality><{tag}> is not a constraint pinlin models (only <connect> and <weld>); it is left out",
+            UserWarning,
+            stacklevel=3,
         )
-    for body in root.iter("body"):
-        joints = [j.get("name", "?") for j in body if j.tag in ("joint", "freejoint")]
-        if len(joints) > 1:
-            raise MjcfError(
-                f"{source}: body {body.get('name', '?')!r} has {len(joints)} joints {joints}; Pinocchio 4.1 merges "
-                f"them into a composite joint whose analytic derivatives are wrong (they disagree with finite "
-                f"differences): give each joint its own body (a chain of bodies, the inner ones without mass)",
-                source,
-            )
-
-
-def _equalities(root: ET.Element, source: str) -> list[tuple[str, str, str, str | None]]:
-    """(kind, name, body1, body2) of the active connects and welds, in file order."""
-    out = []
-    counts = {kind: 0 for kind in MJCF_CONSTRAINTS}
-    for eq in root.findall("equality"):
-        for item in eq:
-            if item.tag not in MJCF_CONSTRAINTS:
-                warnings.warn(
-                    f"{source}: <equality><{item.tag}> is not a constraint pinlin models (only <connect> and "
-                    f"<weld>); it is left out",
-                    UserWarning,
-                    stacklevel=3,
-                )
-                continue
-            counts[item.tag] += 1
-            if item.get("active", "true").strip().lower() == "false":
-                continue
-            name = item.get("name") or f"{item.tag}{counts[item.tag]}"
-            out.append((item.tag, name, item.get("body1"), item.get("body2")))
-    return out
+    return entries
 
 
 def _body_joint(model: pin.Model, body: str | None) -> int:
@@ -124,8 +95,13 @@ def _constraints(model: pin.Model, points, frames, entries, source: str) -> list
     """Match Pinocchio's constraint models to the file's entries, add their frames, build pinlin constraints."""
     pool = {"connect": list(points), "weld": list(frames)}
     out: list[Constraint] = []
-    for kind, name, body1, body2 in entries:
+    for entry in entries:
+        kind, name, body1, body2 = entry.kind, entry.name, entry.body1, entry.body2
         j1, j2 = _body_joint(model, body1), _body_joint(model, body2)
+        if j1 == j2:
+            raise MjcfError(
+                f"{source}: <{kind} name={name!r}> joins bodies {body1 or 'world'!r} and {body2 or 'world'!r}, which "
+                f"move together (no joint between them): the constraint would hold a body to itself", source)
         match = next((c for c in pool[kind] if (c.joint1_id, c.joint2_id) == (j1, j2)), None)
         if match is None:
             raise MjcfError(
@@ -133,6 +109,9 @@ def _constraints(model: pin.Model, points, frames, entries, source: str) -> list
                 source,
             )
         pool[kind].remove(match)
+        placements = np.concatenate([match.joint1_placement.homogeneous.ravel(), match.joint2_placement.homogeneous.ravel()])
+        if not np.all(np.isfinite(placements)):  # never reached after check_mjcf; kept so nothing uninitialized passes
+            raise MjcfError(f"{source}: Pinocchio built <{kind} name={name!r}> with non-finite placements", source)
         fid = model.addFrame(
             pin.Frame(_frame_name(model, f"{name}_1"), match.joint1_id, match.joint1_placement, pin.FrameType.OP_FRAME)
         )
@@ -155,6 +134,7 @@ def load_mjcf(
     free_flyer: bool = False,
     locked: Sequence[str] | Mapping[str, object] | None = None,
     memory_limit: int | None = None,
+    inertia: str = "check",
 ) -> Robot:
     """Load an MJCF file as a :class:`Robot` whose ``constraints`` are its ``<connect>`` and ``<weld>``.
 
@@ -170,6 +150,10 @@ def load_mjcf(
         Joints to remove through Pinocchio's reduced model (as in :func:`pinlin.load_urdf`).
     memory_limit : int, optional
         Bytes allowed for the peak of Pinocchio's data.
+    inertia : {"check", "repair"}
+        As in :func:`pinlin.load_urdf`: each body of the model (bodies without a
+        joint merged into their parent's) must be physically possible, or is
+        repaired to the nearest valid tensor with an :class:`~pinlin.InertiaWarning`.
 
     Returns
     -------
@@ -183,15 +167,20 @@ def load_mjcf(
     ------
     MjcfError
         Missing file, malformed XML, a model Pinocchio cannot parse or would
-        parse wrongly (see the module docstring), no movable joint.
+        parse wrongly (see the module docstring), an attribute that is not what
+        it must be (:mod:`.mjcf_checks`: the message names element and attribute),
+        no movable joint, a body whose inertia is impossible (``inertia="check"``).
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
         Pinocchio's data would not fit in memory.
+    ParameterError
+        ``inertia`` is not "check" or "repair".
     """
     source = os.fspath(path)
+    check_inertia_option(inertia)
     root = _read(Path(source), source)
-    _check_structure(root, source)
+    check_mjcf(root, source)
     entries = _equalities(root, source)
     with captured_stderr() as messages:
         try:
@@ -200,16 +189,18 @@ def load_mjcf(
             else:
                 model, points, frames = pin.buildModelAndConstraintsFromMJCF(source)
             error = None
-        except (ValueError, RuntimeError) as exc:
+        except (ValueError, RuntimeError, IndexError, KeyError) as exc:  # C++ out_of_range arrives as IndexError
             error = exc
     if error is not None:
-        detail = " ".join(m for m in messages if m) or str(error)
+        detail = " ".join(m for m in messages if m) or f"{type(error).__name__}: {error}"
         raise MjcfError(f"{source}: not a valid MJCF model for Pinocchio ({detail})", source) from None
     said = " ".join(" ".join(m for m in messages if m).split())
     if said:  # what the parser printed while building a model it did build: never dropped
         warnings.warn(f"{source}: the MJCF parser says: {said}", UserWarning, stacklevel=2)
     if model.nv == 0:
         raise MjcfError(f"{source}: the MJCF model has no movable joint; nothing moves", source)
+    with_inertial = {b.get("name"): None for b in root.iter("body") if b.find("inertial") is not None}
+    check_bodies(model, with_inertial, source, inertia, error=MjcfError)
     constraints = _constraints(model, points, frames, entries, source)
     model = reduce_model(model, locked, source)
     check_memory(model.nv, memory_limit, source)
