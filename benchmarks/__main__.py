@@ -34,6 +34,7 @@ SUITE = (
     ("frame_elements", "bench_frame_elements",
      "elements between frames: cost per element against a joint spring's, and against central differences"),
     ("boundaries", "bench_boundaries", "stability boundaries: critical_parameter against bisection on the verdict"),
+    ("floquet", "bench_floquet", "Floquet analysis of periodic scenes against DOP853 on the matrix equation + eig"),
 )
 
 HERE = Path(__file__).parent
