@@ -157,12 +157,13 @@ def modal_analysis(
         )
     r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
     lam, bound = _owned(lam), _owned(bound)
+    right, left, left_ok = _owned(fig.right), _owned(left), _owned(left_ok)
     clusters = tuple(clusters)
     return Modes(
         eigenvalues=lam,
-        right=_owned(fig.right),
-        left=_owned(left),
-        left_normalized=_owned(left_ok),
+        right=right,
+        left=left,
+        left_normalized=left_ok,
         backward_error=_owned(fig.backward_error),
         error_bound=bound,
         natural_frequency=_owned(freq),
@@ -182,7 +183,8 @@ def modal_analysis(
             fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
         ),
         verdict=DeferredVerdict(
-            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes)
+            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes),
+            (right, left, left_ok),
         ),
     )
 
