@@ -168,7 +168,7 @@ def modal_analysis(
         error_bound=bound,
         natural_frequency=_owned(freq),
         damping_ratio=_owned(zeta),
-        kind=mode_kinds(lam, tolerances["safety"] * r, clusters),
+        kind=mode_kinds(lam, tolerances["safety"] * r, clusters, _undamped(problem)),
         multiplicity=_owned(multiplicity),
         clusters=clusters,
         is_simple=all(c.semisimple for c in clusters),
@@ -203,10 +203,19 @@ def _figures(problem: QuadraticProblem, raw) -> tuple[np.ndarray, np.ndarray, Pa
 def _frequency_damping(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """|lam| and the damping ratio -Re(lam) / |lam| (NaN exactly where lam = 0: undefined)."""
     freq = np.abs(lam)
+    # (0.0 - Re: an undamped mode's ratio is 0, never -0.)
     if np.count_nonzero(freq) == freq.size:
-        return freq, -lam.real / freq
+        return freq, (0.0 - lam.real) / freq
     with np.errstate(divide="ignore", invalid="ignore"):
-        return freq, -lam.real / freq
+        return freq, (0.0 - lam.real) / freq
+
+
+def _undamped(problem: QuadraticProblem) -> bool:
+    """D = 0 and (G = 0 or N = 0) exactly (for a tuple: C = 0): the spectrum is symmetric in the imaginary axis."""
+    sys = problem.system
+    if sys is None:
+        return not np.count_nonzero(problem.C)
+    return not np.count_nonzero(sys.D) and not (np.count_nonzero(sys.G) and np.count_nonzero(sys.N))
 
 
 def _owned(a: np.ndarray) -> np.ndarray:

@@ -226,7 +226,7 @@ class Stability(Result):
                           f"for the shape(s): {'; '.join(shapes)}")
             elif self.dissipation and self.dissipation[0].destabilizes:
                 basis += ("; marginally stable, but some small positive semidefinite damping destabilizes "
-                          f"(dissipation-induced instability: {self.dissipation[0].reason})")
+                          f"(dissipation-induced instability, since {self.dissipation[0].reason})")
         return (
             f"{basis}; structured margin {cap}{margin:.1e}: the verdict holds for every system within that "
             f"relative size of {self.kept}; unstructured margin {self.unstructured_reason}"
