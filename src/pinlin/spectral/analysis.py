@@ -156,8 +156,9 @@ def modal_analysis(
             "figures can be formed in; rescale the system (units)"
         )
     r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
-    lam, bound = _owned(lam), _owned(bound)
-    right, left, left_ok = _owned(fig.right), _owned(left), _owned(left_ok)
+    # (+ 0.0: a real or imaginary part that is an exact zero is exported as 0, never -0; values unchanged)
+    lam, bound = _owned(lam + 0.0), _owned(bound)
+    right, left, left_ok = _owned(fig.right + 0.0), _owned(left + 0.0), _owned(left_ok)
     clusters = tuple(clusters)
     return Modes(
         eigenvalues=lam,
