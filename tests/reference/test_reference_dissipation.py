@@ -259,3 +259,70 @@ def test_state_space_export_has_no_negative_zero():
         assert not np.any((a == 0) & np.signbit(a)), name
     A, B, _ = sys.first_order(np.eye(2))
     assert not np.any((A == 0) & np.signbit(A)) and not np.any((B == 0) & np.signbit(B))
+
+
+# ----------------------------------------------------------------------------- the vanishing-damping limit
+
+
+def _limit_closed_form(d1, d2):
+    """Root of b3 a2 b1 - a4 b1^2 - b3^2 a0 = 0 for Ziegler's column with D1 = diag(d1, d2) in joint angles.
+
+    With M = [[6, 2], [2, 1]], K = [[1, P], [0, 1]]: a4 = 2, b3 = d1 + 6 d2, a2 = 7 - 2P, b1 = d1 + d2,
+    a0 = 1, so P = (7 - (2 b1^2 + b3^2) / (b3 b1)) / 2 (41/28 for d1 = d2).
+    """
+    d1, d2 = mp.mpf(d1), mp.mpf(d2)
+    b3, b1 = d1 + 6 * d2, d1 + d2
+    closed = (7 - (2 * b1**2 + b3**2) / (b3 * b1)) / 2
+    # the same from the general 2-DOF condition, solved numerically in mpmath
+    root = mp.findroot(lambda P: hurwitz_limit(*_mp_ziegler(P), mp.diag([d1, d2])), closed + mp.mpf("0.01"))
+    assert abs(root - closed) < mp.mpf(10) ** -30
+    return float(closed)
+
+
+def test_vanishing_damping_limit_of_equal_dampers_is_41_28():
+    r = pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=np.eye(2))
+    assert r.mechanism == "vanishing damping" and r.kind == "flutter"
+    assert abs(r.value - 41 / 28) <= 1e-10, r.value - 41 / 28
+    assert abs(r.value - 41 / 28) <= r.error_bound < 1e-10
+    assert _limit_closed_form(1, 1) == pytest.approx(41 / 28, rel=1e-15)
+    # the limit lies below the undamped flutter load 7/2 - sqrt 2 (Ziegler's paradox)
+    assert r.value < 3.5 - np.sqrt(2.0)
+    # and the limit is the limit: the damped flutter load at a small eps is close (Routh-Hurwitz, issue 15)
+    from boundaries.boundary_cases import damped_flutter_load, ziegler_theta
+
+    assert abs(float(damped_flutter_load(ziegler_theta, mp.mpf("1e-6"), 10.0)) - r.value) < 1e-6
+
+
+def test_vanishing_damping_limit_of_dampers_c_and_3c():
+    expected = _limit_closed_form(1, 3)
+    assert_allclose(expected, 139 / 152, rtol=1e-15)
+    r = pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=np.diag([1.0, 3.0]))
+    assert abs(r.value - expected) <= 1e-10
+    assert abs(r.value - expected) <= r.error_bound
+    # a callable shape p -> D1 (scaled: the limit depends on the shape, not its size)
+    r2 = pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=lambda P: 5.0 * np.diag([1.0, 3.0]))
+    assert abs(r2.value - expected) <= 1e-10
+
+
+def test_vanishing_damping_limit_through_the_urdf():
+    from boundaries.boundary_cases import ziegler
+
+    r = pinlin.critical_parameter(ziegler(), (0.5, 3.0), damping=np.eye(2))
+    assert abs(r.value - 41 / 28) <= 1e-10
+
+
+def test_mass_proportional_damping_keeps_the_undamped_flutter_load():
+    """D1 = M: d lam / d eps = -1/2 for every mode (D = G = 0), so the limit is the coalescence 7/2 - sqrt 2."""
+    r = pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=ziegler_matrices(0.0)[0])
+    assert r.mechanism == "coalescence"
+    assert abs(r.value - (3.5 - np.sqrt(2.0))) <= max(r.error_bound, 1e-12)
+    assert any("limit is it" in n for n in r.notes)
+
+
+def test_vanishing_damping_refuses_bad_input():
+    with pytest.raises(pinlin.ParameterError, match="damping"):
+        pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=np.eye(3))
+    with pytest.raises(pinlin.ParameterError, match="symmetric"):
+        pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=[[1.0, 1.0], [0.0, 1.0]])
+    with pytest.raises(pinlin.BracketError, match="stabilize"):
+        pinlin.critical_parameter(ziegler_system, (1.8, 3.0), damping=np.eye(2))

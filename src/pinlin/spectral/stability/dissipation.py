@@ -40,7 +40,7 @@ import numpy as np
 from ...numerics.floating import EPS
 from ...results import Result
 
-__all__ = ["DissipationRow", "dissipation_rows", "axis_eigenvalues", "PSD_ROUNDING"]
+__all__ = ["DissipationRow", "dissipation_rows", "damping_row", "named_shapes", "axis_eigenvalues", "PSD_ROUNDING"]
 
 #: A shape D1 counts as positive semidefinite (definite) when its smallest eigenvalue is above
 #: -PSD_ROUNDING n eps ||D1||_2 (above +PSD_ROUNDING n eps ||D1||_2): the rounding of forming it.
@@ -232,3 +232,19 @@ def dissipation_rows(matrices, system, facts, lam, X, Y, r, left_normalized) -> 
     rows = [_worst(forms, lam, idx, facts)]
     rows += [_row(name, D1, forms, lam, idx, facts) for name, D1 in named_shapes(matrices, system)]
     return tuple(rows)
+
+
+def damping_row(modes, D1, shape: str = "the given D1") -> DissipationRow | None:
+    """The dissipation row of one shape D1 for a computed spectrum (``Modes``), None without axis eigenvalues.
+
+    The eigenvalues on the axis are those within their bound (times the analysis' safety factor) of it;
+    the theorems of the module doc decide where they apply, the computed sign otherwise.
+    """
+    lam = np.asarray(modes.eigenvalues)
+    r = float(modes.tolerances["safety"]) * np.asarray(modes.error_bound)
+    idx = axis_eigenvalues(lam, r, np.asarray(modes.left_normalized, dtype=bool))
+    if not idx.size:
+        return None
+    facts = modes.structure if modes.system is not None else None
+    forms = _forms(lam, modes.right, modes.left, r, idx)
+    return _row(shape, np.asarray(D1, dtype=float), forms, lam, idx, facts)
