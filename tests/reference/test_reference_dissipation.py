@@ -326,3 +326,25 @@ def test_vanishing_damping_refuses_bad_input():
         pinlin.critical_parameter(ziegler_system, (0.5, 3.0), damping=[[1.0, 1.0], [0.0, 1.0]])
     with pytest.raises(pinlin.BracketError, match="stabilize"):
         pinlin.critical_parameter(ziegler_system, (1.8, 3.0), damping=np.eye(2))
+
+
+def test_sleeping_top_is_the_gyroscopic_twin():
+    """The sleeping top (SPEC 12): M = A I, G = C Omega J, S = -m g l I; stable iff C^2 Omega^2 > 4 A m g l.
+
+    With D = eps I, p(lam) = (A lam^2 + eps lam - mgl)^2 + (C Omega lam)^2, so at lam = i omega
+    (A omega^2 - C Omega omega + mgl = 0) the rate is (A omega^2 + mgl) / (C^2 Omega^2 - 2 A (A omega^2 + mgl)).
+    """
+    A, C, mgl, Omega = 1.0, 0.5, 1.0, 5.0  # C^2 Omega^2 = 6.25 > 4
+    J = np.array([[0.0, -1.0], [1.0, 0.0]])
+    sys = pinlin.LinearizedSystem(A * np.eye(2), np.zeros((2, 2)), C * Omega * J, -mgl * np.eye(2), np.zeros((2, 2)))
+    st = pinlin.modal_analysis(sys).stability
+    assert st.kind == "marginally_stable" and st.unstructured_margin == 0.0
+    assert "D = 0 and N = 0" in st.kept
+    equal = _row(st, "equal dampers")
+    assert equal.destabilizes is True and equal.theorem == "Kelvin-Tait-Chetaev"
+    disc = mp.sqrt(mp.mpf(C * Omega) ** 2 - 4 * A * mgl)
+    rates = []
+    for omega in ((C * Omega - disc) / (2 * A), (C * Omega + disc) / (2 * A)):
+        e = A * omega**2 + mgl
+        rates.append(e / ((C * Omega) ** 2 - 2 * A * e))
+    assert abs(equal.rate - float(max(rates))) <= 1e-10

@@ -40,11 +40,17 @@ import numpy as np
 from ...numerics.floating import EPS
 from ...results import Result
 
-__all__ = ["DissipationRow", "dissipation_rows", "damping_row", "named_shapes", "axis_eigenvalues", "PSD_ROUNDING"]
+__all__ = [
+    "DissipationRow", "dissipation_rows", "damping_row", "named_shapes", "axis_eigenvalues", "PSD_ROUNDING",
+    "WORST_SHAPE",
+]
 
 #: A shape D1 counts as positive semidefinite (definite) when its smallest eigenvalue is above
 #: -PSD_ROUNDING n eps ||D1||_2 (above +PSD_ROUNDING n eps ||D1||_2): the rounding of forming it.
 PSD_ROUNDING = 10.0
+
+#: Name of the first row of every dissipation table.
+WORST_SHAPE = "some positive semidefinite D1 (the rank-one, unit-norm shape of largest rate)"
 
 _LD = "Lagrange-Dirichlet (Kelvin)"
 _KTC = "Kelvin-Tait-Chetaev"
@@ -173,7 +179,7 @@ def _worst(forms, lam, idx, facts) -> DissipationRow:
             best = (float(w[-1]), e, j, V[:, -1])
     top, err, j, v = best
     D1 = np.outer(v, v)
-    row = _row("some positive semidefinite D1 (rank one, the worst)", D1, forms, lam, idx, facts)
+    row = _row(WORST_SHAPE, D1, forms, lam, idx, facts)
     if row.theorem is None and facts is not None:
         decided, theorem, why = _theorem(facts, True, True)  # a positive definite D1 exists
         if decided:
