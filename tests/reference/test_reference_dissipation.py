@@ -348,3 +348,11 @@ def test_sleeping_top_is_the_gyroscopic_twin():
         e = A * omega**2 + mgl
         rates.append(e / ((C * Omega) ** 2 - 2 * A * e))
     assert abs(equal.rate - float(max(rates))) <= 1e-10
+
+
+def test_exported_numbers_have_no_negative_zero():
+    """to_dict turns an exact -0.0 into 0 (every JSON export goes through it), e.g. an equilibrium's q."""
+    from pinlin.results import to_jsonable
+
+    assert json.dumps(to_jsonable(np.array([-0.0, 0.0, -1.5]))) == "[0.0, 0.0, -1.5]"
+    assert json.dumps(to_jsonable(complex(-0.0, -0.0))) == '{"re": 0.0, "im": 0.0}'

@@ -167,6 +167,8 @@ def _row(shape, D1, forms, lam, idx, facts) -> DissipationRow:
                + f" its error {err:.1e}")
     else:
         why = f"{why} ({theorem}); computed: d Re lam / d eps = {rate:.4g} +- {err:.1e}"
+    if not psd:
+        why += "; D1 is not positive semidefinite (not a dissipation: it may feed energy in)"
     return DissipationRow(shape, D1, decided, rate, err, theorem, at, why)
 
 
