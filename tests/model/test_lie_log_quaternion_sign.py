@@ -8,7 +8,6 @@ opposite axis, and a spring of stiffness k gives k (2 pi - theta) instead of k t
 """
 
 import numpy as np
-import pinocchio as pin
 from numpy.testing import assert_allclose
 
 import pinlin
