@@ -155,6 +155,9 @@ BUILDERS = {
     # spectral
     "Modes": damped_modes,
     "Stability": lambda: damped_modes().stability,
+    # Ziegler's column at P = 1.8 in joint angles (issue 25): a marginal verdict with its dissipation table
+    "DissipationRow": lambda: pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices(
+        [[6.0, 2.0], [2.0, 1.0]], None, [[1.0, 1.8], [0.0, 1.0]])).stability.dissipation[1],
     "JordanChains": lambda: pinlin.jordan_chains(rigid(), 0.0),
     "Cluster": lambda: pinlin.modal_analysis(rigid()).clusters[0],
     # adjoint

@@ -41,7 +41,7 @@ def _number(x) -> Any:
         return {"re": _number(float(x.real)), "im": _number(float(x.imag))}
     x = float(x)
     if math.isfinite(x):
-        return x
+        return x + 0.0  # an exact zero is exported as 0, never -0 (issue 25)
     return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
 
 

@@ -58,7 +58,7 @@ def test_undamped_modes_are_labelled_undamped(capsys, tmp_path):
     out, report = analyze([], capsys, tmp_path)
     kinds = re.findall(r"^\s+\d+ .*?\s(\w*damped)\s", report["modes"]["table"], flags=re.M)
     assert kinds == ["undamped"] * 4
-    assert report["modes"]["kind"] == ["underdamped"] * 4  # the result's own kinds are unchanged
+    assert report["modes"]["kind"] == ["undamped"] * 4  # the result's own kinds (issue 25), not relabelled
     assert "joint1 88%, joint2 12%" in report["modes"]["table"]  # the dominant coordinates (issue 17)
     # a damped arm's modes stay underdamped
     out, _ = analyze(["--example", "ur5", "--damping", "1"], capsys, tmp_path)

@@ -70,6 +70,7 @@ def test_floating_base_on_a_spring_mount_with_balancing():
         K = np.diag(np.arange(1.0, j.nv + 1.0)) * 50.0 if j.nv > 1 else 20.0
         elements += [pinlin.JointSpring(name, K, rest=rest[j.q_slice] if j.nq > 1 else 0.1), pinlin.JointDamper(name, 0.3)]
     scene = pinlin.Scene(robot, elements)
+    pin.seed(7)  # numpy's rng does not seed Pinocchio
     qs = np.array([pin.randomConfiguration(robot.model, rest - 0.3, rest + 0.3) for _ in range(4)])
     many = pinlin.linearize_many(scene, qs, balancing=True)
     for q, sys in zip(qs, many):

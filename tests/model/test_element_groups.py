@@ -46,6 +46,7 @@ def _random_rest(robot: pinlin.Robot, name: str, rng: np.random.Generator):
     if j.nq == 1:
         return float(rng.uniform(-1, 1))
     lo, hi = -np.ones(robot.nq), np.ones(robot.nq)
+    pin.seed(int(rng.integers(2**31 - 1)))  # numpy's rng does not seed Pinocchio
     return pin.randomConfiguration(robot.model, lo, hi)[j.q_slice]
 
 
@@ -89,6 +90,7 @@ def test_prepared_groups_equal_the_elements_bitwise(seed):
     elements = _elements(robot, rng)
     scene = pinlin.Scene(robot, elements, gravity=(0, 0, 0))
     assert {type(g) for g in scene.groups} == {SpringGroup, DamperGroup}
+    pin.seed(1000 + seed)  # numpy's rng does not seed Pinocchio
     q = pin.randomConfiguration(robot.model, -np.ones(robot.nq), np.ones(robot.nq))
     v = rng.normal(size=robot.nv)
     ev = Evaluation(scene, q, v)

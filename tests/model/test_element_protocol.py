@@ -138,6 +138,9 @@ def free_body_case(preload: bool):
     """A free-floating two-link body (nq = 9, nv = 8) at a generic configuration."""
     rng = np.random.default_rng(21)
     robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(2, [0.6, 0.4], [1.2, 0.8]), free_flyer=True)
+    # numpy's rng does not seed Pinocchio: unseeded, about 1 draw in 40 nearly straightens the chain, where the
+    # tip-base spring's central differences lose digits to rounding (mismatch ~ 1/h; issue 25)
+    pin.seed(21)
     q = pin.randomConfiguration(robot.model, -2.0 * np.ones(robot.nq), 2.0 * np.ones(robot.nq))
     v = rng.normal(size=robot.nv)
     scene0 = pinlin.Scene(robot, gravity=(0, 0, 0))

@@ -65,6 +65,7 @@ def test_joint_log_is_pinocchios_difference_away_from_the_band_and_exact_at_rest
     model = pin.Model()
     model.addJoint(0, kind(), pin.SE3.Identity(), "j")
     group, rng = model.joints[1].lieGroup(), np.random.default_rng(3)
+    pin.seed(3)  # numpy's rng does not seed Pinocchio's randomConfiguration
     for angle in [0.0, 1e-7, 0.05, 0.5, 2.0, 3.0]:
         rest = pin.randomConfiguration(model, -np.ones(model.nq), np.ones(model.nq))
         xi = rng.normal(size=model.nv)
@@ -120,6 +121,7 @@ def test_chart_rate_of_a_model_with_a_free_flyer_and_a_spherical_joint():
     ball = model.addJoint(root, pin.JointModelSpherical(), pin.SE3(np.eye(3), np.array([0.0, 0.0, 0.5])), "ball")
     model.addJoint(ball, pin.JointModelRUBY(), pin.SE3.Identity(), "wheel")
     rng = np.random.default_rng(4)
+    pin.seed(4)  # numpy's rng does not seed Pinocchio
     base = pin.randomConfiguration(model, -np.ones(model.nq), np.ones(model.nq))
     chart = Chart(model, base, chart_groups(model))
     assert [name for _, name in chart.curved] == ["SE(3)", "SO(3)"]

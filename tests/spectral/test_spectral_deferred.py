@@ -114,6 +114,7 @@ def test_lazy_parts_equal_the_eager_functions(make):
     verdict = decide_stability(
         facts, modes.eigenvalues, model, modes.clusters, K_is_zero=not np.any(K),
         exact_drift=bool(np.any(~np.any(K, axis=0) & ~np.any(C, axis=0))), safety=10.0, uncertainty=0.0,
+        problem=problem, vectors=(modes.right, modes.left, modes.left_normalized),
     )
     assert _verdict_key(modes.stability) == _verdict_key(verdict)
     expected_notes = list(modes.verdict.notes) + mass_notes(facts, modes.eigenvalues, modes.error_bound)

@@ -22,6 +22,7 @@ baseline) and is used, and said, when nothing else works.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -36,6 +37,7 @@ from .bracket import Bracket, BracketChanged, PlanMismatch, open_bracket
 from .crossing import REAL_SAFETY, newton_crossing
 from .evaluation import Evaluator
 from .pairing import coalescence_search
+from .vanishing import vanishing_damping_limit
 from .verify import bisect, verify
 
 __all__ = ["CriticalParameter", "critical_parameter", "plan", "BOUND_SAFETY", "MAX_EVALUATIONS", "METHODS",
@@ -187,6 +189,7 @@ def critical_parameter(
     verify_result: bool = True,
     max_evaluations: int = MAX_EVALUATIONS,
     modal_options: Mapping[str, Any] | None = None,
+    damping=None,
 ) -> CriticalParameter:
     """The parameter value in ``bracket`` where the stability verdict of ``func(p)`` changes (SPEC section 12).
 
@@ -213,6 +216,14 @@ def critical_parameter(
         Most modal analyses allowed.
     modal_options : mapping, optional
         Passed to :func:`pinlin.modal_analysis`.
+    damping : (n, n) array or callable, optional
+        A damping shape D1 in the system's coordinates (or ``p -> D1``): the
+        result is then the limit, as eps -> 0, of the flutter boundary of
+        ``func(p)`` with D = eps D1 added, found from the limit problem (the
+        root of the first-order rate of the axis eigenvalues' real parts,
+        :mod:`pinlin.boundaries.vanishing`; SPEC section 5), mechanism
+        "vanishing damping".  ``func(bracket[0])`` must be marginally stable
+        and small damping of the shape must stabilize it there.
 
     Returns
     -------
@@ -242,6 +253,8 @@ def critical_parameter(
         raise ParameterError("tol", f"expected a positive absolute tolerance or None, got {tol!r}")
     if int(max_evaluations) != max_evaluations or max_evaluations < 3:
         raise ParameterError("max_evaluations", f"expected an integer >= 3, got {max_evaluations!r}")
+    if damping is not None:
+        return _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0)
     ev = Evaluator(func, modal_options)
     br = open_bracket(ev, bracket)
     tol_abs = 0.0 if tol is None else float(tol)
@@ -256,6 +269,23 @@ def critical_parameter(
         float(value), _boundary_kind(br), mechanism, complex(lam), float(bound), (br.lo, br.hi),
         (br.kind_lo, br.kind_hi), verified, ev.analyses, ev.calls, tuple(steps), how, time.perf_counter() - t0,
         tuple(notes))
+
+
+def _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0) -> CriticalParameter:
+    """``critical_parameter(..., damping=D1)``: the vanishing-damping limit, or the coalescence it reaches."""
+    lim = vanishing_damping_limit(func, bracket, damping, tol=tol, max_evaluations=max_evaluations,
+                                  modal_options=modal_options)
+    if lim.value is None:
+        res = critical_parameter(func, bracket, tol=tol, max_evaluations=max_evaluations, modal_options=modal_options)
+        return dataclasses.replace(res, elapsed=time.perf_counter() - t0, notes=res.notes + (
+            "vanishing damping of the given shape stabilizes up to the undamped flutter point: the limit is it",))
+    return CriticalParameter(
+        lim.value, "flutter", "vanishing damping", lim.eigenvalue, lim.error_bound, lim.bracket,
+        ("asymptotically_stable", "flutter"), False, lim.evaluations, lim.function_calls, lim.steps,
+        "the root of the first-order rate g(p) = max d Re lam / d eps of the axis eigenvalues for D = eps D1 "
+        "(the limit problem of vanishing damping; Brent's method)", time.perf_counter() - t0,
+        ("verdicts: of func(p) with D = eps D1 for small eps > 0, to first order in eps (not computed at a "
+         "finite eps)",))
 
 
 def _search(ev, br, tol, derivative, max_evaluations, verify_result, modal_options, notes):

@@ -147,7 +147,7 @@ def _input_matrix(sys, signals: list[Signal], point: OperatingPoint | None) -> n
             F[s.index, j] = 1.0
         else:
             F[:, j] = point.input_column(s)
-    return F
+    return F + 0.0
 
 
 def _output_matrix(sys, signals: list[Signal], point: OperatingPoint | None) -> np.ndarray:
@@ -159,7 +159,7 @@ def _output_matrix(sys, signals: list[Signal], point: OperatingPoint | None) -> 
         else:
             offset = n if s.kind == "velocity" else 0
             Cout[i, offset : offset + n] = point.output_row(s)
-    return Cout
+    return Cout + 0.0  # no -0. entries handed to python-control
 
 
 def state_space(

@@ -42,8 +42,9 @@ def first_order_form(M: np.ndarray, C: np.ndarray, K: np.ndarray, F: np.ndarray)
     error = float(np.linalg.norm(M @ X - Y) / denom) if denom > 0 else 0.0
     A = np.zeros((2 * n, 2 * n))
     A[:n, n:] = np.eye(n)
-    A[n:, :n] = -X[:, :n]
-    A[n:, n:] = -X[:, n : 2 * n]
+    # (+ 0.0: -X of an exact zero is -0., which python-control and every printout would show as "-0")
+    A[n:, :n] = -X[:, :n] + 0.0
+    A[n:, n:] = -X[:, n : 2 * n] + 0.0
     B = np.zeros((2 * n, F.shape[1]))
-    B[n:] = X[:, 2 * n :]
+    B[n:] = X[:, 2 * n :] + 0.0
     return A, B, error

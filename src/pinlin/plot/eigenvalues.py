@@ -17,6 +17,7 @@ __all__ = ["eigenvalue_map", "root_locus", "KIND_STYLE", "AXIS_MARGIN", "MIN_REA
 #: Marker and colour of each mode kind (exactly :data:`pinlin.spectral.MODE_KINDS`) in eigenvalue maps.
 KIND_STYLE = {
     "underdamped": ("o", "#264653"),
+    "undamped": ("D", "#e9c46a"),
     "overdamped": ("s", "#2a9d8f"),
     "rigid_body": ("x", "#6c757d"),
     "unstable": ("^", "#e63946"),

@@ -7,8 +7,8 @@ What the text promises, each checked by a test:
   the rounding bound c n eps ||A||_2 of :func:`pinlin.numerics.definiteness.rounding_bound`,
   the same below which an eigenvalue of A is not told from zero;
 - every printed matrix carries its unit (:func:`pinlin.report.units.matrix_unit`);
-- a mode whose Re lam lies within its error bound of zero and that oscillates
-  is labelled "undamped" (its damping is not distinguished from none);
+- a mode's kind is the result's own (``Modes.kind``: "undamped" on the axis of
+  a system with D = 0, issue 25), never relabelled here;
 - the stability verdict is printed once, in its own section.
 """
 
@@ -146,11 +146,6 @@ def _linearization_lines(lin: dict, names: Sequence[str], units: Sequence[str], 
     return out
 
 
-def _mode_kind(kind: str, re: float, bound: float) -> str:
-    """"undamped" for an oscillating mode whose Re lam is within its error bound of zero."""
-    return "undamped" if kind == "underdamped" and abs(re) <= bound else kind
-
-
 def _dominant(modes: dict, i: int) -> str:
     """Mode i's dominant coordinates with their energy shares (``Modes.dominant``), e.g. ``joint1 71%, joint2 29%``."""
     entries = modes.get("dominant") or []
@@ -188,12 +183,15 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
         bound = _float(modes["error_bound"][i])
         cells = [number(x, precision).rjust(w) for x in
                  (re[i], modes["eigenvalues"]["im"][i], modes["natural_frequency"][i])]
-        figures = [number(modes["damping_ratio"][i], 4).rjust(9)] + [
+        size = _float(modes["natural_frequency"][i])
+        # zeta at the rounding level of lam (|Re lam| within its bound) prints as 0
+        zeta_floor = bound / size if size > 0 else 0.0
+        figures = [number(modes["damping_ratio"][i], 4, zero_below=zeta_floor).rjust(9)] + [
             f"{_float(modes[key][i]):>8.{_FIGURE_DIGITS}e}" for key in ("backward_error", "condition")
         ]
         lines.append(
             f"{i + 1:>4}  {' '.join(cells)} {' '.join(figures)} {bound:>8.{_FIGURE_DIGITS}e} "
-            f"{modes['multiplicity'][i]:>4}  {_mode_kind(modes['kind'][i], re[i], bound):<12} "
+            f"{modes['multiplicity'][i]:>4}  {modes['kind'][i]:<12} "
             f"{_dominant(modes, i)}".rstrip()
         )
     if len(rows) < k:
@@ -201,6 +199,20 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
     lines.append(f"max eta {_float(modes['error']):.2e}; dynamic stiffness simple: {modes['is_simple']}")
     lines += [f"note: {note}" for note in modes.get("notes", ())]
     return "\n".join(lines)
+
+
+def _dissipation_lines(st: dict) -> list[str]:
+    """The dissipation table of a marginal verdict (``Stability.dissipation``, issue 25), one row per shape."""
+    rows = st.get("dissipation") or []
+    if not rows:
+        return []
+    lines = ["  small damping D = eps D1 (first-order rate d Re lam / d eps of the eigenvalues on the axis):"]
+    for r in rows:
+        says = {True: "destabilizes", False: "does not destabilize", None: "undecided"}[r["destabilizes"]]
+        by = f" ({r['theorem']})" if r.get("theorem") else ""
+        rate = number(r["rate"], 4, zero_below=_float(r["rate_error"]))
+        lines.append(f"    {r['shape']}: {says}{by}; rate {rate} +- {_float(r['rate_error']):.1e}")
+    return lines
 
 
 def render_text(report: dict, precision: int = 6) -> str:
@@ -225,6 +237,6 @@ def render_text(report: dict, precision: int = 6) -> str:
     modes = report["modes"]
     out += [mode_table(modes, precision), f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms", ""]
     st = report["stability"]
-    out += [f"Stability: {st['kind'].replace('_', ' ').upper()}", f"  {st['reason']}", ""]
+    out += [f"Stability: {st['kind'].replace('_', ' ').upper()}", f"  {st['reason']}", *_dissipation_lines(st), ""]
     out.append(f"Total {report['elapsed'] * 1e3:.1f} ms")
     return "\n".join(out)

@@ -156,18 +156,20 @@ def modal_analysis(
             "figures can be formed in; rescale the system (units)"
         )
     r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
-    lam, bound = _owned(lam), _owned(bound)
+    # (+ 0.0: a real or imaginary part that is an exact zero is exported as 0, never -0; values unchanged)
+    lam, bound = _owned(lam + 0.0), _owned(bound)
+    right, left, left_ok = _owned(fig.right + 0.0), _owned(left + 0.0), _owned(left_ok)
     clusters = tuple(clusters)
     return Modes(
         eigenvalues=lam,
-        right=_owned(fig.right),
-        left=_owned(left),
-        left_normalized=_owned(left_ok),
+        right=right,
+        left=left,
+        left_normalized=left_ok,
         backward_error=_owned(fig.backward_error),
         error_bound=bound,
         natural_frequency=_owned(freq),
         damping_ratio=_owned(zeta),
-        kind=mode_kinds(lam, tolerances["safety"] * r, clusters),
+        kind=mode_kinds(lam, tolerances["safety"] * r, clusters, _undamped(problem)),
         multiplicity=_owned(multiplicity),
         clusters=clusters,
         is_simple=all(c.semisimple for c in clusters),
@@ -182,7 +184,8 @@ def modal_analysis(
             fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
         ),
         verdict=DeferredVerdict(
-            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes)
+            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes),
+            (right, left, left_ok),
         ),
     )
 
@@ -201,10 +204,19 @@ def _figures(problem: QuadraticProblem, raw) -> tuple[np.ndarray, np.ndarray, Pa
 def _frequency_damping(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """|lam| and the damping ratio -Re(lam) / |lam| (NaN exactly where lam = 0: undefined)."""
     freq = np.abs(lam)
+    # (0.0 - Re: an undamped mode's ratio is 0, never -0.)
     if np.count_nonzero(freq) == freq.size:
-        return freq, -lam.real / freq
+        return freq, (0.0 - lam.real) / freq
     with np.errstate(divide="ignore", invalid="ignore"):
-        return freq, -lam.real / freq
+        return freq, (0.0 - lam.real) / freq
+
+
+def _undamped(problem: QuadraticProblem) -> bool:
+    """D = 0 and (G = 0 or N = 0) exactly (for a tuple: C = 0): the spectrum is symmetric in the imaginary axis."""
+    sys = problem.system
+    if sys is None:
+        return not np.count_nonzero(problem.C)
+    return not np.count_nonzero(sys.D) and not (np.count_nonzero(sys.G) and np.count_nonzero(sys.N))
 
 
 def _owned(a: np.ndarray) -> np.ndarray:

@@ -76,6 +76,9 @@ class DeferredVerdict:
     notes : tuple of str
         The notes of the analysis that do not depend on the facts (clusters,
         biorthogonalization), in the order the analysis found them.
+    vectors : (X, Y, left_normalized) or None
+        The right and left vectors (read-only), for the verdict's dissipation
+        table and unstructured margin (issue 25).
     """
 
     problem: QuadraticProblem
@@ -87,6 +90,7 @@ class DeferredVerdict:
     safety: float
     mass: Definiteness | None = None
     notes: tuple[str, ...] = ()
+    vectors: tuple | None = None
 
     def facts(self) -> StructuralFacts:
         """:func:`~pinlin.spectral.qualitative.structural_facts` of the problem at the uncertainty."""
@@ -100,7 +104,7 @@ class DeferredVerdict:
         drift = bool(np.count_nonzero(K.any(axis=0) | C.any(axis=0)) < K.shape[1])
         stability = decide_stability(
             facts, self.lam, self.model, self.clusters, K_is_zero=not np.count_nonzero(K), exact_drift=drift,
-            safety=self.safety, uncertainty=self.uncertainty,
+            safety=self.safety, uncertainty=self.uncertainty, problem=problem, vectors=self.vectors,
         )
         return with_contact_notes(stability, problem.system)
 

@@ -23,7 +23,7 @@ from .stability import Stability
 __all__ = ["Modes", "Method", "MODE_KINDS", "DeferredFigures", "DeferredVerdict"]
 
 #: Per-eigenvalue kinds, see :attr:`Modes.kind`.
-MODE_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable")
+MODE_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable", "undamped")
 
 class Method(str):
     """The solver path taken: a string equal to its name, with the reason attached.
@@ -97,7 +97,8 @@ class Modes(Result):
     kind : tuple of str
         Per eigenvalue, one of :data:`MODE_KINDS`: "rigid_body" (|lam| within
         its error bound of 0), "unstable" (Re lam above its error bound),
-        "underdamped" (|Im lam| above its error bound), "overdamped" (real,
+        "underdamped" (|Im lam| above its error bound), "undamped" (oscillating, |Re lam|
+        within its bound, of a system with D = 0 and G = 0 or N = 0: on the axis), "overdamped" (real,
         negative; critically damped included).  Bounds at the data uncertainty, times ``safety``;
         members of a cluster are classified by the cluster's mean.
     multiplicity : (2n,) int

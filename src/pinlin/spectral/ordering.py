@@ -166,11 +166,15 @@ def mirrored_figures(
     return _interleave(la, lb), np.repeat(block, 2), fig, np.repeat(weight, 2)
 
 
-def mode_kinds(lam: np.ndarray, r: np.ndarray, clusters: tuple[Cluster, ...] | list[Cluster]) -> tuple[str, ...]:
+def mode_kinds(
+    lam: np.ndarray, r: np.ndarray, clusters: tuple[Cluster, ...] | list[Cluster], undamped: bool = False
+) -> tuple[str, ...]:
     """Per eigenvalue one of MODE_KINDS against its bound r; cluster members by the cluster's mean.
 
     "rigid_body": |lam| <= r; "unstable": Re lam > r; "underdamped": |Im lam| > r;
-    "overdamped" otherwise (SPEC section 5).
+    "overdamped" otherwise (SPEC section 5).  With ``undamped`` (D = 0 and G = 0 or
+    N = 0 exactly: the spectrum is symmetric in the imaginary axis) an oscillating
+    eigenvalue with |Re lam| <= r is "undamped": its damping is none, not small (issue 25).
     """
     typical = lam
     if clusters:
@@ -180,10 +184,12 @@ def mode_kinds(lam: np.ndarray, r: np.ndarray, clusters: tuple[Cluster, ...] | l
     # codes into _KINDS, the later tests taking precedence as in SPEC section 5's order
     code = np.full(typical.shape[0], 2)  # "overdamped"
     code[np.abs(typical.imag) > r] = 1  # "underdamped"
+    if undamped:
+        code[(code == 1) & (np.abs(typical.real) <= r)] = 4  # "undamped"
     code[typical.real > r] = 3  # "unstable"
     code[np.abs(typical) <= r] = 0  # "rigid_body"
     return tuple([_KINDS[c] for c in code.tolist()])
 
 
 #: The per-eigenvalue kinds by code (the order of :data:`pinlin.spectral.modes.MODE_KINDS`).
-_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable")
+_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable", "undamped")

@@ -49,7 +49,9 @@ from ..accuracy import ErrorModel
 from ..multiplicity import Cluster
 from ..problem import as_problem
 from ..qualitative import StructuralFacts, structural_facts
+from .dissipation import dissipation_rows
 from .rules import RULES, Evidence
+from .unstructured import UnstructuredQuestion, structure_kept
 from .verdict import KINDS, MARGIN_CAP, STABILITY_SAFETY, Stability, theorem_verdict
 
 __all__ = [
@@ -109,7 +111,24 @@ def stability_from_structure(
     if verdict.kind == "undecided":
         return verdict.replace(elapsed=time.perf_counter() - t0, uncertainty=u, margin=0.0)
     question = _MarginQuestion(verdict.kind, u, facts, None, None, (), {}, verdict.safety)
-    return verdict.replace(elapsed=time.perf_counter() - t0, uncertainty=u, margin=None, margin_of=question)
+    return verdict.replace(elapsed=time.perf_counter() - t0, uncertainty=u, margin=None, margin_of=question,
+                           kept=structure_kept(verdict.theorem, facts))
+
+
+@dataclass(frozen=True, eq=False)
+class _DissipationQuestion:
+    """The dissipation table of a marginal verdict as a function of immutable evidence (called on first access)."""
+
+    matrices: tuple
+    system: object
+    facts: StructuralFacts
+    lam: np.ndarray
+    vectors: tuple
+    r: np.ndarray
+
+    def __call__(self) -> tuple:
+        X, Y, ok = self.vectors
+        return dissipation_rows(self.matrices, self.system, self.facts, self.lam, X, Y, self.r, ok)
 
 
 @dataclass(frozen=True, eq=False)
@@ -185,6 +204,8 @@ def decide_stability(
     exact_drift: bool = False,
     safety: float = STABILITY_SAFETY,
     uncertainty: float | None = None,
+    problem=None,
+    vectors: tuple | None = None,
 ) -> Stability:
     """The verdict for eigenvalues ``lam`` with their error model (see module doc), and its margin.
 
@@ -214,6 +235,11 @@ def decide_stability(
         Factor applied to the bounds.
     uncertainty : float, optional
         Relative data uncertainty (default: the one ``facts`` were decided against).
+    problem : QuadraticProblem, optional
+        The coefficients: with ``vectors``, a marginal verdict gets its dissipation table, and every
+        verdict its unstructured margin (both formed on first access).
+    vectors : (X, Y, left_normalized), optional
+        Right and left vectors of ``lam`` (y^T L'(lam) x = 1 where ``left_normalized``).
     """
     t0 = time.perf_counter()
     u = facts.uncertainty if uncertainty is None else float(uncertainty)
@@ -224,4 +250,14 @@ def decide_stability(
     question = _MarginQuestion(
         verdict.kind, u, facts, np.asarray(lam), model, tuple(clusters), flags, safety
     )
-    return verdict.replace(margin=None, margin_of=question, quote_margin=True, elapsed=time.perf_counter() - t0)
+    lazy = {"kept": structure_kept(verdict.theorem, facts)}
+    if problem is not None:
+        rows = None
+        if vectors is not None and verdict.kind == "marginally_stable":
+            rows = _DissipationQuestion((problem.M, problem.C, problem.K), problem.system, facts,
+                                        np.asarray(lam), tuple(vectors), safety * model.bound(u))
+        lazy["dissipation_of"] = rows
+        lazy["unstructured_of"] = UnstructuredQuestion(verdict.kind, np.asarray(lam), model, problem.norms, rows,
+                                                       MARGIN_CAP, safety)
+    return verdict.replace(margin=None, margin_of=question, quote_margin=True, elapsed=time.perf_counter() - t0,
+                           **lazy)

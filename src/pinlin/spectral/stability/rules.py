@@ -111,6 +111,15 @@ class Evidence:
             uncertainty=self.uncertainty,
         )
 
+    def quoted(self, i: int) -> str:
+        """The bound r_i as the verdict quotes it, with the safety factor and the bound it multiplies named
+        (the bound of ``Modes.error_bound`` and the table's column when the uncertainty is 0; issue 25)."""
+        r, s = float(self.r[i]), self.safety
+        at = f" at the data uncertainty {self.uncertainty:g}" if self.uncertainty else ""
+        if s == 1.0:
+            return f"{r:.1e}"
+        return f"{r:.1e} (the safety factor {s:g} times the error bound {r / s:.1e}{at})"
+
     def certainly_real(self, i: int) -> bool:
         """lam_i computed real, simple and farther than r_i + r_j from every other: it stays real."""
         return bool(self.lam[i].imag == 0 and self.isolated(np.array([i]), 1.0)[0])
@@ -201,7 +210,7 @@ def kelvin_tait_chetaev(ev: Evidence) -> Stability | None:
         kind,
         f"N = 0, D positive definite, S nonsingular with {neg} negative eigenvalue(s): exactly {neg} "
         f"eigenvalue(s) with Re lam > 0 (Kelvin-Tait-Chetaev); the largest, lam = {_fmt(ev.lam[i])}, is "
-        f"{how} (error bound {ev.r[i]:.1e})",
+        f"{how} (error bound {ev.quoted(i)})",
         i,
         "Kelvin-Tait-Chetaev",
         False,
@@ -227,7 +236,7 @@ def lagrange_dirichlet(ev: Evidence) -> Stability | None:
             "asymptotically_stable",
             f"N = 0, D positive semidefinite, S positive definite: Re lam <= 0 (Lagrange-Dirichlet/"
             f"Kelvin); and the eigenvalue closest to the axis, lam = {_fmt(ev.lam[right])}, has "
-            f"Re lam < -{r[right]:.1e} (its error bound)",
+            f"Re lam < -{ev.quoted(right)}",
             right,
             "Lagrange-Dirichlet",
             True,
@@ -237,7 +246,7 @@ def lagrange_dirichlet(ev: Evidence) -> Stability | None:
     return ev.at(
         "undecided",
         f"N = 0, D positive semidefinite, S positive definite: bounded (Lagrange-Dirichlet), but "
-        f"lam = {_fmt(ev.lam[i])} lies within its error bound {r[i]:.1e} of the imaginary axis: "
+        f"lam = {_fmt(ev.lam[i])} lies within its error bound {ev.quoted(i)} of the imaginary axis: "
         f"asymptotic or marginal stability cannot be told apart",
         i,
         "Lagrange-Dirichlet",
@@ -255,7 +264,7 @@ def certainly_unstable(ev: Evidence) -> Stability | None:
         return None
     kind, i, how = ev.instability(unstable)
     lam = ev.lam[i]
-    return ev.at(kind, f"lam = {_fmt(lam)} ({how}) has Re lam = {lam.real:.4g} > {ev.r[i]:.1e}, its error bound", i,
+    return ev.at(kind, f"lam = {_fmt(lam)} ({how}) has Re lam = {lam.real:.4g} > {ev.quoted(i)} (its error bound)", i,
                  None, False)
 
 
@@ -267,7 +276,7 @@ def certainly_asymptotic(ev: Evidence) -> Stability | None:
     return ev.at(
         "asymptotically_stable",
         f"every eigenvalue lies left of the axis by more than its error bound; closest: lam = "
-        f"{_fmt(ev.lam[i])}, Re lam = {ev.lam[i].real:.4g} < -{ev.r[i]:.1e} (its error bound)",
+        f"{_fmt(ev.lam[i])}, Re lam = {ev.lam[i].real:.4g} < -{ev.quoted(i)}",
         i,
         None,
         True,
@@ -325,7 +334,7 @@ def reflection_symmetry(ev: Evidence) -> Stability | None:
             "marginally_stable",
             f"D = 0 and {'G' if not ev.facts.gyroscopic else 'N'} = 0: the spectrum is symmetric under "
             f"lam -> -conj(lam), and each of the {near.size} eigenvalue(s) within its error bound of the "
-            f"axis is simple and isolated (e.g. lam = {_fmt(lam[i])}, bound {r[i]:.1e}), so it lies on it",
+            f"axis is simple and isolated (e.g. lam = {_fmt(lam[i])}, bound {ev.quoted(i)}), so it lies on it",
             i,
             "reflection symmetry",
             True,
@@ -333,7 +342,7 @@ def reflection_symmetry(ev: Evidence) -> Stability | None:
     i = int(doubtful[0])
     return ev.at(
         "undecided",
-        f"lam = {_fmt(lam[i])} lies within its error bound {r[i]:.1e} of the imaginary axis and is not "
+        f"lam = {_fmt(lam[i])} lies within its error bound {ev.quoted(i)} of the imaginary axis and is not "
         f"isolated from its neighbours, so symmetry cannot place it on the axis",
         i,
     )
@@ -353,7 +362,7 @@ def semisimple_zero(ev: Evidence) -> Stability | None:
             return ev.at(
                 "marginally_stable",
                 f"K = 0, so lam = 0 is exact; it is semisimple (multiplicity {c.algebraic}) and every other "
-                f"eigenvalue has Re lam < -bound (farthest right {_fmt(ev.lam[j])}, bound {r[j]:.1e})",
+                f"eigenvalue has Re lam < -bound (farthest right {_fmt(ev.lam[j])}, bound {ev.quoted(j)})",
                 j,
                 "Jordan structure",
                 True,
@@ -368,7 +377,7 @@ def undecided(ev: Evidence) -> Stability:
     i = int(near[np.argmax(re[near])])
     return ev.at(
         "undecided",
-        f"lam = {_fmt(ev.lam[i])} has |Re lam| = {abs(ev.lam[i].real):.2e} within its error bound {ev.r[i]:.1e} "
+        f"lam = {_fmt(ev.lam[i])} has |Re lam| = {abs(ev.lam[i].real):.2e} within its error bound {ev.quoted(i)} "
         f"and no theorem or symmetry applies",
         i,
     )

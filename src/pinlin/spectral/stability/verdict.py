@@ -64,11 +64,32 @@ class Stability(Result):
         Seconds spent deciding [s] (the eigenvalues' own cost is in
         ``Modes.elapsed``; the margin's, paid on first access, is not included).
     margin : float
-        The largest relative perturbation of the data (each matrix in its own
-        norm, and normwise for the eigenvalue bounds) for which the verdict
-        keeps its kind: the verdict decided against that uncertainty instead of
-        ``uncertainty`` is the same (capped at :data:`MARGIN_CAP`).  At least
-        ``uncertainty`` for a decided verdict; 0 for "undecided" (no claim).
+        The *structured* margin: the largest relative perturbation of the data
+        (each matrix in its own norm, and normwise for the eigenvalue bounds)
+        for which the verdict keeps its kind: the verdict decided against that
+        uncertainty instead of ``uncertainty`` is the same (capped at
+        :data:`MARGIN_CAP`).  A matrix that is zero stays zero, and a verdict
+        that used an exact zero (D = 0, G = 0, N = 0) keeps it: ``kept`` names
+        the class.  At least ``uncertainty`` for a decided verdict; 0 for
+        "undecided" (no claim).
+    kept : str
+        The class of perturbations ``margin`` covers ("perturbations that keep
+        D = 0 and G = 0 exactly ...",
+        :func:`~pinlin.spectral.stability.unstructured.structure_kept`).
+    unstructured_margin : float or None
+        The largest relative perturbation of *all* of M, D, G, S, N under which
+        the kind provably holds, to first order
+        (:mod:`pinlin.spectral.stability.unstructured`): 0 for every marginal
+        verdict (some arbitrarily small damping moves an axis eigenvalue off
+        the axis; ``unstructured_reason`` names it) and for "undecided"; None
+        for a verdict of the structure alone (no eigenvalues to measure).
+    unstructured_reason : str
+        What ``unstructured_margin`` claims, or which perturbation breaks the verdict.
+    dissipation : tuple of DissipationRow
+        For a marginal verdict, what small damping of each shape does to the
+        eigenvalues on the axis (:mod:`pinlin.spectral.stability.dissipation`):
+        rows with ``.shape``, ``.destabilizes``, ``.rate``, ``.rate_error``,
+        ``.theorem``; empty otherwise.  Formed on first access.
     uncertainty : float
         The relative data uncertainty the verdict was decided against (0: the
         data as stored, only their rounding).
@@ -83,8 +104,13 @@ class Stability(Result):
 
     _dict_fields = (
         "kind", "reason", "theorem", "eigenvalue", "error_bound", "bounded", "safety", "elapsed", "margin",
-        "uncertainty",
+        "uncertainty", "kept", "unstructured_margin", "unstructured_reason", "dissipation",
     )
+    #: The fields that decide equality (the dissipation rows are a function of the same evidence).
+    _key_fields = _dict_fields[:-1]
+
+    #: Names of the lazy parts handed on by :meth:`replace`.
+    _LAZY = ("kept", "unstructured_of", "dissipation_of")
 
     def __init__(
         self,
@@ -101,13 +127,19 @@ class Stability(Result):
         *,
         margin_of: Callable[[], float] | None = None,
         quote_margin: bool = False,
+        kept: str | None = None,
+        unstructured_of: Callable[[], tuple] | None = None,
+        dissipation_of: Callable[[], tuple] | None = None,
     ):
         """``margin=None`` with ``margin_of`` (a pure function of immutable data) computes it on first access;
-        ``quote_margin`` appends it to the reason."""
+        ``quote_margin`` appends it to the reason.  ``unstructured_of() -> (value, reason)`` and
+        ``dissipation_of() -> rows`` are called on first access (None: no claim, no rows)."""
         values = {
             "kind": kind, "_basis": reason, "theorem": theorem, "eigenvalue": eigenvalue,
             "error_bound": error_bound, "bounded": bounded, "safety": safety, "elapsed": elapsed,
             "_margin": margin, "uncertainty": uncertainty, "_margin_of": margin_of, "_quote": bool(quote_margin),
+            "_kept": kept, "_unstructured_of": unstructured_of, "_unstructured": None,
+            "_dissipation_of": dissipation_of, "_dissipation": None,
         }
         if margin is None and margin_of is None:  # pragma: no cover (programming error)
             raise TypeError("Stability needs a margin or a function that computes it")
@@ -127,9 +159,10 @@ class Stability(Result):
         margin = changes.pop("margin", self.__dict__["_margin"])
         margin_of = changes.pop("margin_of", self.__dict__["_margin_of"] if margin is None else None)
         quote = changes.pop("quote_margin", self._quote)
+        lazy = {name: changes.pop(name, self.__dict__["_" + name]) for name in self._LAZY}
         if changes:
             raise TypeError(f"unknown Stability attributes {sorted(changes)}")
-        return Stability(**args, margin=margin, margin_of=margin_of, quote_margin=quote)
+        return Stability(**args, margin=margin, margin_of=margin_of, quote_margin=quote, **lazy)
 
     @property
     def margin(self) -> float:
@@ -140,14 +173,63 @@ class Stability(Result):
         return value
 
     @property
+    def kept(self) -> str:
+        kept = self.__dict__["_kept"]
+        return kept if kept is not None else "perturbations of each matrix relative to its own norm"
+
+    def _unstructured_pair(self) -> tuple:
+        pair = self.__dict__["_unstructured"]
+        if pair is None:
+            of = self.__dict__["_unstructured_of"]
+            if of is not None:
+                pair = tuple(of())
+            elif self.kind == "undecided":
+                pair = (0.0, "0: an undecided verdict makes no claim")
+            else:
+                pair = (None, "not computed")
+            self.__dict__["_unstructured"] = pair  # pure function of immutable data, as the margin
+        return pair
+
+    @property
+    def unstructured_margin(self) -> float | None:
+        return self._unstructured_pair()[0]
+
+    @property
+    def unstructured_reason(self) -> str:
+        return self._unstructured_pair()[1]
+
+    @property
+    def dissipation(self) -> tuple:
+        rows = self.__dict__["_dissipation"]
+        if rows is None:
+            of = self.__dict__["_dissipation_of"]
+            rows = tuple(of()) if of is not None else ()
+            self.__dict__["_dissipation"] = rows
+        return rows
+
+    @property
+    def destabilizing_shapes(self) -> tuple[str, ...]:
+        """The named shapes of ``dissipation`` (the worst-case row left out) that certainly destabilize."""
+        return tuple(r.shape for r in self.dissipation[1:] if r.destabilizes)
+
+    @property
     def reason(self) -> str:
         if not self._quote:
             return self._basis
         margin = self.margin
         cap = "at least " if margin >= MARGIN_CAP else ""
+        basis = self._basis
+        if self.kind == "marginally_stable":
+            shapes = self.destabilizing_shapes
+            if shapes:
+                basis += ("; marginally stable, but small damping destabilizes (dissipation-induced instability) "
+                          f"for the shape(s): {'; '.join(shapes)}")
+            elif self.dissipation and self.dissipation[0].destabilizes:
+                basis += ("; marginally stable, but some small positive semidefinite damping destabilizes "
+                          f"(dissipation-induced instability, since {self.dissipation[0].reason})")
         return (
-            f"{self._basis}; margin {cap}{margin:.1e}: the verdict holds for every system within that "
-            f"relative perturbation of the data"
+            f"{basis}; structured margin {cap}{margin:.1e}: the verdict holds for every system within that "
+            f"relative size of {self.kept}; unstructured margin {self.unstructured_reason}"
         )
 
     @property
@@ -168,7 +250,7 @@ class Stability(Result):
         return 1.0 if self.margin <= floor else float(floor / self.margin)
 
     def _key(self) -> tuple:
-        return tuple(getattr(self, name) for name in self._dict_fields)
+        return tuple(getattr(self, name) for name in self._key_fields)
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, Stability):
@@ -191,7 +273,8 @@ class Stability(Result):
         lam = "None" if self.eigenvalue is None else f"{complex(self.eigenvalue):.6g}"
         return (
             f"Stability(kind={self.kind!r}, theorem={self.theorem!r}, eigenvalue={lam}, "
-            f"error={self.error:.2g}, bounded={self.bounded}, margin={self.margin:.2g})"
+            f"error={self.error:.2g}, bounded={self.bounded}, margin={self.margin:.2g}, "
+            f"unstructured_margin={self.unstructured_margin!r})"
         )
 
 
