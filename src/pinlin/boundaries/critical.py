@@ -25,18 +25,18 @@ from __future__ import annotations
 import dataclasses
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..errors import ConvergenceError, ParameterError
-from ..results import Result
 from ..spectral import STABILITY_SAFETY
 from .bracket import Bracket, BracketChanged, PlanMismatch, open_bracket
+from .critical_result import CriticalParameter
 from .crossing import REAL_SAFETY, newton_crossing
-from .evaluation import Evaluator
+from .evaluation import Evaluator, PeriodicFamily
 from .pairing import coalescence_search
+from .periodic import periodic_critical_parameter
 from .vanishing import vanishing_damping_limit
 from .verify import bisect, verify
 
@@ -58,73 +58,6 @@ VERDICT_MARGIN = 2.0
 METHODS = ("auto", "bisection")
 
 
-@dataclass(frozen=True, repr=False, eq=False)
-class CriticalParameter(Result):
-    """A stability boundary p* of a one-parameter family (SPEC section 12).
-
-    Attributes
-    ----------
-    value : float
-        p* [unit of p].
-    kind : str
-        "divergence" or "flutter": the verdict on the unstable side; between two
-        unstable verdicts (flutter on one side, divergence on the other),
-        "divergence" (where real eigenvalues in the right half-plane appear).
-    mechanism : str
-        "crossing" (an eigenvalue crosses the imaginary axis transversally),
-        "coalescence" (two eigenvalues meet and leave an axis: a double eigenvalue
-        at p*) or "bisection" (verdicts only).
-    eigenvalue : complex
-        The critical eigenvalue at p* [1/s] (on the imaginary axis for a
-        stable/unstable boundary; the double eigenvalue of a coalescence).
-    error_bound : float
-        Absolute bound on |p* - value| [unit of p]: the last Newton correction
-        plus ``BOUND_SAFETY`` times the root's rounding-level uncertainty, widened
-        to the interval over which the verdicts were checked on both sides
-        (``verified``); for bisection half the final bracket.
-    bracket : tuple of float
-        The final verdict bracket: the verdicts at its ends differ.
-    verdicts : tuple of str
-        Stability kinds below and above p*.
-    verified : bool
-        The verdicts at value -+ error_bound were computed and differ.
-    evaluations : int
-        Modal analyses made (the bracket's ends included).
-    function_calls : int
-        Calls of ``func``.
-    steps : tuple of str
-        The iteration's steps, in order.
-    method : str
-    error : float
-        ``error_bound`` (absolute, in the unit of p).
-    elapsed : float
-        Seconds [s].
-    notes : tuple of str
-    """
-
-    value: float
-    kind: str
-    mechanism: str
-    eigenvalue: complex
-    error_bound: float
-    bracket: tuple[float, float]
-    verdicts: tuple[str, str]
-    verified: bool
-    evaluations: int
-    function_calls: int
-    steps: tuple[str, ...]
-    method: str
-    elapsed: float
-    notes: tuple[str, ...] = field(default=())
-
-    @property
-    def error(self) -> float:
-        return self.error_bound
-
-    def __repr__(self) -> str:
-        return (f"CriticalParameter(value={self.value:.15g}, kind={self.kind!r}, mechanism={self.mechanism!r}, "
-                f"error_bound={self.error_bound:.1e}, eigenvalue={self.eigenvalue:.6g}, "
-                f"evaluations={self.evaluations}, verified={self.verified}, elapsed={self.elapsed:.3g}s)")
 
 
 def _zero(sys, name: str) -> bool:
@@ -196,7 +129,9 @@ def critical_parameter(
     Parameters
     ----------
     func : callable
-        ``func(p) -> LinearizedSystem``, continuous in p.
+        ``func(p) -> LinearizedSystem``, continuous in p; or ``func(p) -> FloquetAnalysis`` for a periodic
+        family (the boundary where a multiplier leaves the unit circle: :mod:`pinlin.boundaries.periodic`;
+        ``derivative``, ``method``, ``modal_options`` and ``damping`` do not apply there).
     bracket : (float, float)
         Two parameter values whose verdicts (``modes.stability.kind``) differ in
         class: stable (asymptotically or marginally), divergence, flutter.
@@ -256,7 +191,11 @@ def critical_parameter(
     if damping is not None:
         return _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0)
     ev = Evaluator(func, modal_options)
-    br = open_bracket(ev, bracket)
+    try:
+        br = open_bracket(ev, bracket)
+    except PeriodicFamily as found:  # func(p) -> FloquetAnalysis: the multipliers' boundary
+        return periodic_critical_parameter(func, bracket, tol=tol, max_evaluations=max_evaluations,
+                                           first=(found.p, found.value))
     tol_abs = 0.0 if tol is None else float(tol)
     notes: list[str] = []
     if method == "bisection":

@@ -19,9 +19,10 @@ import numpy as np
 
 from ..errors import ParameterError, SystemFunctionError
 from ..linearization.system import LinearizedSystem
+from ..periodic import FloquetAnalysis
 from ..spectral import Modes, modal_analysis
 
-__all__ = ["Evaluator", "VERDICT_CLASS", "verdict_class", "check_parameter"]
+__all__ = ["Evaluator", "PeriodicFamily", "VERDICT_CLASS", "verdict_class", "check_parameter"]
 
 #: The stability kinds (``modes.stability.kind``) grouped into the classes whose change is a boundary:
 #: asymptotic and marginal stability are one class ("stable"); "undecided" is its own.
@@ -54,6 +55,16 @@ def check_parameter(value, label: str) -> float:
     if not math.isfinite(out):
         raise ParameterError(label, f"expected a finite number, got {value!r}")
     return out
+
+
+class PeriodicFamily(Exception):  # noqa: N818 - a signal to the search, not an error the user sees
+    """Raised by :meth:`Evaluator.system` when the family returns a Floquet analysis: the search of a
+    periodic family is a different one (:mod:`pinlin.boundaries.periodic`); ``p`` and ``value`` hand over
+    the value already computed."""
+
+    def __init__(self, p: float, value: FloquetAnalysis):
+        super().__init__(p)
+        self.p, self.value = p, value
 
 
 class Evaluator:
@@ -108,6 +119,8 @@ class Evaluator:
             raise SystemFunctionError(
                 f"{self.label}({p!r}) raised {type(exc).__name__}: {exc}", p
             ) from exc
+        if isinstance(sys, FloquetAnalysis) and self._first is None:
+            raise PeriodicFamily(p, sys)
         if not isinstance(sys, LinearizedSystem):
             raise SystemFunctionError(
                 f"{self.label}({p!r}) returned {type(sys).__name__}; expected a pinlin.LinearizedSystem", p

@@ -30,7 +30,7 @@ import scipy.optimize
 
 from ..errors import BracketError, ParameterError, SystemFunctionError
 from ..periodic import FloquetAnalysis
-from .critical import CriticalParameter
+from .critical_result import CriticalParameter
 from .evaluation import VERDICT_CLASS, check_parameter
 
 __all__ = ["periodic_critical_parameter", "stability_function", "is_periodic_family"]
