@@ -27,6 +27,8 @@ SUITE = (
     ("linearize", "bench_linearize", "analytic linearization against finite differences (and MuJoCo)"),
     ("catalog", "bench_catalog", "spectrum of stiff and extreme cases: every eigen-method against mpmath"),
     ("spectral", "bench_spectral", "modal analysis paths against plain QZ: time and backward error"),
+    ("clusters", "bench_clusters",
+     "clustered spectra (talos_full_v2, 8 identical branches) and busy machines: modal_analysis vs eig(left=True)"),
     ("adjoint", "bench_adjoint", "frequency responses (modal vs direct) and the characteristic polynomial"),
     ("response", "bench_response", "free response: modal formula against expm and time integration"),
     ("scaling", "bench_scaling", "time and memory per stage for chains of n = 10 ... 400; the memory guard"),

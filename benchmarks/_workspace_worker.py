@@ -69,7 +69,10 @@ def _variant(name: str, variant: str):
     scene, q, balancing = _case(name)
     if variant == "linearize":
         return lambda: pinlin.linearize(scene, q, balancing=balancing)
-    from pinlin.linearization import workspace as ws_module  # only in the per-thread-workspace layout
+    try:  # the per-thread workspaces: pinlin.model.evaluation since issue 22, pinlin.linearization.workspace before
+        from pinlin.model import evaluation as ws_module
+    except ImportError:
+        from pinlin.linearization import workspace as ws_module
 
     if variant == "fresh":
 

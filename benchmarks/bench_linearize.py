@@ -126,12 +126,19 @@ def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str =
 
 
 class BareResidual:
-    """r(q, v) = tau(q, v, 0, fext) - Q_e(q, v) with bare Pinocchio and plain numpy, as a user writes it.
+    """r(q, v) = tau(q, v, 0, fext) - Q_e(q, v) with bare Pinocchio and plain numpy, as a competent user writes it.
 
-    Supports what issue 14's scenes contain: joint springs (1-DOF as arrays,
-    multi-DOF through one ``pin.difference`` of the whole configuration), joint
-    dampers, follower wrenches (a constant ``fext``), gravity and prescribed
-    velocities.  Other elements raise ``ValueError`` (then no bare baseline exists).
+    Supports what issue 14's scenes contain: joint springs, joint dampers,
+    follower wrenches (a constant ``fext``), gravity and prescribed velocities.
+    Everything that does not depend on (q, v) is prepared once (issue 27: the
+    leanest honest baseline, no per-call index arrays): the springs as one
+    full-length stiffness vector on q - q_rest when every joint has nq = nv
+    (one multiply-add), otherwise one ``pin.difference`` from the rest
+    configuration and one product with the assembled stiffness matrix; the
+    dampers as one matrix (or vector) on v, applied only where v varies; the
+    cheapest Pinocchio call for the point (``computeGeneralizedGravity`` or
+    ``computeStaticTorque`` at the rest velocity v = 0, ``rnea`` otherwise).
+    Other elements raise ``ValueError`` (then no bare baseline exists).
     """
 
     def __init__(self, scene: pinlin.Scene):
@@ -142,72 +149,95 @@ class BareResidual:
         self.moving = bool(np.any(self.v0))
         nv = model.nv
         self.zero = np.zeros(nv)
-        self.rest = pin.neutral(model)
-        self.Ks = np.zeros((nv, nv))
-        self.Cd = np.zeros((nv, nv))
-        iq, iv, k, rest = [], [], [], []
-        self.multi = False
+        rest = pin.neutral(model)
+        Ks = np.zeros((nv, nv))
+        Cd = np.zeros((nv, nv))
         for e in scene.elements:
             if isinstance(e, pinlin.JointSpring):
                 j = scene.robot.joint(e.joint)
                 if j.nq == 1:
-                    iq.append(j.idx_q), iv.append(j.idx_v), k.append(float(np.ravel(e.stiffness)[0]))
-                    rest.append(0.0 if e.rest is None else float(np.ravel(e.rest)[0]))
+                    Ks[j.idx_v, j.idx_v] += float(np.ravel(e.stiffness)[0])
+                    rest[j.idx_q] = 0.0 if e.rest is None else float(np.ravel(e.rest)[0])
                 else:
-                    self.multi = True
-                    self.rest[j.q_slice] = e.rest_configuration(scene.robot)
-                    self.Ks[j.v_slice, j.v_slice] = e.matrix(j)
+                    rest[j.q_slice] = e.rest_configuration(scene.robot)
+                    Ks[j.v_slice, j.v_slice] += e.matrix(j)
             elif isinstance(e, pinlin.JointDamper):
                 j = scene.robot.joint(e.joint)
-                self.Cd[j.v_slice, j.v_slice] += np.diag(np.broadcast_to(e.damping, (j.nv,))) if np.ndim(e.damping) < 2 else e.damping
+                Cd[j.v_slice, j.v_slice] += np.diag(np.broadcast_to(e.damping, (j.nv,))) if np.ndim(e.damping) < 2 else e.damping
             elif not isinstance(e, pinlin.FollowerWrench):
                 raise ValueError(f"no bare residual for {type(e).__name__}")
-        self.iq, self.iv = np.array(iq, dtype=int), np.array(iv, dtype=int)
-        self.k, self.q_rest = np.array(k), np.array(rest)
+        self.rest = rest
+        # nq = nv and diagonal springs: r += k * (q - q_rest), one ufunc pair; else difference and a product
+        self.vector_springs = model.nq == nv and not np.count_nonzero(Ks - np.diag(np.diag(Ks)))
+        self.k = np.diag(Ks).copy() if self.vector_springs else None
+        self.Ks = Ks
+        diag_d = not np.count_nonzero(Cd - np.diag(np.diag(Cd)))
+        self.d = np.diag(Cd).copy() if diag_d else None
+        self.Cd = Cd
+        self.damped = bool(np.count_nonzero(Cd))
 
     def tau(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         model, data, fext = self.model, self.data, self.fext
         if self.moving or v is not self.v0:
-            extra = () if fext is None else (fext,)
-            return pin.rnea(model, data, q, v, self.zero, *extra)
+            if fext is None:
+                return pin.rnea(model, data, q, v, self.zero)
+            return pin.rnea(model, data, q, v, self.zero, fext)
         if fext is not None:
             return pin.computeStaticTorque(model, data, q, fext)
         return pin.computeGeneralizedGravity(model, data, q)
 
     def __call__(self, q: np.ndarray, v: np.ndarray) -> np.ndarray:
         r = self.tau(q, v)
-        r[self.iv] += self.k * (q[self.iq] - self.q_rest)
-        if self.multi:
+        if self.vector_springs:
+            r += self.k * (q - self.rest)
+        else:
             r += self.Ks @ pin.difference(self.model, self.rest, q)
-        if self.moving or v is not self.v0:  # dampers act on a velocity
-            r += self.Cd @ v
+        if self.damped and (self.moving or v is not self.v0):  # dampers act on a velocity
+            r += self.d * v if self.d is not None else self.Cd @ v
         return r
 
 
 def bare_differences(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str = "central"):
     """(M, C, K) on the free coordinates by differences of :class:`BareResidual`, M by ``crba``.
 
-    Returns a function computing them (the residual's setup is not timed).
+    The loop a user writes: per free coordinate two ``pin.integrate`` steps of q
+    and two of v (four residuals, central) or one each (forward); the columns
+    written into preallocated arrays; the free rows and columns taken once at
+    the end (plain slices when the free coordinates are contiguous, as in every
+    scene of this benchmark).  Returns a function computing them (the
+    residual's setup is not timed).
     """
     r = BareResidual(scene)
-    model, free, v0 = scene.model, scene.free_dofs, r.v0
+    model, free, v0 = scene.model, list(scene.free_dofs), r.v0
     nv = model.nv
+    contiguous = free == list(range(free[0], free[0] + len(free))) if free else True
+    rows = slice(free[0], free[-1] + 1) if free and contiguous else np.asarray(free, dtype=int)
+    crba = pin.crba
+    integrate = pin.integrate
+    steps = []
+    for k in free:
+        e = np.zeros(nv)
+        e[k] = h
+        steps.append((e, -e, v0 + e, v0 - e))
+    inv = 1.0 / (2 * h) if scheme == "central" else 1.0 / h
 
     def run():
         K = np.empty((nv, len(free)))
         C = np.empty((nv, len(free)))
-        e = np.zeros(nv)
-        r0 = r(q, v0) if scheme == "forward" else None
-        for col, k in enumerate(free):
-            e[k] = h
-            if scheme == "central":
-                K[:, col] = (r(pin.integrate(model, q, e), v0) - r(pin.integrate(model, q, -e), v0)) / (2 * h)
-                C[:, col] = (r(q, v0 + e) - r(q, v0 - e)) / (2 * h)
-            else:
-                K[:, col] = (r(pin.integrate(model, q, e), v0) - r0) / h
-                C[:, col] = (r(q, v0 + e) - r0) / h
-            e[k] = 0.0
-        M = pin.crba(model, r.data, q)
+        if scheme == "central":
+            for col, (ep, em, vp, vm) in enumerate(steps):
+                K[:, col] = r(integrate(model, q, ep), v0) - r(integrate(model, q, em), v0)
+                C[:, col] = r(q, vp) - r(q, vm)
+        else:
+            r0 = r(q, v0)
+            for col, (ep, _, vp, _) in enumerate(steps):
+                K[:, col] = r(integrate(model, q, ep), v0) - r0
+                C[:, col] = r(q, vp) - r0
+        K *= inv
+        C *= inv
+        M = crba(model, r.data, q)
+        if contiguous:
+            return M[rows, rows], C[rows], K[rows]
         return M[np.ix_(free, free)], C[free], K[free]
 
     return run

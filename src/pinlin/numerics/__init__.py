@@ -16,7 +16,8 @@
 - :mod:`.definiteness` -- ``definiteness`` (one decision for modes, stability and the report,
   against the rounding bound c n eps ||A|| and a data uncertainty; Cholesky certificate);
 - :mod:`.determinant` -- ``nonsingularity`` and ``det_sign``, decided the same way;
-- :mod:`.rank` -- the two rank tolerances (Jordan structure, adjugate rank one) and rank helpers.
+- :mod:`.rank` -- the two rank tolerances (Jordan structure, adjugate rank one) and rank helpers;
+- :mod:`.threads` -- ``small_kernels``: one BLAS thread for the dense kernels of a small problem.
 
 """
 

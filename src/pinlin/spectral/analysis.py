@@ -20,10 +20,11 @@ from ..numerics.definiteness import DEFAULT_UNCERTAINTY
 from ..numerics.floating import EPS
 from ..numerics.norms import column_norms
 from ..numerics.rank import JORDAN_RANK_TOL
+from ..numerics.threads import small_kernels
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
 from .deferred import DeferredFigures, DeferredVerdict
 from .modes import Method, Modes
-from .multiplicity import Cluster, analyse_cluster
+from .multiplicity import Cluster, ClusterEvidence, analyse_cluster
 from .ordering import mirrored_figures, mode_kinds, order_spectrum
 from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
 from .problem import QuadraticProblem, as_problem
@@ -36,6 +37,10 @@ __all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL", "BIORTHOGONAL_RCOND"]
 #: only when sigma_min / sigma_max of Y^T L' X exceeds this: a thousand times the
 #: rounding level of that SVD, so that the inverse keeps three digits or more.
 BIORTHOGONAL_RCOND = 1e3 * EPS
+
+#: Solver paths whose pencil is symmetric definite (M positive definite, K symmetric, C = 0 or
+#: proportional): their multiple eigenvalues are semisimple unless a pair's two roots coincide.
+SYMMETRIC_DEFINITE_PATHS = ("symmetric", "proportional")
 
 #: The smallest positive normal double.
 TINY = float(np.finfo(float).tiny)
@@ -133,61 +138,64 @@ def modal_analysis(
             "uncertainty the definiteness decisions hold against)", DeprecationWarning, stacklevel=2,
         )
         uncertainty = definiteness_tol
-    tolerances = _check_options(
-        method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
-        uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
-    )
-    name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
-    raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
-    lam, block, fig = _figures(problem, raw)
-    clusters, notes = _clusters(problem, lam, fig, tolerances)
-    left, left_ok, model, more = _cluster_figures(problem, lam, fig, clusters)
-    notes += more
-    multiplicity = np.ones(lam.shape[0], dtype=int)
-    for c in clusters:
-        multiplicity[list(c.indices)] = c.algebraic
-    freq, zeta = _frequency_damping(lam)
-    bound = model.bound(0.0)
-    # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
-    if np.isnan(np.add.reduce(bound) + np.add.reduce(fig.backward_error)):
-        raise ComputationError(
-            "an eigenvalue error figure is not a number: the coefficients (norms "
-            f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "
-            "figures can be formed in; rescale the system (units)"
+    with small_kernels(problem.n):  # issue 27: one BLAS thread for a small problem's kernels
+        tolerances = _check_options(
+            method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
+            uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
         )
-    r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
-    # (+ 0.0: a real or imaginary part that is an exact zero is exported as 0, never -0; values unchanged)
-    lam, bound = _owned(lam + 0.0), _owned(bound)
-    right, left, left_ok = _owned(fig.right + 0.0), _owned(left + 0.0), _owned(left_ok)
-    clusters = tuple(clusters)
-    return Modes(
-        eigenvalues=lam,
-        right=right,
-        left=left,
-        left_normalized=left_ok,
-        backward_error=_owned(fig.backward_error),
-        error_bound=bound,
-        natural_frequency=_owned(freq),
-        damping_ratio=_owned(zeta),
-        kind=mode_kinds(lam, tolerances["safety"] * r, clusters, _undamped(problem)),
-        multiplicity=_owned(multiplicity),
-        clusters=clusters,
-        is_simple=all(c.semisimple for c in clusters),
-        method=Method(name, reason),
-        scaling=used_scaling,
-        block=_owned(block),
-        tolerances=tolerances,
-        system=problem.system,
-        matrices=(problem.M, problem.C, problem.K),
-        elapsed=time.perf_counter() - t0,
-        deferred=DeferredFigures(
-            fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
-        ),
-        verdict=DeferredVerdict(
-            problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes),
-            (right, left, left_ok),
-        ),
-    )
+        name, reason, raw = choose_path(problem, method, tolerances["structure_tol"], tolerances["eigh_tol"])
+        raw, reason, used_scaling = solve_path(problem, name, reason, raw, scaling, tolerances["eigh_tol"])
+        # pairs of a symmetric definite pencil sharing one real vector: their clusters are semisimple by theorem
+        mirrored = raw.second is not None and name in SYMMETRIC_DEFINITE_PATHS
+        lam, block, fig = _figures(problem, raw)
+        clusters, notes = _clusters(problem, lam, fig, tolerances, mirrored)
+        left, left_ok, model, more = _cluster_figures(problem, lam, fig, clusters)
+        notes += more
+        multiplicity = np.ones(lam.shape[0], dtype=int)
+        for c in clusters:
+            multiplicity[list(c.indices)] = c.algebraic
+        freq, zeta = _frequency_damping(lam)
+        bound = model.bound(0.0)
+        # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
+        if np.isnan(np.add.reduce(bound) + np.add.reduce(fig.backward_error)):
+            raise ComputationError(
+                "an eigenvalue error figure is not a number: the coefficients (norms "
+                f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "
+                "figures can be formed in; rescale the system (units)"
+            )
+        r = model.bound(tolerances["uncertainty"]) if tolerances["uncertainty"] else bound
+        # (+ 0.0: a real or imaginary part that is an exact zero is exported as 0, never -0; values unchanged)
+        lam, bound = _owned(lam + 0.0), _owned(bound)
+        right, left, left_ok = _owned(fig.right + 0.0), _owned(left + 0.0), _owned(left_ok)
+        clusters = tuple(clusters)
+        return Modes(
+            eigenvalues=lam,
+            right=right,
+            left=left,
+            left_normalized=left_ok,
+            backward_error=_owned(fig.backward_error),
+            error_bound=bound,
+            natural_frequency=_owned(freq),
+            damping_ratio=_owned(zeta),
+            kind=mode_kinds(lam, tolerances["safety"] * r, clusters, _undamped(problem)),
+            multiplicity=_owned(multiplicity),
+            clusters=clusters,
+            is_simple=all(c.semisimple for c in clusters),
+            method=Method(name, reason),
+            scaling=used_scaling,
+            block=_owned(block),
+            tolerances=tolerances,
+            system=problem.system,
+            matrices=(problem.M, problem.C, problem.K),
+            elapsed=time.perf_counter() - t0,
+            deferred=DeferredFigures(
+                fig.products, fig.quadratic, problem.norms, tuple(i for d in model.defective for i in d.indices)
+            ),
+            verdict=DeferredVerdict(
+                problem, lam, model, clusters, bound, tolerances["uncertainty"], tolerances["safety"], None, tuple(notes),
+                (right, left, left_ok),
+            ),
+        )
 
 
 def _figures(problem: QuadraticProblem, raw) -> tuple[np.ndarray, np.ndarray, PairFigures]:
@@ -299,15 +307,29 @@ def _validated_options(method, scaling, **tolerances) -> dict[str, float]:
     return out
 
 
-def _clusters(problem: QuadraticProblem, lam, fig: PairFigures, tolerances) -> tuple[list[Cluster], list[str]]:
-    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, and notes."""
+def _clusters(
+    problem: QuadraticProblem, lam, fig: PairFigures, tolerances, mirrored: bool = False
+) -> tuple[list[Cluster], list[str]]:
+    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, and notes.
+
+    The computed vectors and figures go along as the evidence of
+    :func:`~pinlin.spectral.multiplicity.semisimple_certificate` (semisimple
+    clusters without an SVD); ``mirrored``: the eigenvalues are pairs of a
+    symmetric definite pencil sharing one vector.
+    """
     notes: list[str] = []
     clusters: list[Cluster] = []
     groups = find_clusters(
         lam, tolerances["cluster_tol"], problem.scaling.gamma, fig.error_bound, tolerances["safety"]
     )
+    if not groups:
+        return clusters, notes
+    with np.errstate(over="ignore", invalid="ignore"):
+        evidence = ClusterEvidence(
+            fig.right, fig.sensitivity, fig.error_bound, fig.backward_error, problem.weight(lam), mirrored
+        )
     for idx in groups:
-        c = analyse_cluster(problem, lam, idx, tolerances["rank_tol"])
+        c = analyse_cluster(problem, lam, idx, tolerances["rank_tol"], evidence)
         if c.geometric == 0:
             notes.append(
                 f"eigenvalues {[i + 1 for i in idx]} are within cluster_tol but L is nonsingular at their mean "

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..numerics.definiteness import Definiteness
+from ..numerics.threads import small_kernels
 from .accuracy import ErrorModel
 from .problem import QuadraticProblem
 from .qualitative import StructuralFacts, structural_facts
@@ -93,8 +94,13 @@ class DeferredVerdict:
     vectors: tuple | None = None
 
     def facts(self) -> StructuralFacts:
-        """:func:`~pinlin.spectral.qualitative.structural_facts` of the problem at the uncertainty."""
-        return structural_facts(self.problem, self.uncertainty, self.mass)
+        """:func:`~pinlin.spectral.qualitative.structural_facts` of the problem at the uncertainty.
+
+        Its eigenvalue decompositions of M, D and S run on one BLAS thread for a
+        small problem (:func:`~pinlin.numerics.threads.small_kernels`), as the analysis did.
+        """
+        with small_kernels(self.problem.n):
+            return structural_facts(self.problem, self.uncertainty, self.mass)
 
     def stability(self, facts: StructuralFacts) -> Stability:
         """The verdict of :func:`~pinlin.spectral.stability.decide_stability` (its margin still deferred)."""

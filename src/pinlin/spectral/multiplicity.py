@@ -19,6 +19,37 @@ eta^(1/p) |lam| apart; :func:`pinlin.numerics.find_clusters` regroups computed
 eigenvalues closer than ``cluster_tol`` (relative), and the Toeplitz ranks at
 the cluster's mean (which is accurate to about eta, unlike its members) then
 tell its structure (:func:`analyse_cluster`).
+
+Most clusters of a real robot are semisimple (equal springs on identical
+fingers, symmetric limbs).  For them :func:`semisimple_certificate` decides
+dim ker L(center) = m without any singular value decomposition, from the
+computed eigenpairs alone, in O(n m^2) operations instead of the SVDs of T_1
+and T_2 (sizes n and 2n, O(n^3) each):
+
+- at least m singular values of L(center) are small: for orthonormal columns
+  Q spanning the cluster's unit vectors X, sigma_{n-m+1}(L) <= ||L Q||_2
+  (interlacing) <= ||L X||_F / sigma_min(X), and ||L(center) x_i|| is at most
+  eta_i w_i + d_i ||L'(lam_i)|| + d_i^2 ||M|| (d_i = |lam_i - center|): when
+  that bound is below threshold / :data:`CERTIFICATE_MARGIN`, with sigma_min(X)
+  from the m x m Gram matrix, no product with L is formed; on the
+  symmetric and proportional paths (a symmetric definite pencil, vectors shared
+  by the pairs) the eigenvalue is semisimple by theorem unless a pair's two
+  roots fall into one cluster (a rigid-body zero or critical damping), and the
+  residual is replaced by the members' distance to the center (plus their
+  error bounds) times ||L'||;
+- at most m are: with every other eigenvalue semisimple, the resolvent
+  L(lam)^{-1} = sum_j x_j y_j^T / ((lam - lam_j) y_j^T L'(lam_j) x_j) splits
+  into the cluster's m terms (rank m) and the rest, whose norm is at most
+  sum_{j not in the cluster} s_j / (w_j (|center - lam_j| - r_j)) (s_j the
+  sensitivity, w_j the weight, r_j the error bound of lam_j); when that sum is
+  below 1 / (margin * threshold), sigma_{n-m}(L) > margin * threshold.
+
+Then dims = (m,) and the partial multiplicities are (1, ..., 1), exactly what
+the Toeplitz ranks give whenever dim ker T_1 = m (T_2 cannot change them then:
+the counts of longer chains are capped by the algebraic multiplicity).  When a
+test is not met with its margin (a defective cluster, nearly parallel
+vectors, another eigenvalue within reach of the threshold) the cluster takes
+the Toeplitz ranks as before.
 """
 
 from __future__ import annotations
@@ -36,13 +67,32 @@ from ..numerics.rank import JORDAN_RANK_TOL, kernel_dimension
 from ..results import Result
 from .problem import QuadraticProblem
 
-__all__ = ["Cluster", "analyse_cluster", "partial_multiplicities", "toeplitz", "derivative_blocks", "block_scale"]
+__all__ = ["Cluster", "ClusterEvidence", "analyse_cluster", "semisimple_certificate", "partial_multiplicities", "toeplitz", "derivative_blocks", "block_scale"]
 
 #: A cluster closed under conjugation has members whose imaginary parts cancel
 #: to a few ulps of their total: within this many eps its mean is taken real.
 CONJUGATE_SUM_ULPS = 4.0
 
 _CLUSTER_METHOD = "dim ker T_k of the block Toeplitz matrices at the cluster mean (scaled problem, SVD)"
+_CERTIFIED_METHOD = (
+    "semisimple certificate: ||L(center) Q|| below the rank threshold for orthonormal cluster vectors Q "
+    "(bounded by the pairs' residuals and distances), "
+    "the resolvent of the other eigenvalues below its inverse (no SVD)"
+)
+_STRUCTURE_METHOD = (
+    "semisimple by structure (symmetric definite pencil, no pair's two roots in the cluster); the resolvent of "
+    "the other eigenvalues below the inverse rank threshold (no SVD)"
+)
+
+#: Factor by which the two tests of :func:`semisimple_certificate` must clear the
+#: rank threshold: rounding in the products and the first-order error bounds of
+#: the other eigenvalues stay far inside it.
+CERTIFICATE_MARGIN = 10.0
+
+#: Smallest singular value of the cluster's unit vectors accepted by
+#: :func:`semisimple_certificate`: nearly parallel vectors (a defective eigenvalue
+#: split by rounding) do not span its eigenspace.
+INDEPENDENCE_TOL = 1e-3
 
 
 @dataclass(frozen=True)
@@ -104,6 +154,35 @@ class Cluster(Result):
             f"Cluster(center={self.center:.6g}, algebraic={self.algebraic}, partial={self.partial}, "
             f"consistent={self.consistent}, spread={self.error:.1e})"
         )
+
+
+@dataclass(frozen=True, eq=False)
+class ClusterEvidence:
+    """What the computed spectrum already says about its clusters (input of :func:`semisimple_certificate`).
+
+    Attributes
+    ----------
+    right : (n, 2n) complex
+        Unit right eigenvectors, in the order of the eigenvalues.
+    sensitivity : (2n,) float
+        w(lam) ||y|| / |y^T L'(lam) x| per eigenvalue (unit x) [rad/s].
+    bound : (2n,) float
+        First-order error bounds of the eigenvalues [rad/s].
+    backward_error : (2n,) float
+        eta = ||L(lam) x|| / (w(lam) ||x||) per pair.
+    weight : (2n,) float
+        w(lam) = |lam|^2 ||M|| + |lam| ||C|| + ||K||.
+    mirrored : bool
+        The eigenvalues come in pairs (2p, 2p + 1) sharing one real vector of a
+        symmetric definite pencil (the symmetric and proportional paths).
+    """
+
+    right: np.ndarray
+    sensitivity: np.ndarray
+    bound: np.ndarray
+    backward_error: np.ndarray
+    weight: np.ndarray
+    mirrored: bool = False
 
 
 def derivative_blocks(Ms, Cs, Ks, mu0) -> list[np.ndarray]:
@@ -189,10 +268,87 @@ def partial_multiplicities(
     return tuple(partial), tuple(dims[1:])
 
 
+def rank_threshold(problem: QuadraticProblem, lam0: complex, rank_tol: float) -> float:
+    """The Toeplitz rank threshold of :func:`partial_multiplicities` in the units of L(lam0) (unscaled).
+
+    .. math:: \\tau = \\text{rank\\_tol}\\,\\max(|\\lambda_0|^2 \\|M\\| + |\\lambda_0| \\|C\\| + \\|K\\|,
+              \\gamma (2 |\\lambda_0| \\|M\\| + \\|C\\|), \\gamma^2 \\|M\\|)
+
+    (the scaled problem's threshold divided by delta: L_s(mu) = delta L(gamma mu)).
+    """
+    nM, nC, nK = problem.norms
+    g, a = problem.scaling.gamma, abs(lam0)
+    return rank_tol * max(a * a * nM + a * nC + nK, g * (2 * a * nM + nC), g * g * nM)
+
+
+def semisimple_certificate(
+    problem: QuadraticProblem,
+    lam: np.ndarray,
+    indices: tuple[int, ...],
+    center: complex,
+    evidence: ClusterEvidence,
+    rank_tol: float,
+) -> str | None:
+    """How dim ker L(center) = m (the cluster's size) was certified without an SVD, or None (see module doc).
+
+    Returns
+    -------
+    str or None
+        The method (structure or residual certificate) when both tests clear the
+        rank threshold by :data:`CERTIFICATE_MARGIN`; None when either does not
+        (then the Toeplitz ranks decide).
+    """
+    ii = list(indices)
+    tau = rank_threshold(problem, center, rank_tol)
+    if len(ii) > problem.n or not (np.isfinite(tau) and tau > 0):
+        return None  # more members than dimensions: some chain is longer than one
+    method = _CERTIFIED_METHOD
+    partners = {i ^ 1 for i in ii}
+    # ||L(center) x_i|| <= ||L(lam_i) x_i|| + d_i ||L'(lam_i)|| + d_i^2 ||M|| (d_i = |lam_i - center|, unit x_i)
+    nM, nC, _ = problem.norms
+    members = lam[ii]
+    d = np.abs(members - center)
+    r = evidence.backward_error[ii] * evidence.weight[ii] + d * (2 * np.abs(members) * nM + nC) + d * d * nM
+    if evidence.mirrored and not partners.intersection(ii):
+        # semisimple by theorem: the exact eigenvalue's eigenspace has dimension m, and L(center) is within
+        # (distance + error bound) ||L'|| of L at it on that space
+        dist = d + evidence.bound[ii]
+        if not np.max(dist * (2 * abs(center) * nM + nC + dist * nM)) <= tau / CERTIFICATE_MARGIN:
+            return None
+        method = _STRUCTURE_METHOD
+    else:
+        # Q = X R^-1 orthonormal: ||L Q||_2 <= ||L X||_F / sigma_min(X), sigma_min(X)^2 the least eigenvalue of X^H X
+        X = evidence.right[:, ii]
+        gram_min = float(np.linalg.eigvalsh(X.conj().T @ X)[0])
+        if not gram_min > INDEPENDENCE_TOL**2:
+            return None
+        if not float(np.sqrt(np.dot(r, r) / gram_min)) <= tau / CERTIFICATE_MARGIN:
+            return None
+    out = np.ones(lam.shape[0], dtype=bool)
+    out[ii] = False
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        gap = np.abs(lam[out] - center) - evidence.bound[out]
+        if gap.size and not gap.min() > 0:
+            return None
+        rest = float(np.add.reduce(evidence.sensitivity[out] / (evidence.weight[out] * gap)))
+    if not rest * (CERTIFICATE_MARGIN * tau) < 1.0:  # also False for NaN or inf
+        return None
+    return method
+
+
 def analyse_cluster(
-    problem: QuadraticProblem, lam: np.ndarray, indices: tuple[int, ...], rank_tol: float
+    problem: QuadraticProblem,
+    lam: np.ndarray,
+    indices: tuple[int, ...],
+    rank_tol: float,
+    evidence: ClusterEvidence | None = None,
 ) -> Cluster:
-    """The Jordan structure of one cluster of computed eigenvalues (see :class:`Cluster`)."""
+    """The Jordan structure of one cluster of computed eigenvalues (see :class:`Cluster`).
+
+    With ``evidence`` (the computed vectors and figures) a semisimple cluster is
+    certified by :func:`semisimple_certificate` when it can be; the Toeplitz
+    ranks decide otherwise, and always without it.
+    """
     t0 = time.perf_counter()
     members = lam[list(indices)]
     center = complex(np.mean(members))
@@ -200,6 +356,13 @@ def analyse_cluster(
     if abs(np.sum(members.imag)) <= CONJUGATE_SUM_ULPS * EPS * np.sum(np.abs(members.imag)):
         center = complex(center.real, 0.0)
     m = len(indices)
+    spread = float(np.max(np.abs(members - center)) / max(abs(center), problem.scaling.gamma))
+    how = None if evidence is None else semisimple_certificate(problem, lam, indices, center, evidence, rank_tol)
+    if how is not None:
+        return Cluster(
+            tuple(indices), center, m, m, (1,) * m, True, (m,), error=spread, method=how,
+            elapsed=time.perf_counter() - t0,
+        )
     partial, dims = partial_multiplicities(problem, center, max_length=m + 1, rank_tol=rank_tol, max_total=m)
     geometric = dims[0] if dims else 0
     total = sum(partial)
@@ -210,7 +373,6 @@ def analyse_cluster(
             f"Toeplitz ranks at rank_tol {rank_tol:g} give chains {partial} (total {total}) for "
             f"{m} clustered eigenvalues"
         )
-    spread = float(np.max(np.abs(members - center)) / max(abs(center), problem.scaling.gamma))
     return Cluster(
         tuple(indices), center, m, geometric, partial, consistent, dims, note,
         error=spread, elapsed=time.perf_counter() - t0,
