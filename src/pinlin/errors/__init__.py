@@ -48,6 +48,7 @@ from .model import (
     SingularConstraintError,
     UrdfError,
 )
+from .periodic import MultibladeNotExactError
 from .periodic_motion import NoPeriodError, OrbitLimitError, PeriodicOrbitError, QuasiPeriodicError
 
 __all__ = [

@@ -22,12 +22,14 @@ Scenes (a URDF model with periodic prescribed motions or an autonomous free osci
   RNEA derivatives at the actual acceleration;
 - :mod:`.orbit_result` -- :class:`PeriodicOrbit`, the periodic reference motion;
 - :mod:`.shooting` -- :func:`periodic_orbit`, that motion by Newton shooting with the monodromy;
-- :mod:`.scene_floquet` -- :func:`floquet_analysis`, the Floquet analysis of a scene along its orbit.
+- :mod:`.scene_floquet` -- :func:`floquet_analysis`, the Floquet analysis of a scene along its orbit;
+- :mod:`.multiblade_scene` -- :func:`multiblade_transform`, a scene's rotor in multi-blade coordinates.
 """
 
 from .analysis import floquet_analysis_matrices, floquet_from_first_order
 from .coefficients import VariationalCoefficients, variational_coefficients
 from .multiblade import multiblade_transform_matrices
+from .multiblade_scene import multiblade_transform
 from .orbit_result import PeriodicOrbit
 from .period import scene_period
 from .result import FloquetAnalysis
@@ -35,5 +37,5 @@ from .scene_floquet import floquet_analysis
 from .shooting import periodic_orbit
 
 __all__ = ["FloquetAnalysis", "floquet_from_first_order", "floquet_analysis_matrices",
-           "multiblade_transform_matrices", "PeriodicOrbit", "periodic_orbit", "floquet_analysis",
+           "multiblade_transform_matrices", "multiblade_transform", "PeriodicOrbit", "periodic_orbit", "floquet_analysis",
            "variational_coefficients", "VariationalCoefficients", "scene_period"]
