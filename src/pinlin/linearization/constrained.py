@@ -42,7 +42,6 @@ from ..errors import (
     ComputationError,
     ConstraintViolationError,
     NotAnEquilibriumError,
-    OverconstrainedError,
     ParameterError,
     SingularMassError,
 )
@@ -52,6 +51,7 @@ from .constrained_structure import structurally_redundant
 from .constraint_set import (
     CONSTRAINT_TOL,
     RANK_TOL,
+    check_motion_left,
     constrained_point,
     constraint_forces,
     constraint_notes,
@@ -133,14 +133,7 @@ def linearize_constrained(
             [worst],
         )
     nv = scene.model.nv
-    if state.rank == nv:
-        raise OverconstrainedError(
-            f"no motion left: the constraints {[c.label for c in scene.constraints]} have rank J_c = {state.rank} "
-            f"= nv, so they hold every degree of freedom of {scene.robot.name!r}; there is nothing to linearize",
-            state.rank,
-            nv,
-            [c.label for c in scene.constraints],
-        )
+    check_motion_left(scene, state)
     if state.rank < state.m and state.rank != state.m - structurally_redundant(scene, state):
         check_regular(scene, q, state, calls)  # no structural proof of the redundancy: probe nearby
     lam, g, asm, Kt = constrained_point(scene, q, state, stiffness=True, damping=True, mass=True)

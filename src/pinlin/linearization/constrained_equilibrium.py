@@ -30,6 +30,7 @@ from .closure import CLOSURE_TOL, close_loops, project
 from .constraint_set import (
     RANK_TOL,
     ConstraintState,
+    check_motion_left,
     constrained_point,
     constraint_forces,
     constraint_notes,
@@ -93,6 +94,9 @@ def find_constrained_equilibrium(
         A bad tolerance, iteration count or ``min_step``.
     ConfigurationError
         q0 has the wrong size or is not finite.
+    OverconstrainedError
+        The constraints hold every degree of freedom (rank J_c = nv), as
+        :func:`pinlin.linearize` refuses them.
     LoopClosureError
         The constraints cannot be closed from q0 (the gap in metres is attached).
     ConvergenceError
@@ -100,9 +104,11 @@ def find_constrained_equilibrium(
     """
     t0 = time.perf_counter()
     check_solver_parameters(tol, max_iterations, min_step)
+    check_motion_left(scene, evaluate_constraints(scene, scene.check_configuration(q0), rank_tol=rank_tol))
     closure = close_loops(scene, q0, tol=closure_tol, rank_tol=rank_tol)
     q = closure.q
     state = evaluate_constraints(scene, q, rank_tol=rank_tol)
+    check_motion_left(scene, state)
     history: list[float] = []
     least_squares: list[int] = []
     for iteration in range(max_iterations + 1):
