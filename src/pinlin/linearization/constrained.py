@@ -132,7 +132,6 @@ def linearize_constrained(
             rot,
             [worst],
         )
-    nv = scene.model.nv
     check_motion_left(scene, state)
     if state.rank < state.m and state.rank != state.m - structurally_redundant(scene, state):
         check_regular(scene, q, state, calls)  # no structural proof of the redundancy: probe nearby

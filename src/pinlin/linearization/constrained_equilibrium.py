@@ -104,11 +104,10 @@ def find_constrained_equilibrium(
     """
     t0 = time.perf_counter()
     check_solver_parameters(tol, max_iterations, min_step)
-    check_motion_left(scene, evaluate_constraints(scene, scene.check_configuration(q0), rank_tol=rank_tol))
     closure = close_loops(scene, q0, tol=closure_tol, rank_tol=rank_tol)
     q = closure.q
     state = evaluate_constraints(scene, q, rank_tol=rank_tol)
-    check_motion_left(scene, state)
+    check_motion_left(scene, state)  # as linearize does: at the closed configuration
     history: list[float] = []
     least_squares: list[int] = []
     for iteration in range(max_iterations + 1):

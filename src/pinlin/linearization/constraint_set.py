@@ -321,7 +321,7 @@ def check_motion_left(scene: Scene, state: ConstraintState) -> None:
         labels = [c.label for c in scene.constraints]
         raise OverconstrainedError(
             f"no motion left: the constraints {labels} have rank J_c = {state.rank} = nv, so they hold every "
-            f"degree of freedom of {scene.robot.name!r}; there is nothing to linearize or to balance",
+            f"degree of freedom of {scene.robot.name!r}; there is no motion to find an equilibrium of or to linearize",
             state.rank,
             nv,
             labels,

@@ -8,6 +8,8 @@ flag passed in the wrong place), refused here with the element and parameter nam
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 from ..errors import ParameterError
@@ -23,14 +25,14 @@ def _refuse(value, label: str, what: str) -> ParameterError:
 
 
 def numeric_array(value, label: str, what: str = "a number or an array of numbers") -> np.ndarray:
-    """``value`` as a float array; text, bytes, booleans and complex numbers (also inside sequences) refused.
+    """``value`` as a float array; text, bytes, booleans, complex numbers and None (also inside sequences) refused.
 
     Finiteness, sign and shape are the caller's checks (they differ by parameter).
 
     Raises
     ------
     ParameterError
-        Named ``label``: a string, bytes, a boolean, a complex number, or a
+        Named ``label``: a string, bytes, a boolean, a complex number, None, or a
         sequence holding any of them, or something that is not numbers at all.
     """
     if isinstance(value, (str, bytes, bool, np.bool_)):
@@ -40,7 +42,7 @@ def numeric_array(value, label: str, what: str = "a number or an array of number
     except (TypeError, ValueError):
         raise _refuse(value, label, what) from None
     if arr.dtype.kind == "O":
-        if any(isinstance(v, (str, bytes, bool, np.bool_, complex)) for v in arr.flat):
+        if not all(isinstance(v, numbers.Real) and not isinstance(v, (bool, np.bool_)) for v in arr.flat):
             raise _refuse(value, label, what)
     elif arr.dtype.kind not in _NUMBER_KINDS:
         raise _refuse(value, label, what)
@@ -60,5 +62,5 @@ def numeric_scalar(value, label: str) -> float:
     """
     arr = numeric_array(value, label, "a number")
     if arr.ndim != 0:
-        raise ParameterError(label, f"expected a number, got {value!r}")
+        raise _refuse(value, label, "a number")
     return float(arr)

@@ -14,8 +14,8 @@
   and pick one mode of each conjugate pair for Campbell diagrams.
 """
 
-from .ray_executor import RayExecutor
 from .grid import MAX_POINTS
+from .ray_executor import RayExecutor
 from .sweep import SweepFailure, SweepResult, SweepTimeoutError, sweep
 from .tracking import TrackedModes, mac, one_per_conjugate_pair, track_modes
 
