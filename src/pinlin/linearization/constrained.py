@@ -203,7 +203,8 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
     if scene.contact_index:
         notes.append(BILATERAL_NOTE)
     notes.append(
-        f"{len(names)} coordinates z ({method}) for {len(scene.constraints)} constraints "
+        f"{len(names)} coordinate{'s' * (len(names) != 1)} z ({method}) for {len(scene.constraints)} "
+        f"constraint{'s' * (len(scene.constraints) != 1)} "
         f"(rank J_c = {state.rank} of m = {state.m}); joint velocities = basis @ z; cond(J_d) = {condition:.3g}"
     )
     balance = None

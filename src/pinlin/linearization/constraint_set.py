@@ -297,7 +297,8 @@ def constraint_notes(scene: Scene, state: ConstraintState, lam: np.ndarray, all_
     notes = []
     if state.rank < state.m:
         notes.append(
-            f"{state.m - state.rank} of the {state.m} constraint equations are redundant (rank J_c = "
+            f"{state.m - state.rank} of the {state.m} constraint equations "
+            f"{'is' if state.m - state.rank == 1 else 'are'} redundant (rank J_c = "
             f"{state.rank}): the constraint forces are the minimum-norm ones, not unique"
         )
     contacts = ()
