@@ -17,11 +17,11 @@ from __future__ import annotations
 import json
 import math
 import re
-import tomllib
 import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
+import tomllib
 from numpy.testing import assert_allclose
 
 import pinlin
