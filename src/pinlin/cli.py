@@ -264,6 +264,8 @@ def _analyze(args) -> int:
     args.source = spec.path
     if spec.sweep is not None:
         sweep_plan(spec, spec.sweep)  # a [sweep] table is checked here too, not only by `pinlin sweep`
+    if spec.campbell is not None:
+        campbell_plan(spec)  # and a [campbell] table
     if args.animate is not None:
         _check_mode(row, spec)
     with args.clock.part("analysis"):

@@ -142,6 +142,9 @@ def test_a_bad_campbell_table_names_the_file_and_key(table, key, message, capsys
     code, out, err = run(["campbell", path], capsys)
     assert code == EXIT_INPUT and out == ""
     assert str(path) in err and key in err and message in err, err
+    if key != "campbell.speeds" or "no speeds" not in message:  # analyze checks the table it does not use
+        code, out, err = run(["analyze", path], capsys)
+        assert code == EXIT_INPUT and out == "" and key in err, err
 
 
 def test_a_scene_without_a_prescribed_joint_is_refused(capsys):
