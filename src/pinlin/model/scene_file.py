@@ -74,9 +74,9 @@ Format (every table is optional except ``[robot]``)::
     # parameter = "spring.joint1.stiffness"
     # values = [1.0, 2.0, 3.0]
 
-    [campbell]                      # for `pinlin campbell`: frequencies, damping and critical speeds
-    joint = "table"                 # a prescribed joint (default: the scene's only one)
-    speeds = { start = 0.0, stop = 6.0, num = 61 }  # [rad/s or m/s]; or a list
+    # [campbell]                    # for `pinlin campbell`: needs a prescribed joint (scenes/rotating_ring.toml)
+    # joint = "ring"                # a prescribed joint (default: the scene's only one)
+    # speeds = { start = 0.0, stop = 6.0, num = 61 }  # [rad/s or m/s]; or a list
 
 Errors name the file and the key (``spring[2].stiffness``).
 """
