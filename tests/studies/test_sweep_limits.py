@@ -92,7 +92,7 @@ def test_grid_points_are_made_on_demand_in_product_order():
 
 def test_futures_that_never_finish_time_out_naming_the_points():
     executor = NeverFinishes()
-    with pytest.raises(SweepTimeoutError, match=r"timeout: 2 points not finished after 0.05 s \(cancelled\): "
+    with pytest.raises(SweepTimeoutError, match=r"timeout: 2 points not finished after 0.05 s \(cancelled unless already running\): "
                        r"#0 \{'x': 1.0\}, #1 \{'x': 2.0\}") as info:
         pinlin.sweep(double, {"x": [1.0, 2.0]}, executor=executor, timeout=0.05, chunk_size=1)
     assert info.value.pending == (0, 1) and info.value.points == ({"x": 1.0}, {"x": 2.0})

@@ -106,7 +106,7 @@ def run_points(function: Callable, points: list[dict], executor: Executor | None
     ParameterError
         The executor's ``submit`` returned something that is not a ``concurrent.futures.Future``.
     SweepTimeoutError
-        Points not finished after ``timeout`` seconds (cancelled).
+        Points not finished after ``timeout`` seconds (cancelled unless already running).
     """
     if executor is None:
         return _serial(function, points, report, on_error)

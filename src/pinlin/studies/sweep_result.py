@@ -29,7 +29,8 @@ def _rebuild_exception(cls: type, args: tuple, state: dict) -> BaseException:
 
 
 class SweepTimeoutError(ComputationError, TimeoutError):
-    """Points of a sweep did not finish within its ``timeout`` (they were cancelled).
+    """Points of a sweep did not finish within its ``timeout`` (cancelled, except those already running: an
+    executor cannot stop a call once started).
 
     Attributes
     ----------
@@ -51,7 +52,7 @@ class SweepTimeoutError(ComputationError, TimeoutError):
         shown = ", ".join(f"#{i} {p}" for i, p in zip(self.pending[: self.SHOWN], self.points))
         more = f" and {len(self.pending) - self.SHOWN} more" if len(self.pending) > self.SHOWN else ""
         super().__init__(f"timeout: {len(self.pending)} points not finished after {self.timeout:g} s "
-                         f"(cancelled): {shown}{more}")
+                         f"(cancelled unless already running): {shown}{more}")
 
 
 @dataclass(frozen=True, repr=False, eq=False)
