@@ -1,4 +1,4 @@
-"""The ``pinlin`` command line: ``pinlin analyze [SCENE.toml]`` and ``pinlin sweep [SCENE.toml]``.
+"""The ``pinlin`` command line: ``pinlin analyze``, ``pinlin sweep`` and ``pinlin campbell`` of a scene file.
 
 This module is the argument parsing and the exit codes; what the commands
 compute, their JSON documents and schemas, the text and the figures are the
@@ -7,12 +7,18 @@ the scene, the equilibrium and its residual, the nonzero matrices and their
 structure, the modes with their errors (eta, kappa, error bound), the
 stability verdict with its reason, and timings; ``sweep`` the same analysis over
 the parameter values of the scene's ``[sweep]`` table, with the modes tracked,
-the verdict at each value and the exact boundaries where it changes.
+the verdict at each value and the exact boundaries where it changes;
+``campbell`` the frequencies and damping ratios against the speed of a
+prescribed joint, tracked, with the critical speeds found by
+:func:`pinlin.critical_parameter` (:mod:`pinlin.report.campbell`).
 
 Options are checked before anything is computed (an unwritable ``--json``, a
-``--plot`` format matplotlib cannot write, matplotlib missing); then the text
-report is printed and ``--json`` written before the optional figures, so a
-failure there loses nothing already computed.
+``--plot`` format matplotlib cannot write, matplotlib missing, two outputs to
+one file, a ``--mode`` beyond the scene's 2n modes); then the text report is
+printed and ``--json`` written before the optional figures, so a failure there
+loses nothing already computed.  Each file written is named ("wrote a.gif"),
+and the last line is the command's wall time split into its parts
+(:class:`pinlin.report.command.Stopwatch`).
 
 Exit codes: 0 success, 2 bad input (scene file, URDF, parameters, options,
 an output that cannot be written), 3 a computation that failed (no
@@ -26,6 +32,7 @@ import dataclasses
 import re
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 
 import numpy as np
 
@@ -42,6 +49,14 @@ from .model.loading import EXAMPLES, data_path, load_example
 from .model.scene import Scene
 from .model.scene_file import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
 from .report import REPORT_SCHEMA, REPORT_VERSION, analyze, render_text, write_plot
+from .report.campbell import (
+    CAMPBELL_FORMAT,
+    campbell_document,
+    campbell_plan,
+    render_campbell_text,
+    write_campbell_plot,
+)
+from .report.command import Stopwatch, plain_text
 from .report.outputs import (
     check_animation_path,
     check_figure_path,
@@ -57,6 +72,7 @@ __all__ = [
     "main",
     "example_spec",
     "default_sweep_scene_path",
+    "default_campbell_scene_path",
     "EXIT_OK",
     "EXIT_INPUT",
     "EXIT_COMPUTATION",
@@ -80,6 +96,11 @@ MAX_PRECISION = 17
 def default_sweep_scene_path():
     """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower load."""
     return data_path("scenes/double_pendulum_flutter.toml")
+
+
+def default_campbell_scene_path():
+    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (SPEC 7.3)."""
+    return data_path("scenes/rotating_ring.toml")
 
 
 def example_spec(name: str, stiffness: float, damping: float = 0.0) -> SceneSpec:
@@ -127,6 +148,13 @@ def example_spec(name: str, stiffness: float, damping: float = 0.0) -> SceneSpec
     return SceneSpec(scene, scene.check_configuration(q0), not floating, floating, f"example:{name}")
 
 
+def _command(sub, name: str, help: str, description: str, epilog: str) -> argparse.ArgumentParser:
+    """A subcommand whose help texts are plain (no reStructuredText markup of the docstrings they come from)."""
+    codes = "\n\nExit codes: 0 success, 2 bad input, 3 failed computation."
+    return sub.add_parser(name, help=help, description=plain_text(description) + codes, epilog=plain_text(epilog),
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
 def _outputs(p: argparse.ArgumentParser, what: str) -> None:
     p.add_argument("--json", metavar="PATH", help=f"also write the machine-readable {what} to PATH")
     p.add_argument("--plot", metavar="PATH", help="also draw the figure to PATH, format from its suffix (matplotlib)")
@@ -139,44 +167,48 @@ def _parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"pinlin {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    codes = "\n\nExit codes: 0 success, 2 bad input, 3 failed computation."
-    a = sub.add_parser(
-        "analyze",
-        help="equilibrium, linearized matrices and their analysis for a scene",
-        description=(
-            "Find the equilibrium of a scene, linearize it into M, D, G, S, N and report them with "
-            "their errors and timings.  Without a scene file, the bundled default scene (the paper's "
-            "double pendulum with follower load) is analysed." + codes
-        ),
-        epilog="Scene file format (TOML):\n" + SCENE_FORMAT,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    a = _command(
+        sub, "analyze", "equilibrium, linearized matrices and their analysis for a scene",
+        "Find the equilibrium of a scene, linearize it into M, D, G, S, N and report them with their errors and "
+        "timings.  Without a scene file, the bundled default scene (the paper's double pendulum with follower "
+        "load) is analysed.",
+        "Scene file format (TOML):\n" + SCENE_FORMAT,
     )
     a.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum")
     a.add_argument("--example", metavar="NAME",
                    help=f"analyse an example-robot-data model with elastic joints instead ({', '.join(sorted(EXAMPLES))})")
     a.add_argument("--stiffness", type=float, default=DEFAULT_EXAMPLE_STIFFNESS,
-                   help="joint stiffness for --example [N m/rad]")
-    a.add_argument("--damping", type=float, default=0.0, help="joint damping for --example [N m s/rad]")
+                   help="joint stiffness for --example [N m/rad; N/m on prismatic joints]")
+    a.add_argument("--damping", type=float, default=0.0,
+                   help="joint damping for --example [N m s/rad; N s/m on prismatic joints]")
     _outputs(a, f"report (schema version {REPORT_VERSION})")
     a.add_argument("--animate", metavar="PATH", help="also animate a mode to PATH (.gif, .html, .mp4, ...)")
     a.add_argument("--mode", type=int, default=None, help="row of the mode table to animate (default 1)")
-    s = sub.add_parser(
-        "sweep",
-        help="a scene over the parameter values of its [sweep] table: root locus, verdicts, boundaries",
-        description=(
-            "Analyse a scene at every value of the parameter(s) of its [sweep] table (or of --parameter "
-            "and --values): the modes tracked by shape, the stability verdict at each value and the exact "
-            "parameter values where it changes.  Without a scene file, the bundled double pendulum over "
-            "its follower load." + codes
-        ),
-        epilog="The [sweep] table of a scene file (TOML):\n" + SWEEP_FORMAT,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+    s = _command(
+        sub, "sweep", "a scene over the parameter values of its [sweep] table: root locus, verdicts, boundaries",
+        "Analyse a scene at every value of the parameter(s) of its [sweep] table (or of --parameter and "
+        "--values): the modes tracked by shape, the stability verdict at each value and the exact parameter "
+        "values where it changes.  Without a scene file, the bundled double pendulum over its follower load.",
+        "The [sweep] table of a scene file (TOML):\n" + SWEEP_FORMAT,
     )
     s.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum sweep")
     s.add_argument("--parameter", metavar="PATH", help="the parameter to sweep instead of the file's [sweep] table")
     s.add_argument("--values", metavar="VALUES", help="its values: START:STOP:NUM or a comma-separated list")
     s.add_argument("--no-boundaries", action="store_true", help="skip the exact boundaries between the points")
     _outputs(s, "sweep document")
+    c = _command(
+        sub, "campbell", "frequencies, damping and critical speeds against the speed of a prescribed joint",
+        "Analyse a scene at every speed of one of its prescribed joints (--joint, --speeds, or the scene file's "
+        "[campbell] table): the damped frequencies |Im lam| and damping ratios of the modes, tracked by shape, "
+        "and the critical speeds where the stability verdict changes, each found to rounding by "
+        "critical_parameter on the speed.  Without a scene file, the bundled rotating ring (SPEC 7.3), whose "
+        "critical speed is sqrt(k/m).",
+        "The [campbell] table of a scene file (TOML):\n" + CAMPBELL_FORMAT,
+    )
+    c.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled rotating ring")
+    c.add_argument("--joint", metavar="NAME", help="the prescribed joint whose speed varies (default: the only one)")
+    c.add_argument("--speeds", metavar="SPEEDS", help="START:STOP:NUM or a comma-separated list [rad/s or m/s]")
+    _outputs(c, "Campbell document (the sweep document with a campbell section)")
     return parser
 
 
@@ -188,36 +220,68 @@ def _check_outputs(args) -> None:
         check_json_path(args.json)
     if args.plot is not None:
         check_figure_path(args.plot)
+    given = {option: getattr(args, option.lstrip("-"), None) for option in ("--json", "--plot", "--animate")}
+    seen: dict[Path, str] = {}
+    for option, path in given.items():
+        if path is not None:
+            other = seen.setdefault(Path(path).resolve(), option)
+            if other != option:
+                raise ParameterError(option, f"{path} is also the file of {other}: give each output its own file")
+
+
+def _check_mode(row: int, spec: SceneSpec) -> None:
+    """``--mode`` against the scene's size, before anything is computed: 2n modes for n coordinates
+    (with constraints fewer, n - rank J_c, known after the linearization, which checks again)."""
+    n = spec.scene.n
+    bound = "at most " if spec.scene.constraints else ""
+    if row > 2 * n:
+        raise ParameterError("--mode", f"expected a row of the mode table, 1 to {bound}{2 * n} (2n for the "
+                             f"scene's n = {n} coordinates), got {row}")
+
+
+def _write(args, option: str, path: str, write) -> None:
+    """Write one output file, timed as part ``option PATH``, and say so."""
+    with args.clock.part(f"{option.lstrip('-')} {path}"):
+        write()
+    print(f"wrote {path}")
 
 
 def _analyze(args) -> int:
-    _check_outputs(args)
+    with args.clock.part("checking options"):
+        _check_outputs(args)
+        if args.animate is not None:
+            check_animation_path(args.animate)
     if args.mode is not None and args.animate is None:
         raise ParameterError("--mode", "chooses the mode of --animate; give --animate PATH too")
     row = 1 if args.mode is None else args.mode
     if row < 1:
         raise ParameterError("--mode", f"expected a row of the mode table (1, 2, ...), got {row}")
-    if args.animate is not None:
-        check_animation_path(args.animate)
     if args.example and args.scene:
         raise ParameterError("--example", "give either a scene file or --example, not both")
-    spec = example_spec(args.example, args.stiffness, args.damping) if args.example else (
-        load_scene(args.scene or default_scene_path()))
+    with args.clock.part("loading"):
+        spec = example_spec(args.example, args.stiffness, args.damping) if args.example else (
+            load_scene(args.scene or default_scene_path()))
     args.source = spec.path
     if spec.sweep is not None:
         sweep_plan(spec, spec.sweep)  # a [sweep] table is checked here too, not only by `pinlin sweep`
-    report, sys_, modes = analyze(spec)
+    if spec.campbell is not None:
+        campbell_plan(spec)  # and a [campbell] table
+    if args.animate is not None:
+        _check_mode(row, spec)
+    with args.clock.part("analysis"):
+        report, sys_, modes = analyze(spec)
     print(render_text(report, args.precision))
     if args.json is not None:
-        write_json(args.json, report)
+        _write(args, "--json", args.json, lambda: write_json(args.json, report))
     if args.plot is not None:
-        write_plot(args.plot, sys_, modes)
+        _write(args, "--plot", args.plot, lambda: write_plot(args.plot, sys_, modes))
     if args.animate is not None:
-        write_animation(args.animate, spec.scene, sys_, modes, row)
+        _write(args, "--animate", args.animate, lambda: write_animation(args.animate, spec.scene, sys_, modes, row))
+    print(args.clock.summary())
     return EXIT_OK
 
 
-def _values(text: str) -> object:
+def _values(text: str, option: str = "--values") -> object:
     """``--values``: START:STOP:NUM as a { start, stop, num } table, or a comma-separated list."""
     try:
         if ":" in text:
@@ -225,28 +289,53 @@ def _values(text: str) -> object:
             return {"start": float(start), "stop": float(stop), "num": int(num)}
         return [float(v) for v in text.split(",")]
     except ValueError:
-        raise ParameterError("--values", f"expected START:STOP:NUM or a comma-separated list of numbers, "
+        raise ParameterError(option, f"expected START:STOP:NUM or a comma-separated list of numbers, "
                              f"got {text!r}") from None
 
 
 def _sweep(args) -> int:
-    _check_outputs(args)
+    with args.clock.part("checking options"):
+        _check_outputs(args)
     if (args.parameter is None) != (args.values is None):
         raise ParameterError("--parameter", "--parameter and --values go together")
-    spec = load_scene(args.scene or default_sweep_scene_path())
+    values = None if args.values is None else _values(args.values)
+    with args.clock.part("loading"):
+        spec = load_scene(args.scene or default_sweep_scene_path())
     args.source = spec.path
     options = args.parameter is not None
-    table = {"parameter": args.parameter, "values": _values(args.values)} if options else spec.sweep
+    table = {"parameter": args.parameter, "values": values} if options else spec.sweep
     plan = sweep_plan(spec, table, options=options)
     if args.no_boundaries:
         plan = dataclasses.replace(plan, boundaries=False)
-    outcome = run_sweep(plan)
+    with args.clock.part("sweep"):
+        outcome = run_sweep(plan)
     document = sweep_document(outcome)
     print(render_sweep_text(document, args.precision))
     if args.json is not None:
-        write_json(args.json, document)
+        _write(args, "--json", args.json, lambda: write_json(args.json, document))
     if args.plot is not None:
-        write_sweep_plot(args.plot, outcome)
+        _write(args, "--plot", args.plot, lambda: write_sweep_plot(args.plot, outcome))
+    print(args.clock.summary())
+    return EXIT_OK
+
+
+def _campbell(args) -> int:
+    with args.clock.part("checking options"):
+        _check_outputs(args)
+    speeds = None if args.speeds is None else _values(args.speeds, "--speeds")
+    with args.clock.part("loading"):
+        spec = load_scene(args.scene or default_campbell_scene_path())
+    args.source = spec.path
+    plan = campbell_plan(spec, args.joint, speeds)
+    with args.clock.part("campbell"):
+        outcome = run_sweep(plan)
+    document = campbell_document(outcome)
+    print(render_campbell_text(document, args.precision))
+    if args.json is not None:
+        _write(args, "--json", args.json, lambda: write_json(args.json, document))
+    if args.plot is not None:
+        _write(args, "--plot", args.plot, lambda: write_campbell_plot(args.plot, outcome))
+    print(args.clock.summary())
     return EXIT_OK
 
 
@@ -272,9 +361,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         From argparse: after ``--help`` or ``--version`` (code 0) and for
         unknown options or malformed values (code 2, like :data:`EXIT_INPUT`).
     """
+    clock = Stopwatch()
     parser = _parser()
     args = parser.parse_args(argv)
-    commands = {"analyze": _analyze, "sweep": _sweep}
+    args.clock = clock
+    commands = {"analyze": _analyze, "sweep": _sweep, "campbell": _campbell}
     if args.command not in commands:
         parser.print_help()
         return EXIT_INPUT

@@ -88,11 +88,11 @@ def test_a_failed_figure_loses_neither_the_report_nor_the_json(capsys, tmp_path)
     jsonschema.validate(json.loads((tmp_path / "r.json").read_text()), REPORT_SCHEMA)
 
 
-def test_a_bad_mode_row_fails_after_the_report_is_written(capsys, tmp_path):
+def test_a_bad_mode_row_fails_before_anything_is_computed(capsys, tmp_path):
     code, out, err = run(["analyze", "--json", str(tmp_path / "r.json"), "--animate", str(tmp_path / "m.gif"),
                           "--mode", "5"], capsys)
-    assert code == EXIT_INPUT and "--mode: expected a row of the mode table, 1 to 4, got 5" in err
-    assert "Stability:" in out and (tmp_path / "r.json").exists() and not (tmp_path / "m.gif").exists()
+    assert code == EXIT_INPUT and "--mode: expected a row of the mode table, 1 to 4 (2n for the scene's n = 2" in err
+    assert out == "" and not (tmp_path / "r.json").exists() and not (tmp_path / "m.gif").exists()
     code, out, err = run(["analyze", "--mode", "1"], capsys)
     assert code == EXIT_INPUT and "--mode: chooses the mode of --animate" in err and out == ""
     code, out, err = run(["analyze", "--animate", str(tmp_path / "m.gif"), "--mode", "0"], capsys)

@@ -184,7 +184,7 @@ def test_bad_arguments(pendulum):
     scene, sys, modes = pendulum
     with pytest.raises(pinlin.ParameterError, match="plane: expected two of x, y, z"):
         plot.mode_shape(scene, sys, 0, plane="xq")
-    with pytest.raises(pinlin.ParameterError, match=r"mode: expected an index in \[0, 4\)"):
+    with pytest.raises(pinlin.ParameterError, match=r"mode: expected an index into modes.eigenvalues, 0 to 3 \(or -4 to -1"):
         plot.mode_shape(scene, sys, 4, modes=modes)
     with pytest.raises(pinlin.ParameterError, match="mode: expected an index or 2 finite values"):
         plot.mode_shape(scene, sys, np.ones(3))

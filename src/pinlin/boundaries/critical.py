@@ -186,7 +186,8 @@ def critical_parameter(
         raise ParameterError("method", f"expected one of {METHODS}, got {method!r}")
     if tol is not None and not (np.isfinite(tol) and tol > 0):
         raise ParameterError("tol", f"expected a positive absolute tolerance or None, got {tol!r}")
-    if int(max_evaluations) != max_evaluations or max_evaluations < 3:
+    if (isinstance(max_evaluations, (bool, np.bool_)) or not isinstance(max_evaluations, (int, float, np.integer, np.floating))
+            or not np.isfinite(max_evaluations) or int(max_evaluations) != max_evaluations or max_evaluations < 3):
         raise ParameterError("max_evaluations", f"expected an integer >= 3, got {max_evaluations!r}")
     if damping is not None:
         return _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0)

@@ -42,7 +42,6 @@ from ..errors import (
     ComputationError,
     ConstraintViolationError,
     NotAnEquilibriumError,
-    OverconstrainedError,
     ParameterError,
     SingularMassError,
 )
@@ -52,6 +51,7 @@ from .constrained_structure import structurally_redundant
 from .constraint_set import (
     CONSTRAINT_TOL,
     RANK_TOL,
+    check_motion_left,
     constrained_point,
     constraint_forces,
     constraint_notes,
@@ -132,15 +132,7 @@ def linearize_constrained(
             rot,
             [worst],
         )
-    nv = scene.model.nv
-    if state.rank == nv:
-        raise OverconstrainedError(
-            f"no motion left: the constraints {[c.label for c in scene.constraints]} have rank J_c = {state.rank} "
-            f"= nv, so they hold every degree of freedom of {scene.robot.name!r}; there is nothing to linearize",
-            state.rank,
-            nv,
-            [c.label for c in scene.constraints],
-        )
+    check_motion_left(scene, state)
     if state.rank < state.m and state.rank != state.m - structurally_redundant(scene, state):
         check_regular(scene, q, state, calls)  # no structural proof of the redundancy: probe nearby
     lam, g, asm, Kt = constrained_point(scene, q, state, stiffness=True, damping=True, mass=True)
@@ -211,7 +203,8 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
     if scene.contact_index:
         notes.append(BILATERAL_NOTE)
     notes.append(
-        f"{len(names)} coordinates z ({method}) for {len(scene.constraints)} constraints "
+        f"{len(names)} coordinate{'s' * (len(names) != 1)} z ({method}) for {len(scene.constraints)} "
+        f"constraint{'s' * (len(scene.constraints) != 1)} "
         f"(rank J_c = {state.rank} of m = {state.m}); joint velocities = basis @ z; cond(J_d) = {condition:.3g}"
     )
     balance = None

@@ -30,6 +30,7 @@ from .closure import CLOSURE_TOL, close_loops, project
 from .constraint_set import (
     RANK_TOL,
     ConstraintState,
+    check_motion_left,
     constrained_point,
     constraint_forces,
     constraint_notes,
@@ -93,6 +94,9 @@ def find_constrained_equilibrium(
         A bad tolerance, iteration count or ``min_step``.
     ConfigurationError
         q0 has the wrong size or is not finite.
+    OverconstrainedError
+        The constraints hold every degree of freedom (rank J_c = nv), as
+        :func:`pinlin.linearize` refuses them.
     LoopClosureError
         The constraints cannot be closed from q0 (the gap in metres is attached).
     ConvergenceError
@@ -103,6 +107,7 @@ def find_constrained_equilibrium(
     closure = close_loops(scene, q0, tol=closure_tol, rank_tol=rank_tol)
     q = closure.q
     state = evaluate_constraints(scene, q, rank_tol=rank_tol)
+    check_motion_left(scene, state)  # as linearize does: at the closed configuration
     history: list[float] = []
     least_squares: list[int] = []
     for iteration in range(max_iterations + 1):

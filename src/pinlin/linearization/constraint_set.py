@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg.lapack as lapack
 
+from ..errors import OverconstrainedError
 from ..model.constraints import ConstraintForce, ContactStatus, dead_wrench_stiffness, stack_wrenches
 from ..model.evaluation import Evaluation, Workspace
 from ..model.scene import Scene
@@ -37,6 +38,7 @@ __all__ = [
     "evaluate_constraints",
     "constraint_forces",
     "contact_statuses",
+    "check_motion_left",
     "RANK_TOL",
     "CONSTRAINT_TOL",
 ]
@@ -295,7 +297,8 @@ def constraint_notes(scene: Scene, state: ConstraintState, lam: np.ndarray, all_
     notes = []
     if state.rank < state.m:
         notes.append(
-            f"{state.m - state.rank} of the {state.m} constraint equations are redundant (rank J_c = "
+            f"{state.m - state.rank} of the {state.m} constraint equations "
+            f"{'is' if state.m - state.rank == 1 else 'are'} redundant (rank J_c = "
             f"{state.rank}): the constraint forces are the minimum-norm ones, not unique"
         )
     contacts = ()
@@ -303,3 +306,24 @@ def constraint_notes(scene: Scene, state: ConstraintState, lam: np.ndarray, all_
         contacts = contact_statuses(scene, lam)
         notes.extend(c.describe() for c in contacts if not c.feasible)
     return notes, contacts
+
+
+def check_motion_left(scene: Scene, state: ConstraintState) -> None:
+    """Refuse constraints that hold every degree of freedom (rank J_c = nv): no motion is left to find an
+    equilibrium of or to linearize (one check for :func:`pinlin.find_equilibrium` and :func:`pinlin.linearize`).
+
+    Raises
+    ------
+    OverconstrainedError
+        rank J_c = nv at the evaluated configuration.
+    """
+    nv = scene.model.nv
+    if state.rank == nv:
+        labels = [c.label for c in scene.constraints]
+        raise OverconstrainedError(
+            f"no motion left: the constraints {labels} have rank J_c = {state.rank} = nv, so they hold every "
+            f"degree of freedom of {scene.robot.name!r}; there is no motion to find an equilibrium of or to linearize",
+            state.rank,
+            nv,
+            labels,
+        )

@@ -70,7 +70,9 @@ def _named_indices(names: Sequence[str], dof_names: tuple[str, ...], robot) -> l
             j = robot.joint(name)
             out.extend(range(j.idx_v, j.idx_v + j.nv))
         else:
-            raise JointNotFoundError(str(name), tuple(robot.joint_names) + dof_names, context="coordinates")
+            # a 1-DOF joint's coordinate has the joint's name: list each name once
+            valid = tuple(dict.fromkeys(tuple(robot.joint_names) + dof_names))
+            raise JointNotFoundError(str(name), valid, context="coordinates")
     if len(set(out)) != len(out):
         raise ParameterError("coordinates", f"names a degree of freedom twice: {list(names)}")
     return sorted(out)

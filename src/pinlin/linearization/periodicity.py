@@ -51,6 +51,11 @@ def refuse_motions(scene: Scene) -> None:
 PERIODIC_TEST_ANGLES = (1.0, 2.5)
 
 
+def _offset_unit(kind: str) -> str:
+    """The unit of a 1-DOF joint's coordinate: m for a prismatic joint, rad for a revolute one."""
+    return "m" if kind.startswith(("JointModelP", "JointModelTranslation")) else "rad"
+
+
 def _scales(base: Assembly, free: np.ndarray, omega: float) -> dict[str, float]:
     """System-wide scales of M, C, K and the residual: L(w) at one frequency w of the whole system.
 
@@ -99,7 +104,8 @@ def numeric_change(
             if not change <= tol:
                 raise TimePeriodicError(
                     f"the linearized equations depend on the position of prescribed joint {name!r} "
-                    f"(relative change {change:.2e} after {offset} rad, against the system's scales): with its "
+                    f"(relative change {change:.2e} after {offset} {_offset_unit(j.kind)}, against the system's "
+                    f"scales): with its "
                     f"prescribed velocity they are time-periodic, not constant-coefficient, and cannot be "
                     f"analysed as M x'' + C x' + K x = f" + FLOQUET_HINT,
                     joint=name,

@@ -11,6 +11,7 @@ import pinocchio as pin
 
 from ..errors import ConfigurationError, ParameterError, PrescribedJointError
 from .constraints import Constraint, PointConstraint
+from .constraints.base import constraint_list
 from .elements import Element, JointDamper, WrenchElement
 from .elements.base import check_vector3
 from .elements.invariance import invariance_kind
@@ -64,7 +65,8 @@ class Scene:
         scene is refused rather than linearized approximately.
     constraints : iterable of Constraint, optional
         Closed loops and contacts (:class:`~pinlin.PointConstraint`,
-        :class:`~pinlin.FrameConstraint`).  Default: the robot's own
+        :class:`~pinlin.FrameConstraint`), a list even of one, each ``name``
+        at most once.  Default: the robot's own
         (``robot.constraints``, from an MJCF file; none for a URDF); a list given
         here replaces them (``robot.constraints + (...)`` adds to them).  The
         linearized system then has n = nv - rank J_c coordinates (SPEC section 10).
@@ -125,7 +127,7 @@ class Scene:
         self.motions = types.MappingProxyType(motions)
         self.motion_period = common_period({name: m.period for name, m in motions.items()})
         self.memory_limit = memory_limit
-        self._user_constraints = None if constraints is None else tuple(constraints)
+        self._user_constraints = None if constraints is None else constraint_list(constraints)
         self.constraints = self._check_constraints(robot, self._user_constraints)
         mask = np.ones(robot.nv, dtype=bool)
         self.v0 = np.zeros(robot.nv)

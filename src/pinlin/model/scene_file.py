@@ -75,6 +75,10 @@ Format (every table is optional except ``[robot]``)::
     # parameter = "spring.joint1.stiffness"
     # values = [1.0, 2.0, 3.0]
 
+    # [campbell]                    # for `pinlin campbell`: needs a prescribed joint (scenes/rotating_ring.toml)
+    # joint = "ring"                # a prescribed joint (default: the scene's only one)
+    # speeds = { start = 0.0, stop = 6.0, num = 61 }  # [rad/s or m/s]; or a list
+
 Errors name the file and the key (``spring[2].stiffness``).
 """
 
@@ -113,7 +117,7 @@ __all__ = ["SceneSpec", "load_scene", "default_scene_path", "SCENE_FORMAT"]
 SCENE_FORMAT = __doc__.split("Format (every table is optional except ``[robot]``)::")[1].split("Errors name")[0]
 
 _ELEMENT_TABLES = ("spring", "damper", "rayleigh", "follower", "dead", "spring_damper", "bushing")
-_TOP = {"robot", "scene", "prescribed", "start", "constraint", "sweep", *_ELEMENT_TABLES}
+_TOP = {"robot", "scene", "prescribed", "start", "constraint", "sweep", "campbell", *_ELEMENT_TABLES}
 _KEYS = {
     "robot": {"urdf", "example", "free_flyer", "locked"},
     "scene": {"gravity", "urdf_damping"},
@@ -147,6 +151,8 @@ class SceneSpec:
     sweep : dict or None
         The ``[sweep]`` table as read, for ``pinlin sweep`` (checked by
         :func:`pinlin.report.sweep.sweep_plan`).
+    campbell : dict or None
+        The ``[campbell]`` table, for ``pinlin campbell`` (:func:`pinlin.report.campbell.campbell_plan`).
     """
 
     scene: Scene
@@ -155,6 +161,7 @@ class SceneSpec:
     balancing: bool
     path: str
     sweep: dict | None = None
+    campbell: dict | None = None
 
 
 def default_scene_path() -> Path:
@@ -395,4 +402,4 @@ def load_scene(path) -> SceneSpec:
         key = "prescribed" if prescribed and "prescribed" in str(exc) else "scene"
         r.fail(key, str(exc), exc)
     q0, equilibrium, balancing = _start(r, doc.get("start", {}), scene)
-    return SceneSpec(scene, q0, equilibrium, balancing, str(path), doc.get("sweep"))
+    return SceneSpec(scene, q0, equilibrium, balancing, str(path), doc.get("sweep"), doc.get("campbell"))

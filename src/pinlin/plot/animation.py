@@ -54,7 +54,7 @@ def animate_mode(scene, sys, mode, ax=None, *, n_frames: int = DEFAULT_FRAMES, d
     sys : LinearizedSystem
     mode : int or (n,) array_like
         An index into ``modes.eigenvalues`` (0-based; row ``mode + 1`` of
-        ``modes.table()``) or a mode shape on the coordinates (complex allowed).
+        ``modes.table()``; -1 is the last, as in Python) or a mode shape on the coordinates (complex allowed).
     ax : matplotlib Axes, optional
         Draw here (3-D axes without ``plane``, 2-D with one); default: a figure of
         the animation's own, :data:`FIGSIZE` inches at ``dpi``.

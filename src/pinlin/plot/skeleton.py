@@ -190,7 +190,8 @@ def _mode_vector(sys, mode, modes) -> tuple[np.ndarray, complex | None]:
         if np.shape(modes.right)[0] != sys.n:
             raise ParameterError("modes", f"has vectors of length {np.shape(modes.right)[0]}, the system has n = {sys.n}")
         if not -count <= int(mode) < count:
-            raise ParameterError("mode", f"expected an index in [0, {count}) into modes.eigenvalues, got {mode}")
+            raise ParameterError("mode", f"expected an index into modes.eigenvalues, 0 to {count - 1} "
+                                 f"(or -{count} to -1 from the end, as in Python), got {mode}")
         return np.asarray(modes.right)[:, int(mode)], complex(modes.eigenvalues[int(mode)])
     z = np.asarray(mode)
     if z.shape != (sys.n,) or not np.issubdtype(z.dtype, np.number) or not np.all(np.isfinite(z)):
@@ -243,7 +244,8 @@ def mode_motion(scene, sys, mode, phases, *, scale: float | None = None, frames:
     sys : LinearizedSystem
     mode : int or (n,) array_like
         An index into ``modes.eigenvalues`` (Modes order, 0-based: row ``mode + 1``
-        of ``modes.table()``), or a mode shape on the coordinates (complex allowed).
+        of ``modes.table()``; a negative index counts from the end, as in
+        Python), or a mode shape on the coordinates (complex allowed).
     phases : (k,) array_like
         theta [rad] of each drawing.
     scale : float, optional

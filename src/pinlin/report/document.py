@@ -56,7 +56,8 @@ def scene_section(spec: SceneSpec) -> dict[str, Any]:
     File paths are normalized (:func:`normalized_path`); ``dof_units`` gives the
     unit of each free coordinate ("rad", "m"; see :mod:`pinlin.report.units`).
     Each element is its own fields (``to_jsonable`` of the element) with its
-    scene-file ``kind``.
+    scene-file ``kind``; ``prescribed_units`` the unit of each prescribed
+    velocity ("rad/s" for a revolute joint, "m/s" for a prismatic one).
     """
     scene = spec.scene
     robot = scene.robot
@@ -71,6 +72,8 @@ def scene_section(spec: SceneSpec) -> dict[str, Any]:
         "dof_units": list(coordinate_units(robot, scene.free_dofs)),
         "gravity": to_jsonable(scene.gravity),
         "prescribed": to_jsonable(dict(scene.prescribed)),
+        "prescribed_units": {joint: f"{coordinate_units(robot, [robot.joint(joint).idx_v])[0]}/s"
+                             for joint in scene.prescribed},
         "elements": [{"kind": element.kind, **to_jsonable(element)} for element in scene.elements],
     }
 

@@ -14,6 +14,7 @@ convention's ``type``, ``method``, ``error`` and ``elapsed``:
 - ``stability`` is :class:`~pinlin.Stability`'s;
 - ``scene.dof_units`` (added in pinlin 0.2, optional in the schema) gives the unit
   of each coordinate, "rad" or "m" ("?" for a joint kind pinlin does not know);
+  ``scene.prescribed_units`` (pinlin 0.3, optional) that of each prescribed velocity, "rad/s" or "m/s";
   ``scene.source`` and ``scene.urdf`` are normalized absolute paths when they name files.
 
 Numbers follow :func:`pinlin.results.to_jsonable`: non-finite floats are the
@@ -90,6 +91,7 @@ REPORT_SCHEMA = {
                 "dof_units": {"type": "array", "items": {"enum": ["rad", "m", "?"]}},
                 "gravity": {**_NUMBERS, "minItems": 3, "maxItems": 3},
                 "prescribed": {"type": "object", "additionalProperties": {"type": "number"}},
+                "prescribed_units": {"type": "object", "additionalProperties": {"enum": ["rad/s", "m/s", "?/s"]}},
                 "elements": {"type": "array", "items": {"type": "object", "required": ["kind"]}},
             },
         },

@@ -22,7 +22,8 @@ from ..linearization.system import MATRIX_NAMES
 from ..numerics.definiteness import rounding_bound
 from .units import matrix_unit
 
-__all__ = ["render_text", "mode_table", "matrix_text", "number", "MAX_PRINTED_SIZE", "BALANCING_PRECISION"]
+__all__ = ["render_text", "mode_table", "matrix_text", "number", "complex_text", "plural", "MAX_PRINTED_SIZE",
+           "BALANCING_PRECISION"]
 
 #: Matrices with more coordinates than this are summarized by their Frobenius norm (a row must fit a screen).
 MAX_PRINTED_SIZE = 12
@@ -45,6 +46,19 @@ def number(x: float, precision: int, *, zero_below: float = 0.0) -> str:
     if abs(x) <= zero_below:  # also turns -0.0 into 0
         return "0"
     return f"{x:.{precision}g}"
+
+
+def complex_text(lam: complex, precision: int = 6) -> str:
+    """A complex number as ``a+bi`` (``i``, as the stability verdicts write them; a real one as ``a``)."""
+    lam = complex(lam)
+    if lam.imag == 0:
+        return number(lam.real, precision)
+    return f"{number(lam.real, precision)}{lam.imag:+.{precision}g}i"
+
+
+def plural(count: int, noun: str) -> str:
+    """``1 iteration``, ``3 iterations``."""
+    return f"{count} {noun}" + ("" if count == 1 else "s")
 
 
 def matrix_text(name: str, a: np.ndarray, names: Sequence[str], units: Sequence[str], precision: int) -> str:
@@ -72,7 +86,10 @@ def _vector_text(values, precision: int) -> str:
 def _scene_lines(s: dict) -> list[str]:
     units = s.get("dof_units") or ["?"] * len(s["dof_names"])
     coordinates = ", ".join(f"{name} [{unit}]" for name, unit in zip(s["dof_names"], units))
-    prescribed = f", prescribed velocities {s['prescribed']}" if s["prescribed"] else ""
+    rates = s.get("prescribed_units") or {}
+    prescribed = ", prescribed velocities " + ", ".join(
+        f"{joint} = {number(omega, 6)} {rates.get(joint, '?/s')}" for joint, omega in s["prescribed"].items()
+    ) if s["prescribed"] else ""
     elements = ", ".join(f"{e['kind']}({e.get('joint', e.get('frame', ''))})" for e in s["elements"]) or "none"
     return [
         f"  scene file: {s['source']}",
@@ -100,7 +117,7 @@ def _equilibrium_lines(eq: dict, precision: int) -> list[str]:
         f"Equilibrium: {eq['method']}",
         f"  q = {_vector_text(eq['q'], precision)}",
         f"  residual = {_float(eq['residual']):.3e} (relative {_float(eq['relative_residual']):.2e}), "
-        f"{eq['iterations']} iterations, {eq['elapsed'] * 1e3:.2f} ms",
+        f"{plural(eq['iterations'], 'iteration')}, {eq['elapsed'] * 1e3:.2f} ms",
         *_constraint_force_lines(eq, precision),
         *(f"  note: {note}" for note in eq["notes"]),
         "",
@@ -231,12 +248,15 @@ def render_text(report: dict, precision: int = 6) -> str:
     if "equilibrium" in report:
         out += _equilibrium_lines(report["equilibrium"], precision)
     # the system's coordinates: the scene's free joints, or the independent ones of a constrained scene
-    names = report["linearization"].get("dof_names") or s["dof_names"]
+    lin = report["linearization"]
+    names = lin.get("dof_names") or s["dof_names"]
     unit_of = dict(zip(s["dof_names"], units))
-    out += _linearization_lines(report["linearization"], names, [unit_of.get(n, "?") for n in names], precision)
+    said = set(report.get("equilibrium", {}).get("notes", ()))  # a note both stages make is printed once
+    lin = {**lin, "notes": [note for note in lin["notes"] if note not in said]}
+    out += _linearization_lines(lin, names, [unit_of.get(n, "?") for n in names], precision)
     modes = report["modes"]
     out += [mode_table(modes, precision), f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms", ""]
     st = report["stability"]
     out += [f"Stability: {st['kind'].replace('_', ' ').upper()}", f"  {st['reason']}", *_dissipation_lines(st), ""]
-    out.append(f"Total {report['elapsed'] * 1e3:.1f} ms")
+    out.append(f"Analysis {report['elapsed'] * 1e3:.1f} ms (equilibrium, linearization, modal analysis)")
     return "\n".join(out)

@@ -2,8 +2,9 @@
 
 - :mod:`.sweep` -- :func:`sweep`: evaluate a function over parameter values on any
   executor, with each point's error figure and run time taken where it ran;
-- :mod:`.sweep_result` -- :class:`SweepResult` (values in grid order) and
-  :class:`SweepFailure` (a point that raised);
+- :mod:`.grid` -- the points of a grid, counted and capped (``max_points``) before any is built;
+- :mod:`.sweep_result` -- :class:`SweepResult` (values in grid order),
+  :class:`SweepFailure` (a point that raised) and :class:`SweepTimeoutError`;
 - :mod:`.scheduling` -- running the points here or on an executor, collected in
   completion order and returned in grid order;
 - :mod:`.progress` -- progress in completion order: a text bar, tqdm when installed;
@@ -13,14 +14,17 @@
   and pick one mode of each conjugate pair for Campbell diagrams.
 """
 
+from .grid import MAX_POINTS
 from .ray_executor import RayExecutor
-from .sweep import SweepFailure, SweepResult, sweep
+from .sweep import SweepFailure, SweepResult, SweepTimeoutError, sweep
 from .tracking import TrackedModes, mac, one_per_conjugate_pair, track_modes
 
 __all__ = [
     "sweep",
     "SweepResult",
     "SweepFailure",
+    "SweepTimeoutError",
+    "MAX_POINTS",
     "RayExecutor",
     "TrackedModes",
     "track_modes",

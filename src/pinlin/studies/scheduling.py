@@ -13,14 +13,15 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from concurrent.futures import CancelledError, Executor, as_completed
+from concurrent.futures import CancelledError, Executor, Future, as_completed
+from concurrent.futures import TimeoutError as FuturesTimeout
 from typing import Any
 
 import numpy as np
 
-from ..errors import PinlinError
+from ..errors import ParameterError, PinlinError
 from ..results import Result
-from .sweep_result import SweepFailure
+from .sweep_result import SweepFailure, SweepTimeoutError
 
 __all__ = ["call_point", "run_points", "function_name"]
 
@@ -66,28 +67,55 @@ def _serial(function, points, report, on_error) -> list[Item]:
     return out
 
 
+def _submit_all(function, points, executor) -> dict:
+    futures = {}
+    for i, point in enumerate(points):
+        future = executor.submit(call_point, function, point)
+        if not isinstance(future, Future):
+            for other in futures:
+                other.cancel()
+            raise ParameterError("executor", f"its submit() returned {type(future).__name__} {future!r}, expected a "
+                                 f"concurrent.futures.Future (the Executor interface)")
+        futures[future] = i
+    return futures
+
+
+def _completed(futures: dict, timeout: float | None, points):
+    """``as_completed`` that turns a timeout into a :class:`SweepTimeoutError` naming the points not finished."""
+    try:
+        yield from as_completed(futures, timeout=timeout)
+    except FuturesTimeout:
+        pending = sorted(i for future, i in futures.items() if not future.done())
+        raise SweepTimeoutError(timeout, pending, [points[i] for i in pending]) from None
+
+
 def run_points(function: Callable, points: list[dict], executor: Executor | None,
-               report: Callable[[int, Item], None], on_error: str) -> list[Item]:
+               report: Callable[[int, Item], None], on_error: str, timeout: float | None = None) -> list[Item]:
     """Every point's (value, error, elapsed), in grid order; ``report(index, item)`` in completion order.
 
     With ``on_error="raise"`` the failure raised is the first in grid order:
     once a point fails, the points after it are cancelled (those already
     running finish unreported), the points before it are awaited, and the
     earliest failure among them is raised.  A failed point is not reported.
+    ``timeout`` [s] bounds the wait for all points on an executor.
 
     Raises
     ------
     PinlinError
         The first failure in grid order, with ``on_error="raise"``.
+    ParameterError
+        The executor's ``submit`` returned something that is not a ``concurrent.futures.Future``.
+    SweepTimeoutError
+        Points not finished after ``timeout`` seconds (cancelled unless already running).
     """
     if executor is None:
         return _serial(function, points, report, on_error)
-    futures = {executor.submit(call_point, function, point): i for i, point in enumerate(points)}
+    futures = _submit_all(function, points, executor)
     items: list[Item | None] = [None] * len(points)
     first = None  # index of the earliest failure so far (on_error="raise")
     waiting = 0  # points before it that have not finished
     try:
-        for future in as_completed(futures):
+        for future in _completed(futures, timeout, points):
             i = futures[future]
             try:
                 item = future.result()

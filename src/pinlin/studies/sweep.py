@@ -16,7 +16,6 @@ so that submitting and pickling cost little against the points themselves.
 
 from __future__ import annotations
 
-import itertools
 import os
 import time
 from collections.abc import Callable, Mapping, Sequence
@@ -26,45 +25,22 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import ParameterError
+from .grid import MAX_POINTS, grid_points
 from .progress import PROGRESS_MIN_POINTS, PROGRESS_WIDTH, progress_bar
 from .scheduling import call_point, function_name, run_points
-from .sweep_result import SweepFailure, SweepResult
+from .sweep_result import SweepFailure, SweepResult, SweepTimeoutError
 
 __all__ = [
     "sweep",
     "SweepResult",
     "SweepFailure",
+    "SweepTimeoutError",
     "chunk_size_for",
     "CHUNKS_PER_WORKER",
+    "MAX_POINTS",
     "PROGRESS_MIN_POINTS",
     "PROGRESS_WIDTH",
 ]
-
-
-def _points(grid) -> tuple[tuple[str, ...], list[dict], tuple[int, ...], dict]:
-    if isinstance(grid, Mapping):
-        if not grid:
-            raise ParameterError("grid", "no parameters to sweep")
-        names = tuple(grid)
-        axes = {}
-        for name in names:
-            values = grid[name]
-            if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)):
-                raise ParameterError(f"grid[{name!r}]", f"expected a sequence of values, got {values!r}")
-            if len(values) == 0:
-                raise ParameterError(f"grid[{name!r}]", "has no values")
-            axes[name] = np.asarray(values)
-        points = [dict(zip(names, combo)) for combo in itertools.product(*(grid[n] for n in names))]
-        return names, points, tuple(len(grid[n]) for n in names), axes
-    if isinstance(grid, (str, bytes)) or not isinstance(grid, Sequence) or not grid:
-        raise ParameterError("grid", "expected a mapping name -> values, or a non-empty sequence of dicts")
-    points = []
-    for i, point in enumerate(grid):
-        if not isinstance(point, Mapping):
-            raise ParameterError(f"grid[{i}]", f"expected a dict of parameters, got {point!r}")
-        points.append(dict(point))
-    names = tuple(dict.fromkeys(k for p in points for k in p))
-    return names, points, (len(points),), {}
 
 
 #: Chunks per worker of the automatic chunk size: uneven point costs leave a worker at most
@@ -119,7 +95,7 @@ def _call_chunk(function: Callable, points: list, stop_on_error: bool) -> list:
     return out
 
 
-def _run_chunks(function, points, executor, size, report, on_error) -> list:
+def _run_chunks(function, points, executor, size, report, on_error, timeout) -> list:
     """:func:`run_points` over chunks of ``size`` points; items and reports per point, in grid order."""
     starts = range(0, len(points), size)
     chunks = [{"function": function, "points": points[i : i + size], "stop_on_error": on_error == "raise"}
@@ -129,7 +105,11 @@ def _run_chunks(function, points, executor, size, report, on_error) -> list:
         for j, point_item in enumerate(item[0]):
             report(index * size + j, point_item)
 
-    done = run_points(_call_chunk, chunks, executor, chunk_report, on_error)
+    try:
+        done = run_points(_call_chunk, chunks, executor, chunk_report, on_error, timeout)
+    except SweepTimeoutError as exc:  # name the points, not the chunks
+        pending = [i for chunk in exc.pending for i in range(chunk * size, min((chunk + 1) * size, len(points)))]
+        raise SweepTimeoutError(timeout, pending, [points[i] for i in pending]) from None
     return [point_item for chunk_items, _, _ in done for point_item in chunk_items]
 
 
@@ -143,6 +123,8 @@ def sweep(
     on_error: str = "raise",
     callback: Callable[[int, dict, Any], None] | None = None,
     chunk_size: int | None = None,
+    max_points: int | None = MAX_POINTS,
+    timeout: float | None = None,
 ) -> SweepResult:
     """Evaluate ``function(**point)`` at every point of a parameter grid.
 
@@ -183,6 +165,15 @@ def sweep(
         of points and the executor's workers, :func:`chunk_size_for`, 1 for short
         sweeps).  Fewer, larger tasks cost less submission and pickling; progress
         and callbacks then advance a chunk at a time (its points in grid order).
+    max_points : int or None
+        Most points the grid may have (default :data:`MAX_POINTS`, the command
+        line's cap), checked before any point is built or run: a grid is iterated
+        lazily, so a mistyped grid of 10^9 points is refused at once.  None: no cap.
+    timeout : float, optional
+        Seconds to wait on an executor for all points to finish (default: no
+        limit).  Points still unfinished then are cancelled and
+        :class:`~pinlin.studies.SweepTimeoutError` names them.  Ignored without
+        an executor (the points run here, one after the other).
 
     Returns
     -------
@@ -195,7 +186,12 @@ def sweep(
     ParameterError
         An empty or malformed grid, a ``function`` or ``callback`` that is not
         callable, an executor without ``submit``, an unknown ``on_error`` or ``progress``,
-        a ``chunk_size`` that is not a positive integer.
+        a ``chunk_size`` that is not a positive integer, a parameter name that is
+        not a string, more than ``max_points`` points, a ``timeout`` that is not
+        a positive number, an executor whose ``submit`` returns something other
+        than a ``concurrent.futures.Future``.
+    SweepTimeoutError
+        Points not finished within ``timeout`` seconds (``.pending``, ``.points``).
     MissingDependencyError
         ``progress="tqdm"`` without tqdm installed.
     PinlinError
@@ -211,7 +207,10 @@ def sweep(
         raise ParameterError("on_error", f"expected 'raise' or 'record', got {on_error!r}")
     if executor is not None and not callable(getattr(executor, "submit", None)):
         raise ParameterError("executor", f"expected a concurrent.futures.Executor, got {executor!r}")
-    names, points, shape, axes = _points(grid)
+    if timeout is not None and (isinstance(timeout, bool) or not isinstance(timeout, (int, float, np.integer, np.floating))
+                                or not timeout > 0 or not np.isfinite(timeout)):
+        raise ParameterError("timeout", f"expected a positive number of seconds or None, got {timeout!r}")
+    names, points, shape, axes = grid_points(grid, max_points)
     bar = progress_bar(len(points), progress, stream)
 
     def report(index: int, item) -> None:
@@ -223,9 +222,9 @@ def sweep(
     size = 1 if executor is None else chunk_size_for(len(points), executor, chunk_size)
     try:
         if size == 1:
-            items = run_points(function, points, executor, report, on_error)
+            items = run_points(function, points, executor, report, on_error, timeout)
         else:
-            items = _run_chunks(function, points, executor, size, report, on_error)
+            items = _run_chunks(function, points, executor, size, report, on_error, timeout)
     finally:
         if bar is not None:
             bar.close()
@@ -236,7 +235,7 @@ def sweep(
     method = f"{function_name(function)}(**point) at {len(points)} points of a {kind} over {', '.join(names)}, {where}"
     return SweepResult(
         names,
-        points,
+        list(points),
         [value for value, _, _ in items],
         shape,
         axes,

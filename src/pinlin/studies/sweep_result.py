@@ -14,10 +14,10 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..errors import ParameterError, PinlinError
+from ..errors import ComputationError, ParameterError, PinlinError
 from ..results import Result
 
-__all__ = ["SweepResult", "SweepFailure"]
+__all__ = ["SweepResult", "SweepFailure", "SweepTimeoutError"]
 
 
 def _rebuild_exception(cls: type, args: tuple, state: dict) -> BaseException:
@@ -26,6 +26,33 @@ def _rebuild_exception(cls: type, args: tuple, state: dict) -> BaseException:
     exc.args = args
     exc.__dict__.update(state)
     return exc
+
+
+class SweepTimeoutError(ComputationError, TimeoutError):
+    """Points of a sweep did not finish within its ``timeout`` (cancelled, except those already running: an
+    executor cannot stop a call once started).
+
+    Attributes
+    ----------
+    timeout : float
+        The seconds waited.
+    pending : tuple of int
+        Indices (grid order) of the points not finished.
+    points : tuple of dict
+        Those points.
+    """
+
+    #: Points named in the message; the rest are counted.
+    SHOWN = 5
+
+    def __init__(self, timeout: float, pending, points):
+        self.timeout = float(timeout)
+        self.pending = tuple(int(i) for i in pending)
+        self.points = tuple(dict(p) for p in points)
+        shown = ", ".join(f"#{i} {p}" for i, p in zip(self.pending[: self.SHOWN], self.points))
+        more = f" and {len(self.pending) - self.SHOWN} more" if len(self.pending) > self.SHOWN else ""
+        super().__init__(f"timeout: {len(self.pending)} points not finished after {self.timeout:g} s "
+                         f"(cancelled unless already running): {shown}{more}")
 
 
 @dataclass(frozen=True, repr=False, eq=False)

@@ -11,7 +11,7 @@ from ...errors import ParameterError
 from .forces import ConstraintForce
 from .stiffness import CONSTANT_SUBSPACE_JOINTS, dead_wrench_stiffness, stack_wrenches
 
-__all__ = ["Constraint"]
+__all__ = ["Constraint", "constraint_list"]
 
 
 class Constraint(ABC):
@@ -126,3 +126,33 @@ class Constraint(ABC):
     def gaps(self, phi: np.ndarray) -> tuple[float, float]:
         """Distance [m] and rotation [rad] between the frame and its target for this constraint's Phi."""
         return float(np.linalg.norm(phi[:3])), float(np.linalg.norm(phi[3:])) if len(phi) > 3 else 0.0
+
+
+def constraint_list(constraints) -> tuple[Constraint, ...]:
+    """The ``constraints`` argument of a :class:`~pinlin.Scene` as a tuple: a list of constraints, each
+    ``name`` given at most once.
+
+    A single constraint is refused rather than accepted (``constraints=c`` reads
+    like a list by mistake; one rule, a list, for one constraint and for many).
+
+    Raises
+    ------
+    ParameterError
+        Named ``constraints``: one constraint instead of a list, something not
+        iterable; named ``constraints[i]``: an item that is not a constraint, a
+        name an earlier constraint already has.
+    """
+    if isinstance(constraints, Constraint):
+        raise ParameterError("constraints", f"expected a list of constraints, got a single one: "
+                             f"write constraints=[{constraints!r}]")
+    if isinstance(constraints, (str, bytes)) or not hasattr(constraints, "__iter__"):
+        raise ParameterError("constraints", f"expected a list of PointConstraint or FrameConstraint, got {constraints!r}")
+    out = tuple(constraints)
+    named: dict[str, int] = {}
+    for i, constraint in enumerate(out):
+        if not isinstance(constraint, Constraint):
+            raise ParameterError(f"constraints[{i}]", f"expected a PointConstraint or FrameConstraint, got {constraint!r}")
+        if constraint.name and named.setdefault(constraint.name, i) != i:
+            raise ParameterError(f"constraints[{i}]", f"the name {constraint.name!r} is already that of "
+                                 f"constraints[{named[constraint.name]}]: give each constraint its own name")
+    return out

@@ -12,6 +12,7 @@ import pinocchio as pin
 
 from ...errors import ConfigurationError, ParameterError
 from ..elements.base import check_vector3
+from ..numbers import numeric_scalar
 from .base import Constraint
 from .forces import ConstraintForce, ContactStatus
 
@@ -84,7 +85,7 @@ class PointConstraint(Constraint):
         if self.friction is not None:
             if not self.contact:
                 raise ParameterError(f"{label}.friction", "friction applies to contacts only (contact=True)")
-            mu = float(self.friction)
+            mu = numeric_scalar(self.friction, f"{label}.friction")
             if not (math.isfinite(mu) and mu >= 0):
                 raise ParameterError(f"{label}.friction", f"must be a finite number >= 0, got {self.friction!r}")
             object.__setattr__(self, "friction", mu)

@@ -22,6 +22,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...numerics.arrays import readonly
+from ..numbers import numeric_array
 
 __all__ = [
     "Element",
@@ -58,10 +59,7 @@ def as_matrix(value, size: int, label: str) -> np.ndarray:
 def check_psd(value, label: str) -> np.ndarray:
     """Validate a scalar / vector / matrix coefficient: finite, >= 0 or symmetric psd (a read-only copy:
     elements are shared by threads, and the caller's array must not alias them)."""
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(label, f"expected a number, a vector or a matrix, got {value!r}") from None
+    arr = numeric_array(value, label, "a number, a vector or a matrix")
     if arr.ndim > 2:
         raise ParameterError(label, f"expected at most 2 dimensions, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):
@@ -83,10 +81,7 @@ def check_psd(value, label: str) -> np.ndarray:
 
 def check_vector3(value, label: str) -> np.ndarray:
     """Three finite numbers, as a read-only copy."""
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(label, f"expected 3 numbers, got {value!r}") from None
+    arr = numeric_array(value, label, "3 numbers")
     if arr.shape != (3,):
         raise ParameterError(label, f"expected 3 numbers, got shape {arr.shape}")
     if not np.all(np.isfinite(arr)):

@@ -34,6 +34,7 @@ import numpy as np
 import pinocchio as pin
 
 from ...errors import ParameterError
+from ..numbers import numeric_array
 from .base import Element, ElementGroup, check_vector3
 
 __all__ = [
@@ -125,10 +126,7 @@ def as_placement(value, label: str) -> pin.SE3:
             raise ParameterError(label, f"unknown key {unknown[0]!r}; a placement mapping has 'xyz' [m] and 'rpy' [rad]")
         xyz, rpy = (check_vector3(value.get(k, np.zeros(3)), f"{label}.{k}") for k in ("xyz", "rpy"))
         return pin.SE3(pin.rpy.rpyToMatrix(*rpy), xyz)
-    try:
-        H = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(label, f"expected {_PLACEMENT}, got {value!r}") from None
+    H = numeric_array(value, label, _PLACEMENT)
     if H.shape != (4, 4):
         raise ParameterError(label, f"expected {_PLACEMENT}, got shape {H.shape}")
     if not np.all(np.isfinite(H)):

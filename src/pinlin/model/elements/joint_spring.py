@@ -10,6 +10,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...numerics.arrays import readonly
+from ..numbers import numeric_array
 from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 from .lie_log import joint_log
 
@@ -58,7 +59,7 @@ class JointSpring(Element):
     def __post_init__(self):
         object.__setattr__(self, "stiffness", check_psd(self.stiffness, f"JointSpring({self.joint!r}).stiffness"))
         if self.rest is not None:
-            rest = np.asarray(self.rest, dtype=float)
+            rest = numeric_array(self.rest, f"JointSpring({self.joint!r}).rest", "finite numbers")
             if rest.ndim > 1 or not np.all(np.isfinite(rest)):
                 raise ParameterError(f"JointSpring({self.joint!r}).rest", f"must be finite numbers, got {self.rest!r}")
             object.__setattr__(self, "rest", readonly(rest))

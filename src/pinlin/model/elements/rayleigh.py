@@ -8,6 +8,7 @@ from typing import ClassVar
 import numpy as np
 
 from ...errors import ParameterError
+from ..numbers import numeric_scalar
 from .base import Element
 
 __all__ = ["RayleighDamping"]
@@ -42,10 +43,7 @@ class RayleighDamping(Element):
     def __post_init__(self):
         for name in ("alpha", "beta"):
             value = getattr(self, name)
-            try:
-                value = float(value)
-            except (TypeError, ValueError):
-                raise ParameterError(f"RayleighDamping.{name}", f"expected a number, got {value!r}") from None
+            value = numeric_scalar(value, f"RayleighDamping.{name}")
             if not np.isfinite(value) or value < 0:
                 raise ParameterError(f"RayleighDamping.{name}", f"must be finite and >= 0, got {value!r}")
             object.__setattr__(self, name, value)

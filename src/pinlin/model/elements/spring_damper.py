@@ -9,6 +9,7 @@ import numpy as np
 
 from ...errors import ConfigurationError, ParameterError
 from ...numerics.arrays import readonly
+from ..numbers import numeric_scalar
 from .base import Element, ElementGroup, check_vector3
 from .frame_pairs import (
     FramePairElement,
@@ -34,10 +35,7 @@ COINCIDENT_RTOL = 1e-12
 
 
 def _number(value, label: str) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(label, f"expected a number, got {value!r}") from None
+    x = numeric_scalar(value, label)
     if not np.isfinite(x) or x < 0:
         raise ParameterError(label, f"must be finite and >= 0, got {value!r}")
     return x

@@ -42,6 +42,7 @@ from ...errors import ParameterError, SceneFileError
 from ...model.elements import RayleighDamping
 from ...model.scene import Scene
 from ...model.scene_file import SceneSpec
+from ...studies.grid import MAX_POINTS as GRID_MAX_POINTS
 from ..units import coordinate_units
 
 __all__ = ["SweepParameter", "SweepPlan", "sweep_plan", "MAX_POINTS", "ELEMENT_KINDS", "SWEEP_FORMAT"]
@@ -50,8 +51,9 @@ __all__ = ["SweepParameter", "SweepPlan", "sweep_plan", "MAX_POINTS", "ELEMENT_K
 SWEEP_FORMAT = __doc__.split("Format (issue 17 part 4)::\n", 1)[1]
 
 #: Most points of one sweep (both parameters together): a modal analysis each, so 10 000 points are
-#: minutes for a small scene; more is a typing error more often than a plan.
-MAX_POINTS = 10_000
+#: minutes for a small scene; more is a typing error more often than a plan.  The API's default cap
+#: (:data:`pinlin.studies.MAX_POINTS`), one number for both.
+MAX_POINTS = GRID_MAX_POINTS
 #: Element kinds a path may name, and the attribute that names the element in the path.
 ELEMENT_KINDS = {"spring": "joint", "damper": "joint", "follower": "frame", "dead": "frame",
                  "spring_damper": "frame", "bushing": "frame"}

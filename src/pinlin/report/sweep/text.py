@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..text import number
+from ..text import complex_text, number
 
 __all__ = ["render_sweep_text", "VERDICT_LETTERS"]
 
@@ -73,7 +73,7 @@ def _changes(doc: dict, precision: int) -> list[str]:
         lam = complex(b["eigenvalue"]["re"], b["eigenvalue"]["im"])
         lines.append(
             f"  {b['kind']} at {p1['path']} = {b['value']:.15g} +- {float(b['error_bound']):.1e}{unit}{at}: {what} "
-            f"({b['mechanism']}, lam = {lam:.6g}; {between}; verified: {b['verified']})"
+            f"({b['mechanism']}, lam = {complex_text(lam, precision)}; {between}; verified: {b['verified']})"
         )
     return lines
 
@@ -102,5 +102,5 @@ def render_sweep_text(doc: dict, precision: int = 6) -> str:
                 f"(1 - smallest MAC between neighbouring points)", ""]
     out += _changes(doc, precision)
     out += [f"note: {note}" for note in doc["notes"]]
-    out += ["", f"Total {doc['elapsed']:.2f} s"]
+    out += ["", f"Sweep {doc['elapsed']:.2f} s (the analyses at every point, mode tracking, boundaries)"]
     return "\n".join(out)
