@@ -23,6 +23,7 @@ EXPECTED = {
     "rotating_systems",
     "robot_arm",
     "constrained_mechanisms",
+    "periodic_motions",
 }
 #: Seconds allowed per cell; all the notebooks together take about a minute.
 CELL_TIMEOUT = 300
