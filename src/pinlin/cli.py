@@ -64,6 +64,7 @@ from .report.outputs import (
     write_animation,
     write_json,
 )
+from .report.periodic import analyze_periodic, check_periodic_options, is_periodic, render_periodic_text
 from .report.sweep import render_sweep_text, run_sweep, sweep_document, sweep_plan, write_sweep_plot
 from .report.sweep.parameters import SWEEP_FORMAT
 from .version import __version__
@@ -266,11 +267,17 @@ def _analyze(args) -> int:
         sweep_plan(spec, spec.sweep)  # a [sweep] table is checked here too, not only by `pinlin sweep`
     if spec.campbell is not None:
         campbell_plan(spec)  # and a [campbell] table
-    if args.animate is not None:
-        _check_mode(row, spec)
-    with args.clock.part("analysis"):
-        report, sys_, modes = analyze(spec)
-    print(render_text(report, args.precision))
+    if is_periodic(spec):  # periodic coefficients: the orbit and its Floquet multipliers
+        check_periodic_options(args.plot, args.animate)
+        with args.clock.part("analysis"):
+            report, orbit, flo = analyze_periodic(spec)
+        print(render_periodic_text(report, orbit, flo, args.precision))
+    else:
+        if args.animate is not None:
+            _check_mode(row, spec)
+        with args.clock.part("analysis"):
+            report, sys_, modes = analyze(spec)
+        print(render_text(report, args.precision))
     if args.json is not None:
         _write(args, "--json", args.json, lambda: write_json(args.json, report))
     if args.plot is not None:

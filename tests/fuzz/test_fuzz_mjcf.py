@@ -80,13 +80,11 @@ def test_mutants_in_subprocesses(tmp_path):
     assert "analysed" in verdicts and "refused by load_mjcf" in verdicts  # the sample reaches both ends
 
 
-@pytest.mark.xfail(raises=IndexError, strict=True, reason="found by this fuzzer, outside the model reader: "
-                   "dead_wrench_stiffness indexes J.shape[2] of a 1-DOF robot's constraint Jacobian")
 def test_found_by_the_fuzzer_a_one_dof_robot_with_a_point_constraint():
     """A four-bar mutant with two of its joints removed: one hinge, one connect (3 equations on 1 DOF).
-    The same with a URDF: the constrained equilibrium raises IndexError instead of OverconstrainedError."""
+    The same with a URDF: the constrained equilibrium raised IndexError; now OverconstrainedError, as linearize."""
     robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"), locked=["coupler_joint", "rocker_joint"])
     loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0))
     scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 10.0)], constraints=[loop])
-    with pytest.raises(pinlin.PinlinError):
+    with pytest.raises(pinlin.OverconstrainedError, match="no motion left"):
         pinlin.find_equilibrium(scene, scene.neutral())

@@ -91,7 +91,6 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import PinlinError, SceneFileError
-from .constraints import FrameConstraint, PointConstraint
 from .elements import (
     Bushing,
     DeadWrench,
@@ -105,6 +104,7 @@ from .loading import data_path, load_example, load_urdf
 from .motions import harmonic_from_table
 from .robot import Robot
 from .scene import Scene
+from .scene_file_constraints import read_constraints
 from .scene_file_values import Reader, read_placement, read_target
 
 if sys.version_info >= (3, 11):
@@ -309,44 +309,6 @@ def _start(r: Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, bool
     return q, equilibrium, balancing
 
 
-def _constraints(r: Reader, doc: dict, robot: Robot) -> list | None:
-    """The ``[[constraint]]`` tables, or None when there are none (the robot's own constraints stay)."""
-    tables = doc.get("constraint")
-    if tables is None:
-        return None
-    if not isinstance(tables, list):
-        r.fail("constraint", "use [[constraint]] (an array of tables), one per constraint")
-    out = []
-    for i, t in enumerate(tables, start=1):
-        where = f"constraint[{i}]"
-        r.check_keys(t, _KEYS["constraint"], where)
-        kind = r.get(t, "type", where, str, "point")
-        if kind not in ("point", "frame"):
-            r.fail(f"{where}.type", f"expected 'point' or 'frame', got {kind!r}")
-        if kind == "frame" and any(k in t for k in ("contact", "friction", "normal")):
-            r.fail(where, "contact, friction and normal apply to point constraints only")
-        try:
-            frame = r.get(t, "frame", where, str, required=True)
-            goal = read_target(r, t, where, placement=kind == "frame")
-            name = r.get(t, "name", where, str)
-            if kind == "frame":
-                constraint = FrameConstraint(frame, goal, name=name)
-            else:
-                constraint = PointConstraint(
-                    frame,
-                    goal,
-                    contact=r.get(t, "contact", where, bool, False),
-                    friction=r.get(t, "friction", where, float),
-                    normal=r.get(t, "normal", where, "numbers", np.array([0.0, 0.0, 1.0])),
-                    name=name,
-                )
-            constraint.check(robot)
-        except SceneFileError:
-            raise
-        except PinlinError as exc:
-            r.fail(where, str(exc), exc)
-        out.append(constraint)
-    return out
 
 
 def load_scene(path) -> SceneSpec:
@@ -375,7 +337,7 @@ def load_scene(path) -> SceneSpec:
         r.fail("robot", "missing the [robot] table")
     robot = _robot(r, doc["robot"], path.parent)
     elements = _elements(r, doc, robot)
-    constraints = _constraints(r, doc, robot)
+    constraints = read_constraints(r, doc, robot, _KEYS["constraint"])
     scene_table = doc.get("scene", {})
     r.check_keys(scene_table, _KEYS["scene"], "scene")
     gravity = r.get(scene_table, "gravity", "scene", "numbers", np.array([0.0, 0.0, -9.81]))

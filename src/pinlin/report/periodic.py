@@ -1,0 +1,118 @@
+"""``pinlin analyze`` of a periodic scene: the periodic orbit and its Floquet analysis (issue 23; theory: Floquet).
+
+A scene is periodic when a prescribed joint follows a periodic motion (``[prescribed] pivot = { amplitude = ...,
+omega = ... }``) or turns at a constant speed on which the equations depend (:func:`pinlin.scene_period`): its
+linearized equations have periodic coefficients, so the report is the periodic reference motion
+(:func:`pinlin.periodic_orbit` from the file's start) and the Floquet multipliers, exponents and frequencies
+with their error bounds and the verdict (:func:`pinlin.floquet_analysis`) instead of eigenvalues.
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..model.scene_file import SceneSpec
+from ..periodic import floquet_analysis, periodic_orbit, scene_period
+from ..version import __version__
+from .document import scene_section
+
+__all__ = ["is_periodic", "analyze_periodic", "render_periodic_text", "check_periodic_options", "PERIODIC_REPORT_VERSION"]
+
+#: Version of the periodic report's JSON layout.
+PERIODIC_REPORT_VERSION = 1
+
+
+def is_periodic(spec: SceneSpec) -> bool:
+    """True when the scene's linearized equations are time-periodic at the file's start."""
+    scene = spec.scene
+    if getattr(scene, "motions", None):
+        return True
+    return bool(scene.prescribed) and scene_period(scene, spec.q0) is not None
+
+
+def analyze_periodic(spec: SceneSpec):
+    """The periodic orbit from the spec's start and its Floquet analysis, as a report.
+
+    Returns
+    -------
+    report : dict
+        JSON-serializable: ``scene``, ``orbit``, ``floquet`` (each result's ``to_dict()``), ``stability``,
+        ``elapsed``.
+    orbit : PeriodicOrbit
+    flo : FloquetAnalysis
+
+    Raises
+    ------
+    PinlinError
+        What :func:`pinlin.periodic_orbit` and :func:`pinlin.floquet_analysis` refuse.
+    """
+    t0 = time.perf_counter()
+    orbit = periodic_orbit(spec.scene, spec.q0)
+    flo = floquet_analysis(spec.scene, orbit)
+    report: dict[str, Any] = {
+        "report_version": PERIODIC_REPORT_VERSION,
+        "kind": "periodic",
+        "pinlin_version": __version__,
+        "scene": {**scene_section(spec), "motions": {j: repr(m) for j, m in spec.scene.motions.items()}},
+        "orbit": orbit.to_dict(),
+        "floquet": flo.to_dict(),
+        "stability": flo.stability.to_dict(),
+    }
+    report["elapsed"] = time.perf_counter() - t0
+    return report, orbit, flo
+
+
+def _multiplier_rows(flo, digits: int) -> list[str]:
+    rows = [f"  {'k':>3} {'multiplier mu':>{2 * digits + 12}} {'|mu|':>{digits + 6}} {'bound':>8} "
+            f"{'Re exponent [1/s]':>18} {'frequency [rad/s]':>18} {'[Hz]':>10}"]
+    mu, bound = np.asarray(flo.multipliers), np.asarray(flo.error_bound)
+    exponent, freq = np.asarray(flo.exponents), np.asarray(flo.frequencies)
+    rate_floor = bound / np.maximum(np.abs(mu), np.finfo(float).tiny) / flo.period   # Re exponent's own error
+    for k in np.argsort(-np.abs(mu), kind="stable"):
+        z = complex(mu[k]) + 0.0
+        rate = 0.0 if abs(exponent[k].real) <= rate_floor[k] else exponent[k].real   # rounding level: 0
+        text = f"{z.real:+.{digits}f}{z.imag:+.{digits}f}i"
+        note = "  trivial" if flo.trivial[k] else ""
+        rows.append(f"  {k + 1:>3} {text:>{2 * digits + 12}} {abs(z):>{digits + 6}.{digits}f} {bound[k]:>8.1e} "
+                    f"{rate + 0.0:>18.6g} {freq[k] + 0.0:>18.6g} {freq[k] / (2 * np.pi) + 0.0:>10.4g}{note}")
+    return rows
+
+
+def render_periodic_text(report: dict, orbit, flo, precision: int = 6) -> str:
+    """The periodic report as text: scene, orbit, the multipliers' table and the verdict."""
+    sc = report["scene"]
+    lines = [f"pinlin {report['pinlin_version']}: {sc['robot']} ({sc['source']}), periodic",
+             f"  free coordinates ({sc['n']}): {', '.join(sc['dof_names'])}"]
+    for joint, motion in sc["motions"].items():
+        lines.append(f"  {joint} follows {motion}")
+    for joint, speed in sc["prescribed"].items():
+        lines.append(f"  {joint} turns at {speed} {sc['prescribed_units'][joint]}")
+    lines += ["", f"Periodic orbit: period {orbit.period:.10g} s, "
+                  + ("constant (the free coordinates stay at an equilibrium)" if orbit.constant else
+                     f"{orbit.iterations} Newton step{'s' if orbit.iterations != 1 else ''} of shooting")
+                  + f", error {orbit.error:.1e}", ""]
+    lines.append(f"Floquet multipliers ({flo.steps} steps in {flo.segments} segment"
+                 f"{'s' if flo.segments != 1 else ''}, {flo.evaluations} evaluations of the coefficients, "
+                 f"largest relative bound {flo.error:.1e})")
+    lines += _multiplier_rows(flo, precision)
+    lines += ["", f"Stability: {flo.stability.kind.replace('_', ' ').upper()}", f"  {flo.stability.reason}", ""]
+    lines.append(f"Analysis {report['elapsed'] * 1e3:.1f} ms (periodic orbit, Floquet analysis)")
+    return "\n".join(lines)
+
+
+def check_periodic_options(plot, animate) -> None:
+    """Refuse, before anything is computed, the outputs a periodic report does not have.
+
+    Raises
+    ------
+    ParameterError
+        ``--plot`` or ``--animate`` given for a periodic scene (they draw eigenvalues and mode shapes).
+    """
+    for option, value in (("--plot", plot), ("--animate", animate)):
+        if value is not None:
+            raise ParameterError(option, "draws eigenvalues or a mode shape; a periodic scene has Floquet "
+                                         "multipliers instead (use --json, or pinlin.floquet_analysis in Python)")
