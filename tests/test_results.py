@@ -185,6 +185,9 @@ BUILDERS = {
     # time-periodic motions (issue 23)
     "PeriodicOrbit": kapitza_orbit,
     "FloquetAnalysis": lambda: pinlin.floquet_analysis(kapitza_orbit().scene, kapitza_orbit()),
+    "FloquetCampbell": lambda: pinlin.floquet_campbell(
+        lambda w: pinlin.floquet_analysis_matrices(np.eye(1), None, lambda t: np.array([[w + 0.1 * np.cos(t)]]),
+                                                   2 * np.pi), [2.0, 3.0]),
     # parameter studies
     "CriticalParameter": lambda: pinlin.critical_parameter(softening, (0.0, 2.0)),
     "StabilityBoundary": lambda: pinlin.stability_boundary(softening2, [1.0, 1.5], (0.0, 3.0)),

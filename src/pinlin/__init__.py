@@ -158,6 +158,7 @@ from .response import (
     free_response,
 )
 from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
+from .studies.floquet_campbell import FloquetCampbell, floquet_campbell
 from .studies.sweep import SweepFailure, SweepResult, sweep
 from .version import __version__
 
@@ -302,6 +303,8 @@ __all__ = [
     "floquet_analysis_matrices",
     "floquet_from_first_order",
     "multiblade_transform",
+    "floquet_campbell",
+    "FloquetCampbell",
     "multiblade_transform_matrices",
     "FloquetAnalysis",
     "QuasiPeriodicError",

@@ -129,7 +129,8 @@ def blame(spec: SceneSpec, exc: InputError) -> InputError:
         return exc
     key, hint = None, ""
     if isinstance(exc, TimePeriodicError):
-        key, hint = f"prescribed.{exc.joint}", "pinlin analyses constant-coefficient equations only"
+        key, hint = f"prescribed.{exc.joint}", ("its coefficients are periodic: pinlin.periodic_orbit and "
+                                                  "pinlin.floquet_analysis analyse it")
     else:
         for kind, blamed, why in _BLAME:
             if isinstance(exc, kind):

@@ -11,9 +11,12 @@
 - :mod:`.ray_executor` -- :class:`RayExecutor`: Ray tasks behind the Executor interface
   (Dask has its own: ``Client.get_executor()``);
 - :mod:`.tracking` -- follow modes across a sweep by their shapes (MAC and assignment),
-  and pick one mode of each conjugate pair for Campbell diagrams.
+  and pick one mode of each conjugate pair for Campbell diagrams;
+- :mod:`.floquet_campbell` -- :func:`floquet_campbell`: Floquet exponents of a periodic family against a speed,
+  identified by their harmonic content and tracked.
 """
 
+from .floquet_campbell import FloquetCampbell, floquet_campbell
 from .grid import MAX_POINTS
 from .ray_executor import RayExecutor
 from .sweep import SweepFailure, SweepResult, SweepTimeoutError, sweep
@@ -30,4 +33,6 @@ __all__ = [
     "track_modes",
     "mac",
     "one_per_conjugate_pair",
+    "floquet_campbell",
+    "FloquetCampbell",
 ]
