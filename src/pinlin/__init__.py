@@ -117,6 +117,7 @@ from .model.generators import double_pendulum_urdf, pendulum_chain_urdf, rotatin
 from .model.mjcf import load_mjcf
 from .model.scene import Scene
 from .nonlinear import Simulation, linear_coordinates, simulate
+from .results import load
 from .response import (
     EnergyBudget,
     ForcedResponse,
@@ -131,6 +132,8 @@ from .version import __version__
 
 __all__ = [
     "__version__",
+    # results a user can keep
+    "load",
     # loading
     "Robot",
     "load_urdf",

@@ -37,7 +37,7 @@ import scipy.linalg as sla
 from scipy.linalg.lapack import dsyevd as _dsyevd
 
 from ..errors import ParameterError
-from ..results import to_jsonable
+from ..results import persistent, to_jsonable
 from .checks import check_uncertainty
 from .floating import EPS
 
@@ -89,6 +89,7 @@ def rounding_bound(n: int, norm: float, factor: float = EIGENVALUE_ROUNDING) -> 
     return float(factor * n * EPS * norm)
 
 
+@persistent
 @dataclass(frozen=True)
 class Definiteness:
     """The definiteness of a symmetric matrix and the numbers behind the decision.
