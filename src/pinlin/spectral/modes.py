@@ -19,6 +19,7 @@ from .multiplicity import Cluster
 from .participation import DOMINANT_COUNT, DOMINANT_SHARE, participation
 from .qualitative import ModeConstants, StructuralFacts, constants_of
 from .stability import Stability
+from .tables import modes_frame
 
 __all__ = ["Modes", "Method", "MODE_KINDS", "DeferredFigures", "DeferredVerdict"]
 
@@ -377,6 +378,10 @@ class Modes(Result):
         return "\n".join(lines)
 
     summary = table
+
+    def to_pandas(self):
+        """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`)."""
+        return modes_frame(self)
 
     def __repr__(self) -> str:
         return (
