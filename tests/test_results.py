@@ -148,6 +148,8 @@ BUILDERS = {
     "Stability": lambda: damped_modes().stability,
     "JordanChains": lambda: pinlin.jordan_chains(rigid(), 0.0),
     "Cluster": lambda: pinlin.modal_analysis(rigid()).clusters[0],
+    "ModeEnergy": lambda: pinlin.modal_analysis(pinlin.linearize(pendulum_scene(), equilibrium().q)).energy(
+        0, pendulum_scene()),
     # adjoint
     "CharacteristicPolynomial": lambda: pinlin.characteristic_polynomial(damped()),
     "AdjugateMatrix": lambda: pinlin.adjugate(damped(), 1.0 + 2.0j),

@@ -15,6 +15,7 @@ from ..numerics.arrays import readonly
 from ..numerics.scaling import Scaling
 from ..results import Result, persistent
 from .deferred import DeferredFigures, DeferredVerdict
+from .energy import mode_energy
 from .multiplicity import Cluster
 from .participation import DOMINANT_COUNT, DOMINANT_SHARE, participation
 from .qualitative import ModeConstants, StructuralFacts, constants_of
@@ -382,6 +383,10 @@ class Modes(Result):
     def to_pandas(self):
         """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`)."""
         return modes_frame(self)
+
+    def energy(self, k: int, scene=None):
+        """Mode k's energy per body and element (:func:`pinlin.spectral.energy.mode_energy`)."""
+        return mode_energy(self, k, scene)
 
     def __repr__(self) -> str:
         return (
