@@ -117,7 +117,6 @@ from .model.generators import double_pendulum_urdf, pendulum_chain_urdf, rotatin
 from .model.mjcf import load_mjcf
 from .model.scene import Scene
 from .nonlinear import Simulation, linear_coordinates, simulate
-from .results import load
 from .response import (
     EnergyBudget,
     ForcedResponse,
@@ -126,7 +125,8 @@ from .response import (
     forced_response,
     free_response,
 )
-from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
+from .results import load
+from .spectral import JordanChains, ModeEnergy, Modes, Stability, jordan_chains, modal_analysis
 from .studies.sweep import SweepFailure, SweepResult, sweep
 from .version import __version__
 
@@ -236,6 +236,7 @@ __all__ = [
     "modal_analysis",
     "jordan_chains",
     "Modes",
+    "ModeEnergy",
     "Stability",
     "JordanChains",
     # adjoint and flexibility (SPEC section 4)

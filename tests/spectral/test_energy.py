@@ -9,6 +9,9 @@
 - The bundled four-bar (constraints, ``sys.basis``) with a crank spring under gravity: each
   link's kinetic share m_k |v_k'|^2 + I_k omega_k'^2 over M_eff, and the spring's strain share
   k / (k + V_g'') (the energy method of tests/constrained_cases.py).
+- Rayleigh damping (alpha M or beta K_e) on the chain: one damper row with share 1.
+- A turntable with a prescribed spin: the spun table has no kinetic share; the centrifugal
+  softening is a negative share of the rest row.
 - Every table sums to 1 to 1e-12; bad input raises ParameterError.
 """
 
@@ -178,3 +181,31 @@ def test_mode_energy_reads_back_and_prints():
     assert "kinetic (bodies)" in text and "damper j2" in text
     assert "loads and other      0.00 %" in text and "-0.00 %" not in text  # a rounding-size share prints as 0
     assert "\n" not in repr(energy)
+
+
+@pytest.mark.parametrize("alpha, beta", [(0.0, 0.01), (0.05, 0.0)])
+def test_rayleigh_damping_is_one_damper(alpha, beta):
+    """C = alpha M + beta K_e keeps the chain's shapes; the Rayleigh element dissipates everything."""
+    robot = pinlin.load_urdf_string(chain_urdf())
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("j1", K1), pinlin.JointSpring("j2", K2),
+                                 pinlin.RayleighDamping(alpha=alpha, beta=beta)], gravity=(0, 0, 0))
+    modes = pinlin.modal_analysis(pinlin.linearize(scene, np.zeros(2)))
+    energy = modes.energy(0, scene)
+    assert list(energy.dissipation) == ["rayleigh"]
+    assert_allclose(energy.dissipation["rayleigh"], 1.0, rtol=1e-12)
+    assert_allclose([energy.strain["spring j1"], energy.strain["spring j2"]], [0.5, 0.5], rtol=1e-10)
+
+
+def test_prescribed_rotation_softens_through_the_rest_row():
+    """A turntable spun at 2 rad/s: the spun table takes no kinetic share of a mode (its speed is
+    prescribed), and the centrifugal softening of the slider is a negative share of the rest row."""
+    robot = pinlin.load_urdf_string(pinlin.turntable_urdf())
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("arm", 5.0), pinlin.JointSpring("slider", 50.0),
+                                 pinlin.JointDamper("slider", 0.2)], prescribed={"table": 2.0})
+    sys = pinlin.linearize(scene, pinlin.find_equilibrium(scene, scene.neutral()).q)
+    modes = pinlin.modal_analysis(sys)
+    energy = modes.energy(0, scene)
+    assert_tables_sum_to_one(energy)
+    assert energy.kinetic["table"] == 0.0
+    assert energy.strain["loads and other"] < 0 and energy.strain["spring slider"] > 1
+    assert energy.dissipation == {"damper slider": pytest.approx(1.0, abs=1e-12)}

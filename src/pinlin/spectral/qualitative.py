@@ -21,7 +21,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..numerics.checks import check_uncertainty
-from ..results import persistent
 from ..numerics.definiteness import (
     DEFAULT_UNCERTAINTY,
     DEFINITENESS_TOL,
@@ -29,6 +28,7 @@ from ..numerics.definiteness import (
     symmetric_definiteness,
 )
 from ..numerics.determinant import Nonsingularity, nonsingularity, validated_nonsingularity
+from ..results import persistent
 from .problem import QuadraticProblem
 
 #: The smallest positive normal double.
