@@ -153,3 +153,29 @@ def test_bad_input_to_load(tmp_path):
         pinlin.load({"method": "x"})
     with pytest.raises(pinlin.ParameterError, match="unknown result type 'Nothing'; known: .*Modes"):
         pinlin.load({"type": "Nothing"})
+
+
+def test_a_loaded_definiteness_refuses_to_decide_again():
+    modes = builders.build("Modes")
+    loaded = round_trip(modes)
+    original = modes.structure.definiteness_M
+    kept = loaded.structure.definiteness_M
+    assert_same(original, kept)
+    assert original.at(0.1).uncertainty == 0.1  # the original keeps its eigenvalues
+    with pytest.raises(pinlin.ParameterError, match=r"read back from its data \(pinlin.load\)"):
+        kept.at(0.1)
+
+
+def test_a_report_section_reads_back(tmp_path, capsys):
+    from pinlin.cli import main
+
+    assert main(["analyze", "--example", "ur5", "--json", str(tmp_path / "r.json")]) == 0
+    capsys.readouterr()
+    report = json.loads((tmp_path / "r.json").read_text())
+    modes = pinlin.load(report["modes"])  # the report-only keys (table) are ignored
+    assert isinstance(modes, pinlin.Modes) and modes.dof_names[0] == "shoulder_pan_joint"
+    assert modes.eigenvalues.real.tolist() == report["modes"]["eigenvalues"]["re"]
+    assert modes.eigenvalues.imag.tolist() == report["modes"]["eigenvalues"]["im"]
+    system = pinlin.load(report["linearization"])
+    assert isinstance(system, pinlin.LinearizedSystem) and system.M.shape == (6, 6)
+    assert pinlin.load(report["stability"]).kind == report["stability"]["kind"]

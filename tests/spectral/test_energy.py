@@ -166,6 +166,9 @@ def test_bad_input_is_refused(four_bar):
                            chain_scene.elements, gravity=(0, 0, 0))
     with pytest.raises(pinlin.ParameterError, match="its mass matrix at sys.q differs from sys.M by"):
         chain_modes.energy(0, heavier)
+    loaded = pinlin.load(chain_modes.to_dict())
+    with pytest.raises(pinlin.ParameterError, match="read back by pinlin.load, which keeps no system or matrices"):
+        loaded.energy(0)
     bare = pinlin.modal_analysis((np.eye(2), np.zeros((2, 2)), np.diag([1.0, 4.0])))
     with pytest.raises(pinlin.ParameterError, match="modes of bare matrices|bare matrices: there is no system"):
         bare.energy(0, chain_scene)

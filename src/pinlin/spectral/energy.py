@@ -166,7 +166,8 @@ def mode_energy(modes, k: int, scene: Scene | None = None) -> ModeEnergy:
     ParameterError
         ``k`` not an integer in [0, 2n); ``scene`` not a Scene, or not the scene of the
         analysed system (other coordinates, or a mass matrix that differs by more than
-        :data:`SCENE_MATCH_TOL`), or given for modes of bare matrices.
+        :data:`SCENE_MATCH_TOL`), or given for modes of bare matrices; ``modes`` read back
+        by :func:`pinlin.load` (they keep no matrices).
     """
     t0 = time.perf_counter()
     if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 0 <= k < len(modes):
@@ -200,6 +201,9 @@ def _system_matrices(modes) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     sys = modes.system
     if sys is not None:
         return np.asarray(sys.M), np.asarray(sys.D), np.asarray(sys.S)
+    if modes.matrices is None:
+        raise ParameterError("modes", "were read back by pinlin.load, which keeps no system or matrices: "
+                             "analyse the system again to split the energy")
     M, C, K = modes.matrices
     return 0.5 * (M + M.T), 0.5 * (C + C.T), 0.5 * (K + K.T)
 
