@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 
 import numpy as np
 import pytest
@@ -68,8 +67,9 @@ def assert_same(a, b, path="result"):
         for i, (x, y) in enumerate(zip(a, b)):
             assert_same(x, y, f"{path}[{i}]")
         return
-    if isinstance(a, float) and math.isnan(a):
-        assert isinstance(b, float) and math.isnan(b), path
+    if isinstance(a, (float, complex, np.floating, np.complexfloating)) and a != a:  # NaN somewhere
+        assert type(b) is type(a), path
+        assert_same(np.array([a]), np.array([b]), path)  # bitwise but for the NaN's sign and payload
         return
     assert type(b) is type(a) and b == a, (path, a, b)
     if isinstance(a, str):
