@@ -179,3 +179,12 @@ def test_a_report_section_reads_back(tmp_path, capsys):
     system = pinlin.load(report["linearization"])
     assert isinstance(system, pinlin.LinearizedSystem) and system.M.shape == (6, 6)
     assert pinlin.load(report["stability"]).kind == report["stability"]["kind"]
+
+
+def test_a_user_class_of_the_same_name_does_not_shadow_pinlins():
+    class Modes(Result):  # noqa: F811 -- a user's result class that happens to share the name
+        _dict_fields = ()
+        method, error, elapsed = "user", 0.0, 0.0
+
+    data = json.loads(json.dumps(builders.build("Modes").to_dict(), allow_nan=False))
+    assert type(pinlin.load(data)) is pinlin.Modes

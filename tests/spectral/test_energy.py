@@ -212,3 +212,13 @@ def test_prescribed_rotation_softens_through_the_rest_row():
     assert energy.kinetic["table"] == 0.0
     assert energy.strain["loads and other"] < 0 and energy.strain["spring slider"] > 1
     assert energy.dissipation == {"damper slider": pytest.approx(1.0, abs=1e-12)}
+
+
+def test_tables_are_read_only():
+    scene, _, modes = chain()
+    energy = modes.energy(0, scene)
+    with pytest.raises(TypeError):
+        energy.kinetic["m1"] = 0.0
+    loaded = pinlin.load(energy.to_dict())
+    with pytest.raises(TypeError):
+        loaded.strain["spring j1"] = 0.0

@@ -223,7 +223,10 @@ class Result:
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
-        _RESULTS[cls.__name__] = cls  # for from_dict / load: a result class registers itself by name
+        # for from_dict / load: a result class registers itself by name (a user's class of the same name as
+        # one of pinlin's does not shadow it)
+        if cls.__name__ not in _RESULTS or cls.__module__.startswith("pinlin."):
+            _RESULTS[cls.__name__] = cls
 
     def to_dict(self, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The result as JSON-serializable data, with ``type``, ``method``, ``error`` and ``elapsed`` first.

@@ -35,7 +35,8 @@ undamped system) is empty, and ``notes`` says so.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
+from types import MappingProxyType
 
 import numpy as np
 import pinocchio as pin
@@ -64,7 +65,7 @@ class ModeEnergy(Result):
         The mode's position k in its :class:`~pinlin.Modes`.
     eigenvalue : complex
         lam_k [1/s].
-    kinetic, strain, dissipation : dict of str to float
+    kinetic, strain, dissipation : mapping of str to float
         Shares per body (or coordinate), per element and per damper, each summing to 1
         (signed, see the module docstring); empty when the table's total is zero.
     kinetic_energy, strain_energy, dissipated_power : float
@@ -95,6 +96,14 @@ class ModeEnergy(Result):
     error: float
     elapsed: float
     notes: tuple[str, ...] = field(default=())
+
+    def __post_init__(self):
+        for name in ("kinetic", "strain", "dissipation"):  # an immutable value: read-only tables
+            object.__setattr__(self, name, MappingProxyType(dict(getattr(self, name))))
+
+    @classmethod
+    def _from_values(cls, values: dict) -> ModeEnergy:
+        return cls(**{f.name: values[f.name] for f in fields(cls)})
 
     @property
     def dominant_body(self) -> str | None:
