@@ -231,7 +231,7 @@ class Result:
     def to_dict(self, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
         """The result as JSON-serializable data, with ``type``, ``method``, ``error`` and ``elapsed`` first.
 
-        ``extra`` (for subclasses) adds more named values.  The last key, ``"encoding"``, maps each key
+        ``extra`` (for subclasses) adds more named values.  The fifth key, ``"encoding"``, maps each key
         whose JSON value is not the value itself to how :func:`decode` reads it back.
         """
         out: dict[str, Any] = {
@@ -239,6 +239,7 @@ class Result:
             "method": to_jsonable(str(self.method) if self.method is not None else None),
             "error": to_jsonable(self.error),
             "elapsed": to_jsonable(self.elapsed),
+            "encoding": {},  # filled below; fifth, so that a result's own last keys stay last
         }
         encoding = {"method": _spec(self.method), "error": _spec(self.error), "elapsed": _spec(self.elapsed)}
         items = [(name, getattr(self, name)) for name in self._field_names()] + list((extra or {}).items())
