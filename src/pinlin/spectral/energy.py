@@ -255,8 +255,9 @@ def _scene_tables(modes, scene, x, M, D, S, w):
     q = np.asarray(sys.q)
     ev = Evaluation(scene, q, np.asarray(sys.v if sys.v is not None else scene.v0))
     M_full = ev.mass_matrix()
-    error = np.linalg.norm(T.T @ M_full @ T - M) / np.linalg.norm(M)
-    if error > SCENE_MATCH_TOL:
+    scale = np.abs(M).max()  # M positive definite: scale > 0; dividing first keeps tiny masses from underflowing
+    error = float(np.linalg.norm((T.T @ M_full @ T - M) / scale) / np.linalg.norm(M / scale))
+    if not error <= SCENE_MATCH_TOL:
         raise ParameterError(
             "scene", f"does not match the analysed system: its mass matrix at sys.q differs from sys.M by "
             f"{error:.2e} (relative), above {SCENE_MATCH_TOL:g}"
