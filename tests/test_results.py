@@ -160,6 +160,8 @@ BUILDERS = {
         [[6.0, 2.0], [2.0, 1.0]], None, [[1.0, 1.8], [0.0, 1.0]])).stability.dissipation[1],
     "JordanChains": lambda: pinlin.jordan_chains(rigid(), 0.0),
     "Cluster": lambda: pinlin.modal_analysis(rigid()).clusters[0],
+    "ModeEnergy": lambda: pinlin.modal_analysis(pinlin.linearize(pendulum_scene(), equilibrium().q)).energy(
+        0, pendulum_scene()),
     # adjoint
     "CharacteristicPolynomial": lambda: pinlin.characteristic_polynomial(damped()),
     "AdjugateMatrix": lambda: pinlin.adjugate(damped(), 1.0 + 2.0j),

@@ -157,13 +157,16 @@ from .response import (
     forced_response,
     free_response,
 )
-from .spectral import JordanChains, Modes, Stability, jordan_chains, modal_analysis
+from .results import load
+from .spectral import JordanChains, ModeEnergy, Modes, Stability, jordan_chains, modal_analysis
 from .studies.floquet_campbell import FloquetCampbell, floquet_campbell
 from .studies.sweep import SweepFailure, SweepResult, sweep
 from .version import __version__
 
 __all__ = [
     "__version__",
+    # results a user can keep
+    "load",
     # loading
     "Robot",
     "load_urdf",
@@ -273,6 +276,7 @@ __all__ = [
     "modal_analysis",
     "jordan_chains",
     "Modes",
+    "ModeEnergy",
     "Stability",
     "JordanChains",
     # adjoint and flexibility (SPEC section 4)

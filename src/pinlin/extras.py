@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from .errors import MissingDependencyError
 
-__all__ = ["import_control"]
+__all__ = ["import_control", "import_pandas"]
 
 
 def import_control():
@@ -26,3 +26,18 @@ def import_control():
             "this needs python-control (>= 0.10): pip install 'pinlin[control]'"
         ) from exc
     return control
+
+
+def import_pandas():
+    """The ``pandas`` module (for the ``to_pandas()`` tables of results).
+
+    Raises
+    ------
+    MissingDependencyError
+        pandas is not installed.
+    """
+    try:
+        import pandas
+    except ImportError as exc:
+        raise MissingDependencyError("this needs pandas (>= 2.0): pip install 'pinlin[pandas]'") from exc
+    return pandas

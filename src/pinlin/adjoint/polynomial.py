@@ -71,6 +71,13 @@ class CharacteristicPolynomial(Polynomial, Result):
         for key in self._meta:
             setattr(self, key, None)
 
+    @classmethod
+    def _from_values(cls, values: dict) -> CharacteristicPolynomial:
+        out = cls(values["coef"])
+        for key in cls._meta:
+            setattr(out, key, values.get(key))
+        return out
+
     def __repr__(self) -> str:
         if self.error is None:
             return f"CharacteristicPolynomial(degree={self.degree()}, derived: no error figures)"

@@ -35,7 +35,7 @@ import numpy as np
 from ..errors import ComputationError, ParameterError
 from ..linearization.system import LinearizedSystem
 from ..numerics import system_scaling
-from ..results import Result
+from ..results import Result, persistent
 
 __all__ = [
     "JordanBlock",
@@ -64,6 +64,7 @@ REFINE_STEPS = 2
 _MODES_ATTRIBUTES = ("eigenvalues", "right", "left", "left_normalized", "clusters", "matrices")
 
 
+@persistent
 @dataclass(frozen=True)
 class JordanBlock:
     """One Jordan chain: eigenvalue lam0 [1/s] and vectors (n, r), columns x_0 ... x_{r-1}."""
@@ -136,6 +137,8 @@ class ModalExpansion(Result):
 
     @property
     def error(self) -> float:
+        if self.modes is None:  # read back by pinlin.load: the modes are not kept, the figure is
+            return self.__dict__["_loaded"]["error"]
         return max(float(np.max(self.modes.backward_error, initial=0.0)), float(self.chain_residual))
 
     @property

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..extras import import_pandas
 from ..linearization.system import check_system
 from ..numerics import check_tolerance, dof_indices
 from ..results import Result
@@ -112,6 +113,28 @@ class FrequencyResponse(Result):
 
     def __iter__(self):
         return iter((self.magnitude, self.phase, self.omega))
+
+    def to_pandas(self):
+        """The response in long format: one row per (frequency, output, input), frequency first.
+
+        Columns ``omega`` [rad/s], ``frequency_hz`` [Hz], ``output``, ``input`` (coordinate
+        names), ``magnitude``, ``phase`` [rad], ``re``, ``im`` of H(i omega)[output, input].
+
+        Raises
+        ------
+        MissingDependencyError
+            pandas is not installed (``pip install 'pinlin[pandas]'``).
+        """
+        pd = import_pandas()
+        n_out, n_in, n_w = self.response.shape
+        H = np.moveaxis(np.asarray(self.response), -1, 0).reshape(-1)  # frequency, output, input
+        return pd.DataFrame({
+            "omega": np.repeat(self.omega, n_out * n_in),
+            "frequency_hz": np.repeat(self.frequency, n_out * n_in),
+            "output": np.tile(np.repeat(np.asarray(self.output_names, dtype=object), n_in), n_w),
+            "input": np.tile(np.asarray(self.input_names, dtype=object), n_out * n_w),
+            "magnitude": np.abs(H), "phase": np.angle(H), "re": H.real, "im": H.imag,
+        })
 
     def __repr__(self) -> str:
         err = "unchecked" if self.defects is None else f"{self.error:.1e}"

@@ -44,7 +44,7 @@ from ..numerics import (
     complex_scalar,
     natural_scale,
 )
-from ..results import Result, to_jsonable
+from ..results import Result
 from .contour import automatic_contour, fixed_contour
 
 __all__ = ["Residues", "residues", "principal_part_residual", "aliasing_ratio", "GEOMETRY_SAFETY"]
@@ -157,9 +157,11 @@ class Residues(list, Result):
         return out
 
     def to_dict(self) -> dict:
-        out = Result.to_dict(self)
-        out["residues"] = to_jsonable(list(self))
-        return out
+        return Result.to_dict(self, extra={"residues": list(self)})
+
+    @classmethod
+    def _from_values(cls, values: dict) -> Residues:
+        return cls(values["residues"], **{k: values.get(k) for k in cls._meta})
 
     def __repr__(self) -> str:
         return (

@@ -37,7 +37,7 @@ import scipy.linalg as sla
 from scipy.linalg.lapack import dsyevd as _dsyevd
 
 from ..errors import ParameterError
-from ..results import to_jsonable
+from ..results import persistent, to_jsonable
 from .checks import check_uncertainty
 from .floating import EPS
 
@@ -89,6 +89,7 @@ def rounding_bound(n: int, norm: float, factor: float = EIGENVALUE_ROUNDING) -> 
     return float(factor * n * EPS * norm)
 
 
+@persistent
 @dataclass(frozen=True)
 class Definiteness:
     """The definiteness of a symmetric matrix and the numbers behind the decision.
@@ -169,9 +170,13 @@ class Definiteness:
         Raises
         ------
         ParameterError
-            ``uncertainty`` not in [0, 1).
+            ``uncertainty`` not in [0, 1), or this decision was read back by :func:`pinlin.load`
+            (which keeps the decision, not the eigenvalues it was made from).
         """
         u = check_uncertainty(uncertainty)
+        if self._eigenvalues is None and self.norm != 0:  # read back by pinlin.load: no eigenvalues kept
+            raise ParameterError("uncertainty", "this decision was read back from its data (pinlin.load), which "
+                                 "keeps no eigenvalues to decide again: call definiteness() on the matrix")
         if self._eigenvalues is None:  # the zero matrix
             return replace(self, uncertainty=u, tol=self.rounding + u)  # nothing attached to carry over
         out = _decide(self._eigenvalues, self.norm, self.rounding, u, self._cholesky_lower)

@@ -18,6 +18,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..errors import ComputationError
+from ..results import persistent
 from .floating import EPS, LOG_MAX, LOG_TINY
 from .norms import coefficient_norms
 
@@ -37,6 +38,7 @@ __all__ = [
 INVERTIBLE_K_FACTOR = 1e3
 
 
+@persistent
 @dataclass(frozen=True)
 class Scaling:
     """Fan-Lin-Van Dooren scaling lambda = gamma mu, L_s(mu) = delta L(gamma mu) (SPEC section 4).

@@ -23,12 +23,14 @@ One concept per module:
 - :mod:`.mode_shapes` -- :func:`mode_shape` (3-D or on a plane, a few phases) and
   :func:`chain_mode_shape` (a planar chain along a given shape);
 - :mod:`.animation` -- :func:`animate_mode`: one cycle of a mode, as a GIF or in a notebook;
+- :mod:`.energy` -- :func:`mode_energy`: a mode's kinetic, strain and dissipation shares as bars;
 - :mod:`.work_precision` -- :func:`work_precision`: error against run time (benchmarks).
 """
 
 from .animation import animate_mode
 from .campbell import UNSTABLE_RTOL, campbell
 from .eigenvalues import AXIS_MARGIN, KIND_STYLE, MIN_REAL_SPAN_FRACTION, eigenvalue_map, root_locus
+from .energy import ENERGY_COLORS, mode_energy
 from .frequency import frequency_response
 from .mode_shapes import chain_mode_shape, mode_shape
 from .skeleton import MODE_AMPLITUDE_FRACTION, ModeMotion, Skeleton, mode_motion
@@ -49,6 +51,8 @@ __all__ = [
     "Skeleton",
     "chain_mode_shape",
     "work_precision",
+    "mode_energy",
+    "ENERGY_COLORS",
     "VERDICT_COLORS",
     "KIND_STYLE",
     "AXIS_MARGIN",

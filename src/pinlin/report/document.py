@@ -30,6 +30,7 @@ from ..model.scene_file import SceneSpec
 from ..results import to_jsonable
 from ..spectral import Modes, modal_analysis
 from ..version import __version__
+from .energy import energy_section
 from .schema import REPORT_VERSION
 from .text import mode_table
 from .units import coordinate_units
@@ -203,5 +204,6 @@ def _analyze(spec: SceneSpec):
     report["modes"] = {**modes.to_dict(), "method_reason": modes.method.reason}
     report["modes"]["table"] = mode_table(report["modes"])
     report["stability"] = modes.stability.to_dict()
+    report["energy"] = energy_section(modes, spec.scene)
     report["elapsed"] = time.perf_counter() - t0
     return report, sys_, modes

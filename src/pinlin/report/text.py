@@ -20,6 +20,7 @@ import numpy as np
 
 from ..linearization.system import MATRIX_NAMES
 from ..numerics.definiteness import rounding_bound
+from .energy import energy_lines
 from .units import matrix_unit
 
 __all__ = ["render_text", "mode_table", "matrix_text", "number", "complex_text", "plural", "MAX_PRINTED_SIZE",
@@ -258,5 +259,6 @@ def render_text(report: dict, precision: int = 6) -> str:
     out += [mode_table(modes, precision), f"  modal analysis {modes['elapsed'] * 1e3:.2f} ms", ""]
     st = report["stability"]
     out += [f"Stability: {st['kind'].replace('_', ' ').upper()}", f"  {st['reason']}", *_dissipation_lines(st), ""]
+    out += energy_lines(report)
     out.append(f"Analysis {report['elapsed'] * 1e3:.1f} ms (equilibrium, linearization, modal analysis)")
     return "\n".join(out)

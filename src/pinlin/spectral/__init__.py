@@ -28,10 +28,14 @@ One concept per module, in the order of :func:`modal_analysis`:
 - :mod:`.modes` -- the result object :class:`Modes` (condition numbers, modal
   constants, participation, structural facts, verdict and notes formed on first access);
 - :mod:`.participation` -- each coordinate's share of a mode's kinetic plus potential energy;
+- :mod:`.energy` -- :class:`ModeEnergy` (``modes.energy(k, scene)``): a mode's kinetic energy per
+  body, strain energy per element and dissipation per damper;
+- :mod:`.tables` -- one record per eigenvalue (``modes.to_pandas()``);
 - :mod:`.analysis` -- :func:`modal_analysis`, which ties them together.
 """
 
 from .analysis import EIGH_TOL, STRUCTURE_TOL, modal_analysis
+from .energy import ModeEnergy, mode_energy
 from .jordan import CLUSTER_TOL, RANK_TOL, JordanChains, jordan_chains
 from .modes import MODE_KINDS, Method, Modes
 from .multiplicity import Cluster
@@ -49,6 +53,8 @@ __all__ = [
     "Stability",
     "Cluster",
     "JordanChains",
+    "ModeEnergy",
+    "mode_energy",
     "ModeConstants",
     "StructuralFacts",
     "QuadraticProblem",

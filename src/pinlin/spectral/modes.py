@@ -13,18 +13,21 @@ from ..linearization.system import LinearizedSystem
 from ..numerics.accuracy import condition_numbers
 from ..numerics.arrays import readonly
 from ..numerics.scaling import Scaling
-from ..results import Result, to_jsonable
+from ..results import Result, persistent
 from .deferred import DeferredFigures, DeferredVerdict
+from .energy import mode_energy
 from .multiplicity import Cluster
 from .participation import DOMINANT_COUNT, DOMINANT_SHARE, participation
 from .qualitative import ModeConstants, StructuralFacts, constants_of
 from .stability import Stability
+from .tables import modes_frame
 
 __all__ = ["Modes", "Method", "MODE_KINDS", "DeferredFigures", "DeferredVerdict"]
 
 #: Per-eigenvalue kinds, see :attr:`Modes.kind`.
 MODE_KINDS = ("rigid_body", "underdamped", "overdamped", "unstable", "undamped")
 
+@persistent
 class Method(str):
     """The solver path taken: a string equal to its name, with the reason attached.
 
@@ -201,18 +204,8 @@ class Modes(Result):
     verdict: DeferredVerdict | None = field(default=None, repr=False)
 
     def __post_init__(self):
-        for name in (
-            "eigenvalues",
-            "right",
-            "left",
-            "left_normalized",
-            "backward_error",
-            "error_bound",
-            "natural_frequency",
-            "damping_ratio",
-            "multiplicity",
-            "block",
-        ):
+        for name in ("eigenvalues", "right", "left", "left_normalized", "backward_error", "error_bound",
+                     "natural_frequency", "damping_ratio", "multiplicity", "block"):
             value = getattr(self, name)
             if not (isinstance(value, np.ndarray) and value.flags.owndata and not value.flags.writeable):
                 object.__setattr__(self, name, readonly(value))  # an array nobody else can write is kept
@@ -271,7 +264,8 @@ class Modes(Result):
         """The coordinates' names (the system's, or x1 ... xn for tuple input)."""
         if self.system is not None:
             return tuple(self.system.dof_names)
-        return tuple(f"x{i + 1}" for i in range(self.n))
+        saved = self.__dict__.get("_loaded", {}).get("dof_names")  # read back by pinlin.load
+        return tuple(saved) if saved is not None else tuple(f"x{i + 1}" for i in range(self.n))
 
     def dominant(self, share: float = DOMINANT_SHARE, count: int | None = DOMINANT_COUNT) -> list:
         """Per mode, the coordinates with at least ``share`` of its energy: [(name, share), ...], largest first.
@@ -330,14 +324,11 @@ class Modes(Result):
     def to_dict(self) -> dict:
         """JSON-serializable data: every field but ``system`` and ``matrices``; ``condition``, ``constants``,
         ``participation`` (n, 2n), ``dominant`` (per mode, the coordinates of :meth:`dominant` with their
-        shares) and ``method_reason`` added."""
-        out = super().to_dict()
-        out["condition"] = to_jsonable(self.condition)
-        out["constants"] = to_jsonable(self.constants)
-        out["participation"] = to_jsonable(self.participation)
-        out["dominant"] = [[{"name": name, "share": p} for name, p in row] for row in self.dominant()]
-        out["method_reason"] = self.method.reason
-        return out
+        shares), ``method_reason`` and ``dof_names`` added."""
+        dominant = [[{"name": name, "share": p} for name, p in row] for row in self.dominant()]
+        return super().to_dict(extra={"condition": self.condition, "constants": self.constants, "participation":
+                                      self.participation, "dominant": dominant, "method_reason": self.method.reason,
+                                      "dof_names": self.dof_names})
 
     @property
     def frequency_hz(self) -> np.ndarray:
@@ -347,7 +338,7 @@ class Modes(Result):
     # ------------------------------------------------------------------ text
 
     def table(self, max_rows: int | None = 40) -> str:
-        """A text table of lam, |lam|, damping ratio, eta, kappa, kind and the dominant coordinates, then the verdict.
+        """A text table of lam, |lam| [rad/s] and [Hz], damping ratio, eta, kappa, kind, dominant coordinates, verdict.
 
         The last column lists each mode's dominant coordinates with their share of its
         kinetic plus potential energy (:meth:`dominant`, :attr:`participation`).
@@ -360,7 +351,7 @@ class Modes(Result):
         k = len(self)
         rows = range(k) if max_rows is None else range(min(k, max_rows))
         head = (
-            f"{'#':>4}  {'Re lam [1/s]':>13} {'Im lam [rad/s]':>14} {'|lam| [rad/s]':>13} "
+            f"{'#':>4}  {'Re lam [1/s]':>13} {'Im lam [rad/s]':>14} {'|lam| [rad/s]':>13} {'f [Hz]':>11} "
             f"{'zeta':>10} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  {'kind':<11}  dominant coordinates"
         )
         dominant = self.dominant()
@@ -375,6 +366,7 @@ class Modes(Result):
             zs = "nan" if np.isnan(zeta) else f"{zeta + 0.0:.4g}"  # (+ 0.0: no "-0" for an undamped mode)
             lines.append(
                 f"{i + 1:>4}  {lam.real + 0.0:>13.6g} {lam.imag + 0.0:>14.6g} {self.natural_frequency[i]:>13.6g} "
+                f"{self.frequency_hz[i]:>11.6g} "
                 f"{zs:>10} {self.backward_error[i]:>8.1e} {self.condition[i]:>8.1e} "
                 f"{self.error_bound[i]:>8.1e} {self.multiplicity[i]:>4}  {self.kind[i]:<11}  "
                 + ", ".join(f"{name} {p:.0%}" for name, p in dominant[i])
@@ -388,6 +380,14 @@ class Modes(Result):
         return "\n".join(lines)
 
     summary = table
+
+    def to_pandas(self):
+        """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`)."""
+        return modes_frame(self)
+
+    def energy(self, k: int, scene=None):
+        """Mode k's energy per body and element (:func:`pinlin.spectral.energy.mode_energy`)."""
+        return mode_energy(self, k, scene)
 
     def __repr__(self) -> str:
         return (

@@ -28,6 +28,7 @@ from ..numerics.definiteness import (
     symmetric_definiteness,
 )
 from ..numerics.determinant import Nonsingularity, nonsingularity, validated_nonsingularity
+from ..results import persistent
 from .problem import QuadraticProblem
 
 #: The smallest positive normal double.
@@ -46,6 +47,7 @@ __all__ = [
 ]
 
 
+@persistent
 @dataclass(frozen=True)
 class ModeConstants:
     """The real constants m, d, g, k, n of each mode (SPEC section 5), x^H M x = 1.
@@ -122,6 +124,7 @@ def constants_of(lam, X, quad, M, C, K, norm_M: float) -> ModeConstants:
     return constants_from_quadratic_forms(lam, quad)
 
 
+@persistent
 @dataclass(frozen=True)
 class StructuralFacts:
     """What the matrices alone say about the spectrum (SPEC section 5).

@@ -15,6 +15,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import ComputationError, ParameterError, PinlinError
+from ..extras import import_pandas
 from ..results import Result
 
 __all__ = ["SweepResult", "SweepFailure", "SweepTimeoutError"]
@@ -170,6 +171,37 @@ class SweepResult(Result):
         out = super().to_dict()
         out["failures"] = len(self.failures)
         return out
+
+    def to_pandas(self, extract: Callable[[Any], Any] | None = None):
+        """One row per point, in grid order: the parameters, ``value``, ``error``, ``elapsed`` and ``failure``.
+
+        Parameters
+        ----------
+        extract : callable or None
+            ``value`` is ``extract(point_value)`` (e.g. ``lambda modes: modes.natural_frequency[0]``);
+            None keeps the value itself.  Failed points have no ``value`` (None; NaN in a float column) and ``failure``
+            ``"<ExceptionType>: <message>"`` (else None, NaN in pandas).  ``error`` and ``elapsed`` [s] are
+            :attr:`point_errors` and :attr:`point_elapsed` (NaN where a point has no error figure).
+
+        Raises
+        ------
+        MissingDependencyError
+            pandas is not installed (``pip install 'pinlin[pandas]'``).
+        """
+        pd = import_pandas()
+        rows = []
+        errors = self.point_errors or (None,) * len(self.points)
+        times = self.point_elapsed or (np.nan,) * len(self.points)
+        for point, value, error, elapsed in zip(self.points, self.values, errors, times):
+            failed = isinstance(value, SweepFailure)
+            rows.append({
+                **point,
+                "value": None if failed else (extract(value) if extract is not None else value),
+                "error": np.nan if error is None else float(error),
+                "elapsed": float(elapsed),
+                "failure": f"{type(value.exception).__name__}: {value.exception}" if failed else None,
+            })
+        return pd.DataFrame.from_records(rows, columns=[*self.names, "value", "error", "elapsed", "failure"])
 
     def collect(self, extract: Callable[[Any], Any] | None = None, fill=np.nan) -> np.ndarray:
         """Stack ``extract(value)`` over the points into an array of shape ``shape + value shape``.

@@ -11,7 +11,10 @@ Every object an analysis returns carries
 - a one-screen ``__repr__`` (never the full arrays);
 - ``to_dict()``: plain JSON-serializable data (complex numbers as
   ``{"re": ..., "im": ...}``, arrays as nested lists, non-finite floats as the
-  strings ``"inf"``, ``"-inf"``, ``"nan"``).
+  strings ``"inf"``, ``"-inf"``, ``"nan"``), with an ``"encoding"`` entry that
+  says how to read each value back (dtype and shape of arrays, tuple or list,
+  complex, non-finite floats, nested results and value types);
+- ``from_dict(d)`` / :func:`load`: the result back from that data (or a JSON file).
 
 :class:`Result` is the mixin that gives ``to_dict`` from the fields a result
 declares; :class:`ResultArray` is the ndarray subclass for results that are
@@ -21,90 +24,49 @@ array returned by pinlin.
 
 from __future__ import annotations
 
-import dataclasses
-import math
 from collections.abc import Mapping
 from typing import Any, ClassVar
 
 import numpy as np
 
-__all__ = ["Result", "ResultArray", "to_jsonable", "result_types"]
+from .core import Result, decode, encode, persistent, to_jsonable
+
+__all__ = ["Result", "ResultArray", "to_jsonable", "result_types", "load", "persistent", "encode", "decode"]
 
 
+def load(source) -> Result:
+    """A result from its ``to_dict()`` data or a JSON file holding it.
 
-def _number(x) -> Any:
-    if isinstance(x, (bool, np.bool_)):
-        return bool(x)
-    if isinstance(x, (int, np.integer)):
-        return int(x)
-    if isinstance(x, (complex, np.complexfloating)):
-        return {"re": _number(float(x.real)), "im": _number(float(x.imag))}
-    x = float(x)
-    if math.isfinite(x):
-        return x + 0.0  # an exact zero is exported as 0, never -0 (issue 25)
-    return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+    Parameters
+    ----------
+    source : str, os.PathLike or mapping
+        A path to a JSON file written from ``json.dump(result.to_dict(), f)``, or that dict.
 
+    Returns
+    -------
+    Result
+        Equal to the result that was saved, in every field ``to_dict()`` keeps (see docs/conventions.md).
 
-def to_jsonable(value: Any) -> Any:
-    """``value`` as JSON-serializable data (see the module docstring for the encoding)."""
-    if value is None or isinstance(value, str):
-        return str(value) if isinstance(value, str) else None
-    if isinstance(value, Result):
-        return value.to_dict()
-    if isinstance(value, (bool, int, float, complex, np.generic)):
-        return _number(value)
-    if isinstance(value, np.ndarray):
-        arr = np.asarray(value).view(np.ndarray)
-        if arr.dtype.kind == "c":
-            return {"re": to_jsonable(arr.real), "im": to_jsonable(arr.imag)}
-        if arr.dtype.kind in "fiub":
-            return [to_jsonable(x) for x in arr] if arr.ndim > 1 else [_number(x) for x in arr.ravel()]
-        return [to_jsonable(x) for x in arr.tolist()]
-    if isinstance(value, Mapping):
-        return {str(k): to_jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple, set, frozenset)):
-        return [to_jsonable(v) for v in value]
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {f.name: to_jsonable(getattr(value, f.name)) for f in dataclasses.fields(value)}
-    if hasattr(value, "to_dict"):
-        return value.to_dict()
-    return repr(value)
-
-
-class Result:
-    """Mixin for result objects: ``to_dict()`` from the declared fields.
-
-    Subclasses are usually frozen dataclasses (their fields are dumped) or set
-    :attr:`_dict_fields` to the attribute names to dump.  Fields named in
-    :attr:`_dict_exclude` (back-references to large inputs, such as the analysed
-    system) are left out.  Every subclass provides ``elapsed``, ``method`` and
-    ``error``.
+    Raises
+    ------
+    ParameterError
+        ``source`` is neither a mapping nor a readable JSON file, or it is not a result's data.
     """
+    import json
+    import os
 
-    _dict_fields: ClassVar[tuple[str, ...] | None] = None
-    _dict_exclude: ClassVar[tuple[str, ...]] = ()
+    from ..errors import ParameterError
 
-    def _field_names(self) -> tuple[str, ...]:
-        if self._dict_fields is not None:
-            names = self._dict_fields
-        elif dataclasses.is_dataclass(self):
-            names = tuple(f.name for f in dataclasses.fields(self))
-        else:  # pragma: no cover (programming error)
-            raise TypeError(f"{type(self).__name__} declares no fields for to_dict")
-        return tuple(n for n in names if n not in self._dict_exclude)
-
-    def to_dict(self) -> dict[str, Any]:
-        """The result as JSON-serializable data, with ``type``, ``method``, ``error`` and ``elapsed`` first."""
-        out: dict[str, Any] = {
-            "type": type(self).__name__,
-            "method": to_jsonable(str(self.method) if self.method is not None else None),
-            "error": to_jsonable(self.error),
-            "elapsed": to_jsonable(self.elapsed),
-        }
-        for name in self._field_names():
-            if name not in out:
-                out[name] = to_jsonable(getattr(self, name))
-        return out
+    if isinstance(source, Mapping):
+        return Result.from_dict(source)
+    if not isinstance(source, (str, os.PathLike)):
+        raise ParameterError("source", f"expected a path to a JSON file or a dict, got {type(source).__name__}")
+    try:
+        with open(source, encoding="utf-8") as f:
+            data = json.load(f)
+    except (OSError, ValueError) as exc:
+        raise ParameterError("source", f"cannot read a result from {os.fspath(source)!r}: {exc}") from exc
+    return Result.from_dict(data)
 
 
 class ResultArray(np.ndarray, Result):
@@ -182,9 +144,11 @@ class ResultArray(np.ndarray, Result):
 
     def to_dict(self) -> dict[str, Any]:
         """The figures and the values (``"values"``) as JSON-serializable data."""
-        out = Result.to_dict(self)
-        out["values"] = to_jsonable(np.asarray(self).view(np.ndarray))
-        return out
+        return Result.to_dict(self, extra={"values": np.asarray(self).view(np.ndarray)})
+
+    @classmethod
+    def _from_values(cls, values: dict[str, Any]) -> ResultArray:
+        return cls(values["values"], **{k: values.get(k) for k in cls._fields})
 
 
 def result_types() -> list[type]:
