@@ -24,12 +24,13 @@ NOT_KEPT = {"Modes": ("system", "matrices", "deferred", "verdict")}
 
 
 def _canonical(a: np.ndarray) -> np.ndarray:
-    """``a`` with every NaN made the positive quiet NaN: JSON's "nan" keeps no sign or payload (all else is bitwise)."""
+    """``a`` with every NaN made the positive quiet NaN (JSON's "nan" keeps no sign or payload) and -0 made 0
+    (no exported number is -0, issue 25); all else is bitwise."""
     if a.dtype.kind == "c":
         out = np.empty_like(a)
         out.real, out.imag = _canonical(a.real.copy()), _canonical(a.imag.copy())
         return out
-    return np.where(np.isnan(a), np.abs(np.nan), a) if a.dtype.kind == "f" else a
+    return np.where(np.isnan(a), np.abs(np.nan), a + 0.0) if a.dtype.kind == "f" else a
 
 
 def assert_same(a, b, path="result"):

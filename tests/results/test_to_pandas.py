@@ -1,7 +1,7 @@
 """``to_pandas()`` of modes, sweeps and frequency responses (issue 26 part 2), against closed forms.
 
 - Modes of M = I, C = 0, K = diag(4, 9): lam = +-2i, +-3i, so one row per eigenvalue with
-  natural frequency 2, 2, 3, 3 rad/s, 1/pi, 1/pi, 1.5/pi Hz, damping ratio 0, kind "underdamped".
+  natural frequency 2, 2, 3, 3 rad/s, 1/pi, 1/pi, 1.5/pi Hz, damping ratio 0, kind "undamped" (D = 0: decided on the axis).
 - The frequency response of one oscillator m = 2, c = 0.4, k = 8: H(i w) = 1 / (k - m w^2 + i c w)
   in long format (one row per frequency, output, input).
 - A sweep: one row per point, its parameters, value, error, elapsed and failure.
@@ -34,7 +34,7 @@ def test_modes_to_pandas_one_row_per_eigenvalue():
     assert_allclose(frame["frequency_hz"], np.array([2.0, 2.0, 3.0, 3.0]) / (2 * np.pi), rtol=1e-14)
     assert_allclose(frame["damping_ratio"], 0.0, atol=0)
     assert not np.signbit(frame["damping_ratio"]).any() and not np.signbit(frame["eigenvalue_re"]).any()  # no -0
-    assert list(frame["kind"]) == ["underdamped"] * 4
+    assert list(frame["kind"]) == ["undamped"] * 4
     assert list(frame["dominant"]) == ["a 100%", "a 100%", "b 100%", "b 100%"]
     assert_allclose(frame["backward_error"], modes.backward_error, rtol=0)
     assert_allclose(frame["condition"], modes.condition, rtol=0)
@@ -96,3 +96,19 @@ def test_missing_pandas_names_the_extra(monkeypatch):
     modes = pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.0]], [[1.0]]))
     with pytest.raises(pinlin.MissingDependencyError, match=r"pinlin\[pandas\]"):
         modes.to_pandas()
+
+
+def test_floquet_to_pandas_one_row_per_multiplier():
+    """A time-invariant oscillator x'' + 4 x = 0 over T = 1: mu = exp(+-2i), frequency +-2 rad/s (harmonic 0)."""
+    flo = pinlin.floquet_analysis_matrices(np.eye(1), None, 4.0 * np.eye(1), 1.0)
+    frame = flo.to_pandas()
+    assert list(frame.columns) == ["mu_re", "mu_im", "abs_mu", "error_bound", "exponent_re", "frequency",
+                                   "frequency_hz", "harmonic", "share", "trivial"]
+    assert len(frame) == 2
+    order = np.argsort(frame["frequency"].to_numpy())
+    assert_allclose(frame["frequency"].to_numpy()[order], [-2.0, 2.0], rtol=1e-10)
+    assert_allclose(frame["frequency_hz"].to_numpy()[order], [-1 / np.pi, 1 / np.pi], rtol=1e-10)
+    assert_allclose(frame["mu_re"], np.cos(2.0), rtol=1e-10)
+    assert_allclose(frame["abs_mu"], 1.0, rtol=1e-12)
+    assert list(frame["harmonic"]) == [0, 0] and not frame["trivial"].any()
+    assert (frame["share"] > 0.99).all()

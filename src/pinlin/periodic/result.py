@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..extras import import_pandas
 from ..results import Result
 from ..spectral.stability.verdict import Stability
 
@@ -108,6 +109,27 @@ class FloquetAnalysis(Result):
         return (f"FloquetAnalysis(m={r.size}, period={self.period:.6g} s, |mu| in [{r.min():.3g}, {r.max():.3g}], "
                 f"stability={self.stability.kind!r}, error={self.error:.2e}, steps={self.steps}, "
                 f"segments={self.segments}, evaluations={self.evaluations}, elapsed={self.elapsed * 1e3:.3g} ms)")
+
+    def to_pandas(self):
+        """One row per multiplier: ``mu_re``, ``mu_im``, ``abs_mu``, ``error_bound``, ``exponent_re`` [1/s],
+        ``frequency`` [rad/s] and ``frequency_hz`` [Hz] (the representative chosen by harmonic content),
+        ``harmonic`` (its j) and ``share`` (the energy share of that harmonic), ``trivial``.
+
+        Raises
+        ------
+        MissingDependencyError
+            pandas is not installed (``pip install 'pinlin[pandas]'``).
+        """
+        pd = import_pandas()
+        J = (self.harmonic_content.shape[1] - 1) // 2
+        mu = np.asarray(self.multipliers)
+        dominant = np.asarray(self.dominant_harmonic)
+        return pd.DataFrame({
+            "mu_re": mu.real + 0.0, "mu_im": mu.imag + 0.0, "abs_mu": np.abs(mu), "error_bound": self.error_bound,
+            "exponent_re": np.asarray(self.exponents).real + 0.0, "frequency": np.asarray(self.frequencies) + 0.0,
+            "frequency_hz": np.asarray(self.frequencies) / (2 * np.pi) + 0.0, "harmonic": dominant,
+            "share": self.harmonic_content[np.arange(mu.size), dominant + J], "trivial": np.asarray(self.trivial),
+        })
 
     def table(self) -> str:
         """One line per multiplier: mu, |mu|, its bound, the exponent, the chosen frequency and its share."""

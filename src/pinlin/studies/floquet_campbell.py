@@ -38,7 +38,7 @@ class FloquetCampbell(Result):
         mode).
     error_bound : (steps, m) ndarray
         Bound on each exponent's real part [1/s]: the multiplier's bound over |mu| T.
-    stable : (steps,) ndarray of str
+    stable : tuple of str
         The Floquet verdict at each speed.
     tracked : TrackedModes
         The tracking (its ``order`` maps each analysis' order to the columns).
@@ -52,7 +52,7 @@ class FloquetCampbell(Result):
     speeds: np.ndarray
     exponents: np.ndarray
     error_bound: np.ndarray
-    stable: np.ndarray
+    stable: tuple
     tracked: TrackedModes
     error: float
     elapsed: float
@@ -109,5 +109,5 @@ def floquet_campbell(func: Callable[[float], FloquetAnalysis], speeds) -> Floque
     tracked = track_modes(np.array(rows))
     exponents = np.asarray(tracked.eigenvalues)
     bound = np.take_along_axis(np.array(bounds), np.asarray(tracked.order), axis=1)
-    return FloquetCampbell(readonly(w), readonly(exponents), readonly(bound), readonly(np.array(kinds)), tracked,
+    return FloquetCampbell(readonly(w), readonly(exponents), readonly(bound), tuple(kinds), tracked,
                            worst, time.perf_counter() - t0)

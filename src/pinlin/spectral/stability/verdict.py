@@ -8,6 +8,8 @@ eigenvalues are in :mod:`pinlin.spectral.stability.rules`.
 
 from __future__ import annotations
 
+import inspect
+
 from collections.abc import Callable
 
 from ...numerics.floating import EPS
@@ -206,6 +208,16 @@ class Stability(Result):
             rows = tuple(of()) if of is not None else ()
             self.__dict__["_dissipation"] = rows
         return rows
+
+    @classmethod
+    def _from_values(cls, values: dict):
+        """Rebuild a verdict read back by :func:`pinlin.load`: the constructor's fields, and the margins and
+        dissipation rows as they were saved (their inputs are not kept)."""
+        params = inspect.signature(cls).parameters
+        obj = cls(**{k: v for k, v in values.items() if k in params and k != "reason"}, reason=values["reason"])
+        obj.__dict__["_unstructured"] = (values.get("unstructured_margin"), values.get("unstructured_reason"))
+        obj.__dict__["_dissipation"] = tuple(values.get("dissipation") or ())
+        return obj
 
     @property
     def destabilizing_shapes(self) -> tuple[str, ...]:
