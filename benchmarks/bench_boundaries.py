@@ -9,7 +9,7 @@ For each boundary, in one process:
 
 Counted: modal analyses ("evaluations", the issue's measure) and calls of ``func``; timed: the median wall
 time of whole searches.  Errors are measured against closed forms (Ziegler's column 7/2 - sqrt(2) and its
-Routh-Hurwitz damped loads; the paper's double pendulum, SPEC 7.1; the compressed chain's buckling load
+Routh-Hurwitz damped loads; the paper's double pendulum, theory: double pendulum; the compressed chain's buckling load
 (4k/l) sin^2(pi / (2(2n+1)))); the 50-link chain under a follower load has no closed form, and there the two
 methods are compared with each other (each value inside the other's error bound).  The figure: error against
 modal analyses as the tolerance is tightened, for the double pendulum's flutter load.
@@ -118,7 +118,7 @@ def cases(quick: bool):
         ("Ziegler's column, undamped (coalescence)", _two_link(_ziegler_urdf(), (1.0, 1.0), 0.0, 0.0), (0.5, 3.0),
          pf_z),
         ("Ziegler's column, c = 0.1 (crossing)", _two_link(_ziegler_urdf(), (1.0, 1.0), 0.0, 0.1), (0.5, 3.0), pc_z),
-        ("double pendulum SPEC 7.1, P_f (coalescence)", _two_link(dp_urdf, (3.0, 2.0), 9.81, 0.0), (10.0, 20.0),
+        ("double pendulum theory: double pendulum, P_f (coalescence)", _two_link(dp_urdf, (3.0, 2.0), 9.81, 0.0), (10.0, 20.0),
          pf_dp),
         ("double pendulum, c = 0.01 (crossing)", _two_link(dp_urdf, (3.0, 2.0), 9.81, 0.01), (1.0, 40.0), pc_dp),
         (f"{n}-link chain, dead load: buckling (mu through 0)", buckling, (0.5 * p_buckling, 2.0 * p_buckling),

@@ -1,6 +1,6 @@
 """Elements between frames (issue 12): the cost of spring-dampers and bushings in ``linearize``.
 
-A 50-link pendulum chain (SPEC 7.4) under gravity, at its equilibrium, with
+A 50-link pendulum chain (theory: pendulum chains) under gravity, at its equilibrium, with
 
 - nothing but gravity (the baseline);
 - joint springs (``JointSpring``, two per joint when there are more than 50);

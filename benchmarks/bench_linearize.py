@@ -29,8 +29,8 @@ another process's load shows in wall time), medians of samples taken in turn
 
 References (never the method under test):
 
-- closed forms for the paper's double pendulum (SPEC 7.1) and the turntable
-  (SPEC 7.2): they bound the error of every method directly;
+- closed forms for the paper's double pendulum (theory: double pendulum) and the turntable
+  (theory: turntable): they bound the error of every method directly;
 - for fixed-base arms of 1-DOF joints (ur5, panda), an independent model in
   mpmath at 50 digits (:func:`mp_reference`: forward kinematics from the model's
   numbers, gravity, springs and follower wrenches by virtual work, K by
@@ -526,7 +526,7 @@ class Case:
 
 
 def double_pendulum_case(theta=(0.4, 0.5), k=(3.0, 2.0), c=(0.2, 0.1), P=4.0) -> Case:
-    """The paper's double pendulum (SPEC 7.1) posed at relative angles ``theta``, with its closed form.
+    """The paper's double pendulum (theory: double pendulum) posed at relative angles ``theta``, with its closed form.
 
     The spring rests are chosen so that ``theta`` is an equilibrium.  Absolute
     angles phi = T theta; in phi, with gravity potential V = -(m1/2 + m2) g l1
@@ -537,7 +537,7 @@ def double_pendulum_case(theta=(0.4, 0.5), k=(3.0, 2.0), c=(0.2, 0.1), P=4.0) ->
                 + P l1 cos(phi2 - phi1) [[-1, 1], [0, 0]]
 
     and M = T^T M_phi T, K = T^T K_phi T + diag(k), C = diag(c).  At theta = 0
-    this is SPEC 7.1's printed matrices; away from 0 gravity loads the joints,
+    this is theory: double pendulum's printed matrices; away from 0 gravity loads the joints,
     so difference quotients suffer rounding as on a real robot.
     """
     m1, l1, m2, l2, g = 1.3, 0.7, 0.9, 0.5, 9.81
@@ -557,7 +557,7 @@ def double_pendulum_case(theta=(0.4, 0.5), k=(3.0, 2.0), c=(0.2, 0.1), P=4.0) ->
     K = np.diag([(m1 / 2 + m2) * g * l1 * np.cos(p1), m2 * g * l2 / 2 * np.cos(p2)])
     K = K + P * l1 * cr * np.array([[-1.0, 1.0], [0.0, 0.0]])
     exact = (T.T @ M @ T, np.diag(c), T.T @ K @ T + np.diag(k))
-    return Case(f"double pendulum at theta = {tuple(theta)} (SPEC 7.1 closed form)", scene, th, exact, urdf=text)
+    return Case(f"double pendulum at theta = {tuple(theta)} (theory: double pendulum closed form)", scene, th, exact, urdf=text)
 
 
 def turntable_case() -> Case:
@@ -572,7 +572,7 @@ def turntable_case() -> Case:
         2 * m * W * r0 * np.array([[0.0, 1.0], [-1.0, 0.0]]),
         np.diag([m * W**2 * a * r0, k - m * W**2]),
     )
-    return Case("turntable, Omega = 2 rad/s (SPEC 7.2)", scene, q, exact)
+    return Case("turntable, Omega = 2 rad/s (theory: turntable)", scene, q, exact)
 
 
 def _arm_case(name: str, q_ref, tool: str, k: float = 100.0) -> Case:
@@ -718,7 +718,7 @@ def mujoco_rows(cases, quick: bool):
         "counterpart is crba + computeGeneralizedGravityDerivatives. Reference for dtau/dq: Ridders extrapolation "
         "of Pinocchio's computeGeneralizedGravity; for M: crba. Constraints (the panda's mimic finger joint) are "
         "disabled in MuJoCo. Floating bases are not compared (MuJoCo's free joint has other velocity "
-        "coordinates). The slender bars of SPEC 7.1 have no inertia about their axis, which MuJoCo refuses: "
+        "coordinates). The slender bars of theory: double pendulum have no inertia about their axis, which MuJoCo refuses: "
         "its double pendulum has 1 cm bars."
     )
     if notes:

@@ -3,7 +3,7 @@
 Work-precision for the free response of one linearized system at 1000 time
 points, each method timed in this process (median of repeats):
 
-- ``modal``: ``pinlin.free_response`` (SPEC section 6), modal analysis included;
+- ``modal``: ``pinlin.free_response`` (theory: responses), modal analysis included;
 - ``modal, modes reused``: the same with a precomputed ``pinlin.modal_analysis``
   (the cost of evaluating the formula alone);
 - ``expm per point``: ``scipy.linalg.expm(A t_k) z0`` at every time point;

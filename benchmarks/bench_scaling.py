@@ -1,13 +1,13 @@
 """Scaling of the whole pipeline with the size of a pendulum chain, and the memory guard (issue 14).
 
-For n = 10 ... 400 links (springs, dampers, gravity; SPEC 7.4), each n in a
+For n = 10 ... 400 links (springs, dampers, gravity; theory: pendulum chains), each n in a
 fresh subprocess, the stages of the data flow:
 
 1. ``load``: ``load_urdf_string(pendulum_chain_urdf(n))`` and ``Scene(...)``
    (the memory guard checks the estimate; no Pinocchio ``Data`` yet);
 2. ``createData``: the thread's workspace, ``workspace(scene)`` (memory guard +
    ``model.createData()``): Pinocchio allocates four nv^3 derivative tensors
-   (32 nv^3 bytes kept, about twice that at the peak; SPEC section 1) that no
+   (32 nv^3 bytes kept, about twice that at the peak; theory: equations) that no
    algorithm pinlin calls uses, an upstream limit.  pinlin creates one Data per
    robot and thread and shares it among the robot's scenes (a sweep pays once);
 3. ``equilibrium``: ``find_equilibrium`` from every joint 0.2/n rad off (a 0.2 rad curl);
@@ -339,8 +339,8 @@ def run(quick: bool = False):
                                ylabel="time [s]", connect=tuple(series))
     if path:
         figures.append(path)
-    text = ("Time and memory of every stage of the data flow for growing pendulum chains (SPEC 7.4), and the memory "
-            "guard of SPEC section 1 refusing models whose Pinocchio data would not fit.")
+    text = ("Time and memory of every stage of the data flow for growing pendulum chains (theory: pendulum chains), and the memory "
+            "guard of theory: equations refusing models whose Pinocchio data would not fit.")
     report = Report("scaling", [t1, t2, t3], summary, figures, text=text)
     top = largest_admitted_n()
     largest = bool(refused) and refused[-1] == ns[-1] + 10 or ns[-1] >= top

@@ -368,7 +368,7 @@ def run(quick: bool = False) -> Report:
     A2 = np.array([[1, 2, 2], [3, 1, 1], [3, 2, 1.0]])
     A1 = np.array([[3, 2, 1], [2, 1, 3], [1, 3, 2.0]])
     A0 = np.array([[1, 1, 2], [2, 3, 1], [3, 1, 2.0]])
-    small = [("SPEC 4 check problem", (A2, A1, A0)), ("chain n=4, stiffness 1e-5..1e5", chain_system(4, seed=3))]
+    small = [("theory: spectrum check problem", (A2, A1, A0)), ("chain n=4, stiffness 1e-5..1e5", chain_system(4, seed=3))]
     for label, s in small:
         Mx, Cx, Kx = (s.M, s.C, s.K) if isinstance(s, pinlin.LinearizedSystem) else s
         ref = _mp_roots(Mx, Cx, Kx)

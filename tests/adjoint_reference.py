@@ -34,7 +34,7 @@ def chain(n: int, damping: float = 0.01) -> pinlin.LinearizedSystem:
 
 
 def double_pendulum() -> pinlin.LinearizedSystem:
-    """The paper's double pendulum with follower load (SPEC 7.1)."""
+    """The paper's double pendulum with follower load (theory: double pendulum)."""
     scene = pinlin.Scene(
         pinlin.load_urdf_string(pinlin.double_pendulum_urdf()),
         [

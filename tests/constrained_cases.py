@@ -1,4 +1,4 @@
-"""Shared constrained cases: planar four-bar linkages and their energy-method closed forms (SPEC section 10).
+"""Shared constrained cases: planar four-bar linkages and their energy-method closed forms (theory: constraints).
 
 Geometry (plane x-z, joints about -y so that positive angles turn +x toward +z, complex
 coordinates x + i z): ground pivots O2 = 0 and O4 = d; crank O2 -> A (length a, absolute

@@ -10,12 +10,12 @@ import scipy.linalg
 
 import pinlin
 
-#: Parameters of the turntable case (SPEC 7.2).
+#: Parameters of the turntable case (theory: turntable).
 TURNTABLE = {"a": 0.5, "m": 1.0, "k": 10.0, "l0": 0.3, "Omega": 2.0}
 
 
 def double_pendulum_tilted(P: float = 4.0) -> pinlin.Scene:
-    """The double pendulum with follower load (SPEC 7.1) with springs pre-stressed (rest angles 0.4, -0.3),
+    """The double pendulum with follower load (theory: double pendulum) with springs pre-stressed (rest angles 0.4, -0.3),
     so that its equilibrium is not symmetric and the nonlinearity has quadratic terms."""
     robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf())
     return pinlin.Scene(
@@ -29,7 +29,7 @@ def double_pendulum_tilted(P: float = 4.0) -> pinlin.Scene:
 
 
 def double_pendulum(P: float = 4.0, damping: float = 0.0) -> pinlin.Scene:
-    """The double pendulum of SPEC 7.1 (equilibrium at the neutral configuration)."""
+    """The double pendulum of theory: double pendulum (equilibrium at the neutral configuration)."""
     robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf())
     elements = [
         pinlin.JointSpring("joint1", 3.0),
@@ -42,7 +42,7 @@ def double_pendulum(P: float = 4.0, damping: float = 0.0) -> pinlin.Scene:
 
 
 def turntable() -> tuple[pinlin.Scene, np.ndarray]:
-    """Particle on a turntable (SPEC 7.2) and its stable equilibrium r0 = (k l0 + m W^2 a) / (k - m W^2)."""
+    """Particle on a turntable (theory: turntable) and its stable equilibrium r0 = (k l0 + m W^2 a) / (k - m W^2)."""
     p = TURNTABLE
     robot = pinlin.load_urdf_string(pinlin.turntable_urdf(a=p["a"], mass=p["m"]))
     scene = pinlin.Scene(robot, [pinlin.JointSpring("slider", p["k"], rest=p["l0"])], prescribed={"table": p["Omega"]})
@@ -53,7 +53,7 @@ def turntable() -> tuple[pinlin.Scene, np.ndarray]:
 
 
 def rotating_ring(Omega: float = 1.5, k: float = 5.0, c: float = 0.2) -> pinlin.Scene:
-    """Particle in a rotating ring (SPEC 7.3); equilibrium at the neutral configuration."""
+    """Particle in a rotating ring (theory: rotating ring); equilibrium at the neutral configuration."""
     robot = pinlin.load_urdf_string(pinlin.rotating_ring_urdf())
     return pinlin.Scene(
         robot,

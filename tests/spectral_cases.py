@@ -13,7 +13,7 @@ import pinlin
 from pinlin import FollowerWrench, JointDamper, JointSpring, Scene
 from pinlin.testing import cantilever_beam
 
-# SPEC section 4 check problem lam^2 A2 + lam A1 + A0 (A2 not symmetric)
+# theory: spectrum check problem lam^2 A2 + lam A1 + A0 (A2 not symmetric)
 A2 = np.array([[1, 2, 2], [3, 1, 1], [3, 2, 1.0]])
 A1 = np.array([[3, 2, 1], [2, 1, 3], [1, 3, 2.0]])
 A0 = np.array([[1, 1, 2], [2, 3, 1], [3, 1, 2.0]])
@@ -30,7 +30,7 @@ def chain(n, ks=None, *, gravity=(0, 0, -9.81), dampers=None):
 
 
 def ring(k=4.0, c=0.0, Omega=1.0):
-    """SPEC 7.3: particle (m = 1) in a ring turning at Omega, springs k, dampers c."""
+    """theory: rotating ring: particle (m = 1) in a ring turning at Omega, springs k, dampers c."""
     el = [JointSpring("x", k), JointSpring("y", k)]
     if c:
         el += [JointDamper("x", c), JointDamper("y", c)]
@@ -47,7 +47,7 @@ def ring_closed_form(m, k, c, Omega):
 
 
 def double_pendulum(P=4.0, c=0.0, gravity=(0, 0, -9.81)):
-    """The paper's double pendulum (SPEC 7.1) with follower load P and joint dampers c."""
+    """The paper's double pendulum (theory: double pendulum) with follower load P and joint dampers c."""
     el = [JointSpring("joint1", 3.0), JointSpring("joint2", 2.0), FollowerWrench("tip", force=(0, 0, P))]
     if c:
         el += [JointDamper("joint1", c), JointDamper("joint2", c)]
@@ -56,7 +56,7 @@ def double_pendulum(P=4.0, c=0.0, gravity=(0, 0, -9.81)):
 
 
 def double_pendulum_spec(P=4.0, m1=1.3, l1=0.7, m2=0.9, l2=0.5, k1=3.0, k2=2.0, g=9.81):
-    """SPEC 7.1 hand-derived (M, S, N) in relative angles theta."""
+    """theory: double pendulum hand-derived (M, S, N) in relative angles theta."""
     Mp = np.array([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2], [m2 * l1 * l2 / 2, m2 * l2**2 / 3]])
     Sp = np.array(
         [[k1 + k2 + (m1 / 2 + m2) * g * l1 - P * l1, -k2 + P * l1 / 2], [-k2 + P * l1 / 2, k2 + m2 * g * l2 / 2]]

@@ -1,4 +1,4 @@
-"""Builders and independent references for the stress tests (issue 7, SPEC section 8).
+"""Builders and independent references for the stress tests (issue 7, theory: error figures).
 
 References never share pinlin's method: closed forms, exact rational arithmetic,
 and mpmath (eigenvalues of the companion matrix at 40 digits).
@@ -39,7 +39,7 @@ def mp_eigenvalues(sys, dps: int = 40) -> np.ndarray:
 
 
 def eta(sys, lam, X) -> np.ndarray:
-    """Backward errors recomputed from the definition (SPEC section 4), Frobenius norms."""
+    """Backward errors recomputed from the definition (theory: spectrum), Frobenius norms."""
     R = (sys.M @ X) * lam**2 + (sys.C @ X) * lam + sys.K @ X
     a = np.abs(lam)
     w = a * a * np.linalg.norm(sys.M) + a * np.linalg.norm(sys.C) + np.linalg.norm(sys.K)
@@ -48,7 +48,7 @@ def eta(sys, lam, X) -> np.ndarray:
         return np.where(num == 0, 0.0, num / (w * np.linalg.norm(X, axis=0)))
 
 
-#: Largest backward error accepted from pinlin's solvers on the stress cases (SPEC section 4: 1e-15
+#: Largest backward error accepted from pinlin's solvers on the stress cases (theory: spectrum: 1e-15
 #: is reachable with scaling; this leaves room for n and for the structured paths' QZ fallbacks).
 ETA_MAX = 1e-14
 

@@ -18,6 +18,7 @@ Walks ``src/pinlin`` with :mod:`ast` (nothing is imported):
 from __future__ import annotations
 
 import ast
+import re
 import io
 import tokenize
 from pathlib import Path
@@ -369,3 +370,19 @@ def test_code_lines_skip_docstring_comments_and_blanks():
     source = 'def f(x):\n    """Doc.\n\n    More.\n    """\n    # a comment\n\n    y = (x +\n         1)\n    return y\n'
     node = ast.parse(source).body[0]
     assert code_lines(node, token_lines(source)) == 4  # def, the two lines of y = ..., return
+
+
+def test_no_file_refers_to_the_internal_planning_document():
+    """The mathematics is in the shipped theory pages (docs/theory); no code, doc or help text points users to
+    the project's internal planning document (issue 26 part 1)."""
+    word = re.compile(r"\b" + "S" + "PEC" + r"\b")
+    root = SRC.parents[1]
+    tracked = [root / p for p in ("src", "tests", "docs", "notebooks", "benchmarks", "README.md", "CHANGELOG.md")]
+    offenders = []
+    for base in tracked:
+        for path in ([base] if base.is_file() else base.rglob("*")):
+            if path.suffix in {".py", ".md", ".rst", ".ipynb", ".toml", ".txt", ".json"} and path.is_file():
+                for k, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+                    if word.search(line):
+                        offenders.append(f"{path.relative_to(root)}:{k}")
+    assert not offenders, "references to the internal planning document: " + ", ".join(offenders[:20])

@@ -45,7 +45,7 @@ MAX_REPR_CHARS = 2000
 
 @functools.cache
 def pendulum_scene() -> pinlin.Scene:
-    """The README's double pendulum with springs and a follower load (SPEC 7.1)."""
+    """The README's double pendulum with springs and a follower load (theory: double pendulum)."""
     robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf())
     elements = [
         pinlin.JointSpring("joint1", stiffness=3.0),
@@ -121,7 +121,7 @@ def softening2(p1: float, p2: float) -> pinlin.LinearizedSystem:
 
 @functools.cache
 def closed_pendulum_scene() -> pinlin.Scene:
-    """The README pendulum with its tip held at the point it reaches at q = (0.4, -0.7) (SPEC 10)."""
+    """The README pendulum with its tip held at the point it reaches at q = (0.4, -0.7) (theory: constraints)."""
     robot = pendulum_scene().robot
     data = robot.model.createData()
     pin.framesForwardKinematics(robot.model, data, np.array([0.4, -0.7]))
@@ -131,7 +131,7 @@ def closed_pendulum_scene() -> pinlin.Scene:
 
 @functools.cache
 def kapitza_orbit() -> pinlin.PeriodicOrbit:
-    """The bundled Kapitza scene's (constant) periodic orbit (SPEC section 13)."""
+    """The bundled Kapitza scene's (constant) periodic orbit (theory: Floquet)."""
     from pinlin.model.scene_file import load_scene
 
     spec = load_scene(pinlin.data_path("scenes/kapitza.toml"))

@@ -90,7 +90,7 @@ def _turntable():
         angle = rng.uniform(-np.pi, np.pi)
         q[0:2] = np.cos(angle), np.sin(angle)
         q[2] = 0.3 * rng.standard_normal()
-        q[3] = 0.51 + 0.1 * rng.standard_normal()  # about r0 = 0.512 for these numbers (SPEC 7.2)
+        q[3] = 0.51 + 0.1 * rng.standard_normal()  # about r0 = 0.512 for these numbers (theory: turntable)
         qs.append(q)
     return scene, qs, 0.5
 

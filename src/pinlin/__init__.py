@@ -203,7 +203,7 @@ __all__ = [
     "linearize_many",
     "generalized_force",
     "LinearizedSystem",
-    # constraints: closed loops and contacts (SPEC section 10)
+    # constraints: closed loops and contacts (theory: constraints)
     "Constraint",
     "PointConstraint",
     "FrameConstraint",
@@ -225,7 +225,7 @@ __all__ = [
     "sweep",
     "SweepResult",
     "SweepFailure",
-    # sensitivities and stability boundaries (SPEC section 12)
+    # sensitivities and stability boundaries (theory: boundaries)
     "eigenvalue_sensitivity",
     "EigenvalueSensitivity",
     "critical_parameter",
@@ -260,7 +260,7 @@ __all__ = [
     "MissingDependencyError",
     "NameNotFoundError",
     "AccuracyWarning",
-    # responses (SPEC section 6)
+    # responses (theory: responses)
     "free_response",
     "FreeResponse",
     "harmonic_response",
@@ -272,14 +272,14 @@ __all__ = [
     "ForcedResponse",
     "energy_budget",
     "EnergyBudget",
-    # spectrum (SPEC sections 4, 5)
+    # spectrum (theory: spectrum, stability)
     "modal_analysis",
     "jordan_chains",
     "Modes",
     "ModeEnergy",
     "Stability",
     "JordanChains",
-    # adjoint and flexibility (SPEC section 4)
+    # adjoint and flexibility (theory: spectrum)
     "characteristic_polynomial",
     "CharacteristicPolynomial",
     "adjugate",
@@ -295,7 +295,7 @@ __all__ = [
     # other tools' forms (issue 17)
     "state_space",
     "StateSpaceModel",
-    # time-periodic motions (SPEC section 13, issue 23)
+    # time-periodic motions (theory: Floquet, issue 23)
     "Harmonic",
     "FourierMotion",
     "PeriodicMotion",

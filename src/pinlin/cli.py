@@ -100,7 +100,7 @@ def default_sweep_scene_path():
 
 
 def default_campbell_scene_path():
-    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (SPEC 7.3)."""
+    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (theory: rotating ring)."""
     return data_path("scenes/rotating_ring.toml")
 
 
@@ -202,7 +202,7 @@ def _parser() -> argparse.ArgumentParser:
         "Analyse a scene at every speed of one of its prescribed joints (--joint, --speeds, or the scene file's "
         "[campbell] table): the damped frequencies |Im lam| and damping ratios of the modes, tracked by shape, "
         "and the critical speeds where the stability verdict changes, each found to rounding by "
-        "critical_parameter on the speed.  Without a scene file, the bundled rotating ring (SPEC 7.3), whose "
+        "critical_parameter on the speed.  Without a scene file, the bundled rotating ring (theory: rotating ring), whose "
         "critical speed is sqrt(k/m).",
         "The [campbell] table of a scene file (TOML):\n" + CAMPBELL_FORMAT,
     )

@@ -1,4 +1,4 @@
-"""High-precision references and test problems for checking pinlin's results (SPEC section 8).
+"""High-precision references and test problems for checking pinlin's results (theory: error figures).
 
 Errors in pinlin's tests and benchmarks are measured against references that
 do not share the method; these are the multiprecision ones, computed with
@@ -7,7 +7,7 @@ of the first-order companion matrix and the characteristic polynomial's
 coefficients, both formed and solved at ``dps`` decimal digits from the
 (exactly representable) double-precision matrices.  :func:`check_element`
 checks a force element's analytic derivatives against central differences on
-the configuration manifold (SPEC section 11): use it for every element you write
+the configuration manifold (theory: elements between frames): use it for every element you write
 (docs/elements.md).
 """
 
@@ -144,7 +144,7 @@ def cantilever_beam(
     are assembled over ``ne`` elements of length l = L / ne; coordinates
     (w_i [m], theta_i [rad]), i = 1..ne, after clamping node 0.  Defaults: a
     2 m steel strip.  Deflections and rotations mix in one vector, so K spans
-    many decades: the badly scaled damped beam of SPEC section 4.
+    many decades: the badly scaled damped beam of theory: spectrum.
 
     Parameters
     ----------
@@ -201,7 +201,7 @@ def _relative(a: np.ndarray, b: np.ndarray, noise: float) -> float:
 
 
 def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> float:
-    """Largest relative mismatch between an element's analytic derivatives and central differences (SPEC 11).
+    """Largest relative mismatch between an element's analytic derivatives and central differences (theory: elements between frames).
 
     The analytic side is what the element adds to :func:`~pinlin.linearize`'s K
     and C at (q, v): its group's ``add_stiffness`` / ``add_damping`` (the path

@@ -36,7 +36,7 @@ def test_simple_roots_against_spectral_module(n):
         assert_allclose(e.left @ (2 * lam * sys.M + sys.C) @ e.right, 1.0, rtol=1e-12)
         assert_allclose(e.derivative, dp(lam), rtol=1e-10)
         assert_allclose(e.log10_abs_derivative, np.log10(abs(dp(lam))), rtol=1e-12)
-        assert_allclose(1 / e.simplicity, modes.condition[k], rtol=1e-8)  # SPEC 4's kappa
+        assert_allclose(1 / e.simplicity, modes.condition[k], rtol=1e-8)  # theory: adjoint's kappa
         assert e.backward_error_right < 1e-14 and e.backward_error_left < 1e-14
         assert e.adjugate_residual < 1e-13
 

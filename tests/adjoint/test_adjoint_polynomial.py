@@ -1,4 +1,4 @@
-"""Characteristic polynomial p(lam) = det L(lam) (SPEC section 4; issue 4, part 1).
+"""Characteristic polynomial p(lam) = det L(lam) (theory: adjoint; issue 4, part 1).
 
 References: mpmath determinants at 50 digits, and det M prod (lam - lam_k) with
 the eigenvalues of the 50-digit companion matrix (not interpolation) or of the
@@ -51,7 +51,7 @@ def test_leading_and_constant_coefficients_are_det_m_and_det_k():
 
 
 def test_double_pendulum_closed_form():
-    """SPEC 7.1: D = G = 0, so p(lam) = det M lam^4 + b lam^2 + det K with b from the 2 x 2 entries."""
+    """theory: double pendulum: D = G = 0, so p(lam) = det M lam^4 + b lam^2 + det K with b from the 2 x 2 entries."""
     sys = double_pendulum()
     M, K = sys.M, sys.K
     b = M[0, 0] * K[1, 1] + M[1, 1] * K[0, 0] - M[0, 1] * K[1, 0] - M[1, 0] * K[0, 1]

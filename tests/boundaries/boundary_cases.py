@@ -1,11 +1,11 @@
-"""Parameter families with stability boundaries known in closed form (SPEC sections 7 and 12).
+"""Parameter families with stability boundaries known in closed form (theory: worked examples, boundaries).
 
 Each family is ``func(p) -> LinearizedSystem`` built through pinlin's own pipeline
 (URDF -> Scene -> linearize), and each reference is derived by hand below and
 evaluated with mpmath at 40 digits, so that a reference never shares the method
 under test.
 
-- :func:`double_pendulum` -- SPEC 7.1 (the paper's Example 6.2): m1 = 1.3,
+- :func:`double_pendulum` -- theory: double pendulum (the paper's Example 6.2): m1 = 1.3,
   l1 = 0.7, m2 = 0.9, l2 = 0.5, k1 = 3, k2 = 2, g = 9.81, follower load P,
   optional equal joint dampers c.  Undamped, det(mu M + K(P)) = det M mu^2 +
   b(P) mu + det K(P) with b and det K affine in P; the flutter load P_f and the
@@ -23,7 +23,7 @@ under test.
   (<A, B> = A11 B22 + A22 B11 - A12 B21 - A21 B12); Routh-Hurwitz: stable iff all
   a_i > 0 and a1 a2 a3 - a0 a3^2 - a1^2 a4 > 0, a quadratic in P whose smallest
   positive root is the damped flutter load.
-- :func:`ring_matrices` -- SPEC 7.3, the particle in a rotating ring with damping
+- :func:`ring_matrices` -- theory: rotating ring, the particle in a rotating ring with damping
   c > 0, from its matrices: stable iff m Omega^2 < k, critical speed sqrt(k/m).
   (Through the URDF, ``linearize`` refuses the critical speed itself: its
   time-invariance check divides by ||K||, which vanishes there.)
@@ -62,7 +62,7 @@ def double_pendulum(c=0.0):
 
 
 def _dp_phi_matrices(P):
-    """M, K = S + N in absolute angles (SPEC 7.1), mpmath."""
+    """M, K = S + N in absolute angles (theory: double pendulum), mpmath."""
     m1, l1, m2, l2, k1, k2, g = (mp.mpf(str(DP[k])) for k in ("m1", "l1", "m2", "l2", "k1", "k2", "g"))
     M = mp.matrix([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2], [m2 * l1 * l2 / 2, m2 * l2**2 / 3]])
     K = mp.matrix([[k1 + k2 + (m1 / 2 + m2) * g * l1 - P * l1, -k2 + P * l1 / 2 + P * l1 / 2],
@@ -201,7 +201,7 @@ RING = dict(m=1.3, k=10.0)
 
 
 def ring_matrices(c):
-    """Omega -> SPEC 7.3's ring from its matrices."""
+    """Omega -> theory: rotating ring's ring from its matrices."""
     m, k = RING["m"], RING["k"]
 
     def func(omega):

@@ -1,6 +1,6 @@
 """stability_boundary: continuation of a boundary curve p2*(p1) (issue 15 part 3).
 
-Reference: the damped flutter load of the double pendulum (SPEC 7.1) with equal joint dampers c, the smallest
+Reference: the damped flutter load of the double pendulum (theory: double pendulum) with equal joint dampers c, the smallest
 positive root of the Routh-Hurwitz determinant (boundary_cases.damped_flutter_load); the curve over c is
 also in tests/reference/test_reference_boundaries.py.
 """

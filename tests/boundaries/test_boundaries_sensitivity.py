@@ -1,4 +1,4 @@
-"""Eigenvalue sensitivities d lambda / dp (issue 15 part 1; SPEC section 12).
+"""Eigenvalue sensitivities d lambda / dp (issue 15 part 1; theory: boundaries).
 
 References: the double pendulum's quadratic in mu = lam^2 (closed form, boundary_cases); a symmetric pencil
 with a double eigenvalue (closed form lam = i sqrt(1 + p kappa_j)); central differences of eigenvalues on the
@@ -28,7 +28,7 @@ def dp_derivative(P):
 
 @pytest.mark.parametrize("P", [0.0, 4.0, 10.0, 15.0])
 def test_double_pendulum_against_closed_form(P):
-    """SPEC 7.1: d lam / dP from d mu / dP = -(b' mu + det K') / (2 det M mu + b), to 1e-10."""
+    """theory: double pendulum: d lam / dP from d mu / dP = -(b' mu + det K') / (2 det M mu + b), to 1e-10."""
     r = pinlin.eigenvalue_sensitivity(double_pendulum(), P, step=0.1)
     reference = np.array([double_pendulum_dlam(P, lam) for lam in r.eigenvalues])
     assert np.all(r.differentiable) and r.status == ("simple",) * 4
@@ -143,7 +143,7 @@ def test_ur5_against_central_differences_of_eigenvalues(ur5):
 
 
 def test_ur5_equilibrium_shift_is_included(ur5):
-    """K dq/dk = -dr/dk (SPEC 12): the shift predicted from the residual equals the finite difference of the
+    """K dq/dk = -dr/dk (theory: boundaries): the shift predicted from the residual equals the finite difference of the
     equilibria, and leaving it out (matrices at the fixed q0, balanced) changes the derivatives measurably."""
     scene, func = ur5
     k0, h = UR5_STIFFNESS[1], 1e-3 * UR5_STIFFNESS[1]

@@ -1,4 +1,4 @@
-"""Harmonic forcing (issue 5 part 2, SPEC section 6): X = H(i omega) F.
+"""Harmonic forcing (issue 5 part 2, theory: responses): X = H(i omega) F.
 
 Reference: a direct solve of L(i omega) X = F with ``numpy.linalg.solve`` in the
 test (acceptance: 1e-10 relative).  The resonance test shows the growth

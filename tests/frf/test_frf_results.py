@@ -31,7 +31,7 @@ def _L(sys, s):
 
 
 def _defect(sys, s, X, B):
-    """The relative defect of L(s) X = B, Frobenius norms (SPEC section 8)."""
+    """The relative defect of L(s) X = B, Frobenius norms (theory: error figures)."""
     L = _L(sys, s)
     return np.linalg.norm(L @ X - B) / (np.linalg.norm(L) * np.linalg.norm(X) + np.linalg.norm(B))
 

@@ -176,7 +176,7 @@ def test_bad_cli_arguments(capsys):
 
 
 def test_report_modes_and_verdict(tmp_path, capsys):
-    """Default scene: undamped, circulatory, below flutter: lam^2 are the eigenvalues of -M^-1 K (SPEC 7.1)."""
+    """Default scene: undamped, circulatory, below flutter: lam^2 are the eigenvalues of -M^-1 K (theory: double pendulum)."""
     code, out, err = run(["analyze", "--json", str(tmp_path / "r.json")], capsys)
     assert code == 0, err
     report = json.loads((tmp_path / "r.json").read_text())

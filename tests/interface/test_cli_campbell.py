@@ -1,6 +1,6 @@
 """``pinlin campbell`` (issue 26 part 4): frequencies, damping and critical speeds against a prescribed speed.
 
-Acceptance: on the bundled rotating ring (SPEC 7.3; Example 11.1) the critical
+Acceptance: on the bundled rotating ring (theory: rotating ring; Example 11.1) the critical
 speed is found to 1e-10 against its closed form.  In the ring's frame the
 particle (mass m, springs k on x and y, dampers c) obeys, with z = x + i y,
 
@@ -93,7 +93,7 @@ def test_no_critical_speed_in_range_is_said(capsys):
 
 
 def test_a_change_at_the_edge_of_the_range_keeps_its_honest_bound(capsys, tmp_path):
-    """The turntable (SPEC 7.2) at rest has a free arm (lam = 0: divergence) and is gyroscopically stable at
+    """The turntable (theory: turntable) at rest has a free arm (lam = 0: divergence) and is gyroscopically stable at
     any spin: the verdict changes right after 0, and the reported speed's error bound reaches back to 0."""
     code, _, _ = run(["campbell", pinlin.data_path("scenes/turntable.toml"), "--speeds", "0:3:7",
                       "--json", tmp_path / "t.json"], capsys)

@@ -111,7 +111,7 @@ def test_printed_matrices_agree_with_the_json(capsys, tmp_path):
 
 
 def test_every_printed_matrix_has_its_unit(capsys, tmp_path):
-    """The turntable (SPEC 7.2): coordinates theta [rad] and r [m], so M, G, S have mixed units."""
+    """The turntable (theory: turntable): coordinates theta [rad] and r [m], so M, G, S have mixed units."""
     out, report = analyze([str(pinlin.data_path("scenes/turntable.toml"))], capsys, tmp_path)
     assert report["scene"]["dof_units"] == ["rad", "m"]
     assert "free joint coordinates n = 2: arm [rad], slider [m]" in out

@@ -1,10 +1,10 @@
 """``pinlin sweep`` and the ``[sweep]`` table (issue 17 part 4).
 
-The reference is SPEC 7.1 worked by hand: the double pendulum with follower
+The reference is theory: double pendulum worked by hand: the double pendulum with follower
 load P is marginally stable while det(K(P) - mu M) = 0 has two real positive
 roots mu = -lam^2, and flutters past the load where its discriminant vanishes;
 mpmath finds that load to 30 digits (P_f = 16.4328976483902282632... N for the
-SPEC parameters).
+the theory's parameters).
 """
 
 from __future__ import annotations
@@ -22,14 +22,14 @@ from pinlin.cli import EXIT_INPUT, default_sweep_scene_path, main
 from pinlin.model.scene_file import load_scene
 from pinlin.report.sweep import SWEEP_SCHEMA, run_sweep, sweep_plan
 
-#: SPEC 7.1 parameters.
+#: theory: double pendulum parameters.
 M1, L1, M2, L2, K1, G = "1.3", "0.7", "0.9", "0.5", 3, "9.81"
 #: The flutter load of the bundled sweep, to the digits the search can reach (its bound is ~1e-12 N).
 P_F = 16.4328976483902282632195634474
 
 
 def discriminant(P, k2=2):
-    """Discriminant of det(K_phi(P) - mu M_phi) = a mu^2 + b mu + c (SPEC 7.1; N_phi enters K_phi = S_phi + N_phi)."""
+    """Discriminant of det(K_phi(P) - mu M_phi) = a mu^2 + b mu + c (theory: double pendulum; N_phi enters K_phi = S_phi + N_phi)."""
     m1, l1, m2, l2, g = (mp.mpf(x) for x in (M1, L1, M2, L2, G))
     M = mp.matrix([[(m1 / 3 + m2) * l1**2, m2 * l1 * l2 / 2], [m2 * l1 * l2 / 2, m2 * l2**2 / 3]])
     K = mp.matrix([[K1 + k2 + (m1 / 2 + m2) * g * l1 - P * l1, -k2 + P * l1], [-k2, k2 + m2 * g * l2 / 2]])

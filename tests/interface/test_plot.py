@@ -98,7 +98,7 @@ def test_work_precision():
 
 
 def test_campbell_keeps_a_whirl_branch_through_zero_frequency():
-    """Rotating ring (SPEC 7.3, undamped): lam = +-i(w0 + W), +-i(w0 - W). The branch i(w0 - W)
+    """Rotating ring (theory: rotating ring, undamped): lam = +-i(w0 + W), +-i(w0 - W). The branch i(w0 - W)
     changes the sign of Im lam at W = w0; one member of each conjugate pair must still be drawn (a V)."""
     w0 = 2.0
     speeds = np.linspace(0.1, 4.1, 9)  # avoids W = w0, where lam = 0 is double

@@ -35,7 +35,7 @@ def close_figures():
 
 @pytest.fixture(scope="module")
 def pendulum():
-    """The paper's double pendulum (SPEC 7.1) with a follower load and a damper on joint 1 only:
+    """The paper's double pendulum (theory: double pendulum) with a follower load and a damper on joint 1 only:
     non-proportional damping, so its modes are complex (each coordinate has its own phase)."""
     robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf())
     scene = pinlin.Scene(
@@ -166,7 +166,7 @@ def test_a_given_vector_and_the_default_amplitude(pendulum):
 
 
 def test_constrained_four_bar_maps_the_mode_through_the_basis():
-    """One coordinate drives three joints: the drawing follows sys.basis @ z (SPEC section 10)."""
+    """One coordinate drives three joints: the drawing follows sys.basis @ z (theory: constraints)."""
     spec = load_scene(pinlin.data_path("scenes/four_bar.toml"))
     scene = spec.scene
     sys = pinlin.linearize(scene, pinlin.find_equilibrium(scene, spec.q0).q)

@@ -1,10 +1,10 @@
 """Systems shared by the interop tests, each with what is known about it in closed form.
 
-- the paper's double pendulum (SPEC 7.1) with its follower load P and a joint damper:
+- the paper's double pendulum (theory: double pendulum) with its follower load P and a joint damper:
   circulatory and damped; tip at (-(l1 sin phi1 + l2 sin phi2), 0, -(l1 cos phi1 + l2 cos phi2)),
   phi1 = theta1, phi2 = theta1 + theta2 (joints about +y, bars along -z);
-- the rotating ring (SPEC 7.3) with damping: gyroscopic, with a prescribed ring speed;
-- the turntable (SPEC 7.2): gyroscopic, undamped;
+- the rotating ring (theory: rotating ring) with damping: gyroscopic, with a prescribed ring speed;
+- the turntable (theory: turntable): gyroscopic, undamped;
 - a 4-link chain with Rayleigh damping;
 - a seeded random system from matrices (M spd, C and K general).
 """
@@ -15,7 +15,7 @@ import numpy as np
 
 import pinlin
 
-#: Double pendulum parameters of SPEC 7.1: m1, l1, m2, l2 [kg, m], k1, k2 [N m/rad], P [N], g [m/s^2].
+#: Double pendulum parameters of theory: double pendulum: m1, l1, m2, l2 [kg, m], k1, k2 [N m/rad], P [N], g [m/s^2].
 M1, L1, M2, L2, K1, K2, P, G = 1.3, 0.7, 0.9, 0.5, 3.0, 2.0, 4.0, 9.81
 #: Joint damper on joint1 [N m s/rad]: makes D nonzero.
 C1 = 0.1

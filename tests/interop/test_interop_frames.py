@@ -1,6 +1,6 @@
 """Frame inputs and outputs of state_space: closed forms, finite differences, prescribed joints, constraints.
 
-- Double pendulum (SPEC 7.1, joints about +y, bars along -z): the tip is at
+- Double pendulum (theory: double pendulum, joints about +y, bars along -z): the tip is at
   p = (-(l1 sin phi1 + l2 sin phi2), 0, -(l1 cos phi1 + l2 cos phi2)) with phi1 = theta1,
   phi2 = theta1 + theta2, so dp/dtheta and the generalized forces Q = (dp/dtheta)^T F of a
   tip force (virtual work) are closed forms, at the hanging position and at a deflected

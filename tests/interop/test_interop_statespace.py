@@ -101,7 +101,7 @@ def test_scipy_model_resolvent_equals_pinlin(case):
 
 
 def test_blocks_equal_closed_form_double_pendulum():
-    """A = [[0, I], [-M^-1 K, -M^-1 C]] with SPEC 7.1's M, S, N (theta coordinates) and D = diag(C1, 0)."""
+    """A = [[0, I], [-M^-1 K, -M^-1 C]] with theory: double pendulum's M, S, N (theta coordinates) and D = diag(C1, 0)."""
     _, sys = double_pendulum()
     T = np.array([[1.0, 0.0], [1.0, 1.0]])
     M = T.T @ np.array([[(M1 / 3 + M2) * L1**2, M2 * L1 * L2 / 2], [M2 * L1 * L2 / 2, M2 * L2**2 / 3]]) @ T

@@ -91,7 +91,7 @@ def test_turntable_with_a_prescribed_speed():
     many = pinlin.linearize_many(scene, qs)
     for q, sys in zip(qs, many):
         _assert_same(sys, pinlin.linearize(scene, q))
-    # SPEC 7.2 closed form on (arm, slider), at every table angle
+    # theory: turntable closed form on (arm, slider), at every table angle
     for sys in many:
         np.testing.assert_allclose(sys.M, np.diag([m * r0**2, m]), rtol=1e-14)
         np.testing.assert_allclose(sys.G, 2 * m * W * r0 * np.array([[0.0, 1.0], [-1.0, 0.0]]), rtol=1e-14)
@@ -358,7 +358,7 @@ def test_steady_motion_errors_name_the_first_bad_point():
     qs = np.array([q, q + [0.0, 0.0, 0.0, 0.2], q])
     first = pinlin.linearize_many(scene, qs[:1])[0]
     _assert_same(first, pinlin.linearize(scene, q))
-    # the slider 0.2 m off: (k - m Omega^2) 0.2 = (10 - 4) 0.2 = 1.2 N unbalanced (SPEC 7.2)
+    # the slider 0.2 m off: (k - m Omega^2) 0.2 = (10 - 4) 0.2 = 1.2 N unbalanced (theory: turntable)
     with pytest.raises(NotAnEquilibriumError, match=r"relative residual .*\(largest unbalanced force 1.2 on 'slider'\)"):
         pinlin.linearize_many(scene, qs)
     with pytest.raises(ConfigurationError, match=r"qs\[1\]\[0:2\] = \[0.0, 0.0\] of joint 'table' is not a rotation"):

@@ -1,5 +1,5 @@
 """Constraints: Jacobians and constraint stiffness by finite differences, assembly, KKT equilibrium,
-coordinates, contacts and every bad-input path (SPEC section 10, issue 11)."""
+coordinates, contacts and every bad-input path (theory: constraints, issue 11)."""
 
 import math
 

@@ -1,7 +1,7 @@
 """Analytic derivatives against central finite differences taken on the manifold.
 
 K = dr/dq is differenced through ``pin.integrate`` (tangent space), C = dr/dv
-directly, for models with every kind of element (SPEC sections 1-2).
+directly, for models with every kind of element (theory: equations, elements).
 """
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""find_equilibrium: Newton on the configuration manifold (SPEC section 3)."""
+"""find_equilibrium: Newton on the configuration manifold (theory: equilibrium)."""
 
 import numpy as np
 import pytest

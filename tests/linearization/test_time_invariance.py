@@ -77,7 +77,7 @@ def turntable(gravity=(0.0, 0.0, -9.81), elements=()):
 
 def turntable_q(scene):
     q = scene.neutral()
-    q[3] = (10.0 * 0.3 + 1.3 * 1.5**2 * 0.5) / (10.0 - 1.3 * 1.5**2)  # r0 of SPEC 7.2
+    q[3] = (10.0 * 0.3 + 1.3 * 1.5**2 * 0.5) / (10.0 - 1.3 * 1.5**2)  # r0 of theory: turntable
     return q
 
 

@@ -48,7 +48,7 @@ def _stiffness(scene, q):
 
 
 def test_spring_damper_matches_spec_formula(ur5, q_ur5):
-    """K = J_rel^T [k u u^T + (T/l)(I - u u^T)] J_rel + (dead-force term of T u at a, -T u at b), SPEC 11.
+    """K = J_rel^T [k u u^T + (T/l)(I - u u^T)] J_rel + (dead-force term of T u at a, -T u at b), theory: elements between frames.
 
     J_rel from Pinocchio's frame Jacobians; the dead-force term from two DeadWrench
     elements, i.e. Pinocchio's fext derivative plus DeadWrench's correction.
@@ -131,7 +131,7 @@ def _relative_jacobian(robot, q, frame, target):
 
 
 def test_bushing_at_zero_deflection(ur5, q_ur5):
-    """e = 0 (offset = the current relative placement): K = J_r^T K6 J_r, C = J_r^T D6 J_r (SPEC 11)."""
+    """e = 0 (offset = the current relative placement): K = J_r^T K6 J_r, C = J_r^T D6 J_r (theory: elements between frames)."""
     rng = np.random.default_rng(7)
     A = rng.normal(size=(6, 6))
     K6, D6 = A @ A.T + np.eye(6), np.diag([1.0, 2.0, 3.0, 0.1, 0.2, 0.3])

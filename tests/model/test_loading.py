@@ -134,7 +134,7 @@ def test_unknown_example():
 
 
 def test_memory_estimate_follows_spec():
-    # Pinocchio keeps 32 nv^3 bytes (about 4 GB at nv = 500, SPEC section 1) and peaks near twice that
+    # Pinocchio keeps 32 nv^3 bytes (about 4 GB at nv = 500, theory: equations) and peaks near twice that
     assert 64 * 500**3 <= pinocchio_data_bytes(500) <= 80 * 500**3
 
 
@@ -150,7 +150,7 @@ def test_memory_guard_refuses_before_allocating():
 
 
 def test_memory_guard_default_limit_refuses_huge_chain():
-    """nv = 1000: Pinocchio's data keeps 32 GB and peaks near 70 GB, more than a 24 GB machine allows (SPEC section 1)."""
+    """nv = 1000: Pinocchio's data keeps 32 GB and peaks near 70 GB, more than a 24 GB machine allows (theory: equations)."""
     with pytest.raises(pinlin.ModelTooLargeError, match="nv = 1000"):
         pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(1000), memory_limit=24 * 2**30 // 2)
 

@@ -1,4 +1,4 @@
-"""MJCF models with closed loops (pinlin.load_mjcf) and constraints in scene files (SPEC section 10)."""
+"""MJCF models with closed loops (pinlin.load_mjcf) and constraints in scene files (theory: constraints)."""
 
 import re
 

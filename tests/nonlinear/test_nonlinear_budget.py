@@ -18,7 +18,7 @@ FAIL_FAST_SECONDS = 10.0
 
 @pytest.fixture(scope="module")
 def pendulum():
-    """The paper's double pendulum with follower load (SPEC 7.1), the bundled default scene."""
+    """The paper's double pendulum with follower load (theory: double pendulum), the bundled default scene."""
     return load_scene(default_scene_path()).scene
 
 

@@ -8,9 +8,9 @@ two decades of eps, must lie in [1.8, 2.2].  A wrong M, C or K, a wrong sign or
 a wrong prescribed-joint treatment leaves an O(eps) difference (slope 1).
 
 The double pendulum is taken with pre-stressed springs: at the symmetric
-hanging equilibrium of SPEC 7.1 the quadratic terms vanish by symmetry (the
+hanging equilibrium of theory: double pendulum the quadratic terms vanish by symmetry (the
 difference is O(eps^3)), so the eps^2 law would not be visible there.
-The rotating ring of SPEC 7.3 (prismatic coordinates in a turning frame) has
+The rotating ring of theory: rotating ring (prismatic coordinates in a turning frame) has
 exactly linear equations of motion: there the difference must stay at the
 integration tolerance for every eps.
 """
@@ -81,7 +81,7 @@ def test_nonlinear_minus_linear_scales_like_eps_squared(case, duration):
 
 
 def test_symmetric_double_pendulum_has_no_quadratic_term():
-    # At the straight hanging equilibrium of SPEC 7.1 the equations are odd in x: O(eps^3).
+    # At the straight hanging equilibrium of theory: double pendulum the equations are odd in x: O(eps^3).
     scene = pinlin.Scene(
         pinlin.load_urdf_string(pinlin.double_pendulum_urdf()),
         [pinlin.JointSpring("joint1", 3.0), pinlin.JointSpring("joint2", 2.0), pinlin.FollowerWrench("tip", force=(0, 0, 4.0))],

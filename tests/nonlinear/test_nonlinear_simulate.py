@@ -187,7 +187,7 @@ def test_linear_coordinates_of_a_floating_body_at_small_rotations():
 @pytest.mark.parametrize("method", ["DOP853", "RK45"])
 @pytest.mark.parametrize("rtol", [1e-5, 1e-8])
 def test_error_estimate_matches_the_true_error(method, rtol):
-    # The rotating ring (SPEC 7.3) has exactly linear equations of motion: expm of its
+    # The rotating ring (theory: rotating ring) has exactly linear equations of motion: expm of its
     # linearization is the exact trajectory, against which the estimate is checked.
     scene = rotating_ring()
     q_eq = scene.neutral()

@@ -1,7 +1,7 @@
 """pinlin.numerics: the shared numerics, each against hand values or an independent reference.
 
 Definiteness and determinant signs are in test_definiteness.py.  The condition numbers are
-checked against the values SPEC section 4 gives for its 3 x 3 check problem,
+checked against the values theory: spectrum gives for its 3 x 3 check problem,
 with eigenvalues from mpmath and eigenvectors from an SVD of L(lam) -- not from
 pinlin's solver.
 """
@@ -19,9 +19,9 @@ from pinlin import numerics as nm
 from pinlin.errors import ComputationError, ParameterError
 from spectral_cases import A0, A1, A2, mp_eigenvalues
 
-SPEC_EIGENVALUES = np.array([-3.8513, -0.59217 + 0.80280j, -0.59217 - 0.80280j, 0.52326 + 0.62251j,
+CHECK_EIGENVALUES = np.array([-3.8513, -0.59217 + 0.80280j, -0.59217 - 0.80280j, 0.52326 + 0.62251j,
                              0.52326 - 0.62251j, 0.78909])
-SPEC_KAPPA = np.array([2.3092, 0.70275, 0.70275, 2.7013, 2.7013, 2.0144])
+CHECK_KAPPA = np.array([2.3092, 0.70275, 0.70275, 2.7013, 2.7013, 2.0144])
 
 
 def _null_vectors(L):
@@ -32,16 +32,16 @@ def _null_vectors(L):
 
 def test_condition_numbers_match_the_spec_check_values():
     lam = mp_eigenvalues(A2, A1, A0)
-    order = [int(np.argmin(np.abs(lam - v))) for v in SPEC_EIGENVALUES]
+    order = [int(np.argmin(np.abs(lam - v))) for v in CHECK_EIGENVALUES]
     lam = lam[order]
-    assert_allclose(lam, SPEC_EIGENVALUES, atol=1e-4)
+    assert_allclose(lam, CHECK_EIGENVALUES, atol=1e-4)
     kappa = []
     for z in lam:
         x, y = _null_vectors(z * z * A2 + z * A1 + A0)
         kappa.append(nm.condition_number(A2, A1, A0, z, x, y))
         assert nm.backward_error(A2, A1, A0, z, x) < 1e-14
         assert nm.backward_error(A2, A1, A0, z, y, left=True) < 1e-14
-    assert_allclose(kappa, SPEC_KAPPA, rtol=2e-4)
+    assert_allclose(kappa, CHECK_KAPPA, rtol=2e-4)
 
 
 def test_backward_error_by_hand():

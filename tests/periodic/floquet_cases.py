@@ -1,4 +1,4 @@
-"""Hand-derived periodic systems for the tests of pinlin.periodic (SPEC section 13 reference cases)."""
+"""Hand-derived periodic systems for the tests of pinlin.periodic (theory: Floquet reference cases)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Mathieu's equation x'' + (delta + eps cos t) x = 0 (SPEC section 13): transition curves against Mathieu
+"""Mathieu's equation x'' + (delta + eps cos t) x = 0 (theory: Floquet): transition curves against Mathieu
 characteristic values (scipy.special, checked against Hill's method), verdicts inside and outside the
 tongues, and the error bounds against a 36-digit mpmath reference."""
 

@@ -1,5 +1,5 @@
 """Multi-blade (Coleman) transform of a lag-hinged rotor on a hub (Coleman-Feingold ground resonance,
-SPEC section 13): the transformed system is time-invariant for N >= 3 identical blades, isotropic or
+theory: Floquet): the transformed system is time-invariant for N >= 3 identical blades, isotropic or
 anisotropic hub alike, and its eigenvalues equal the blade-coordinate Floquet exponents modulo i Omega;
 N = 2 and dissimilar blades are refused."""
 

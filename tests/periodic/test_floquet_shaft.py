@@ -1,4 +1,4 @@
-"""The asymmetric shaft (SPEC section 13): in inertial coordinates K(t) = R(Omega t) diag(k1, k2) R^T is
+"""The asymmetric shaft (theory: Floquet): in inertial coordinates K(t) = R(Omega t) diag(k1, k2) R^T is
 pi / Omega-periodic; its Floquet exponents equal the rotating-frame eigenvalues modulo i Omega, and the
 undamped shaft is unstable exactly for sqrt(k1/m) < Omega < sqrt(k2/m), marginally stable (by structure)
 outside."""

@@ -14,7 +14,7 @@ W0, THETA0 = 1.3, 2.0                   # omega0 = sqrt(g / l) [rad/s], amplitud
 
 def _pendulum_swing():
     """x'' + omega0^2 cos(theta(t)) x = 0 along theta = 2 arcsin(k sn(omega0 t + K(k), k)), k = sin(theta0/2),
-    period 4 K(k) / omega0 (SPEC 13), beside an uncoupled oscillator of frequency 1.7 rad/s."""
+    period 4 K(k) / omega0 (theory: Floquet), beside an uncoupled oscillator of frequency 1.7 rad/s."""
     k = np.sin(THETA0 / 2)
     Kk = scipy.special.ellipk(k ** 2)
 

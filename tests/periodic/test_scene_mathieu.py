@@ -1,10 +1,10 @@
-"""Mathieu's equation through a multibody model (SPEC section 13; issue 23 part 3b): a point-mass pendulum
+"""Mathieu's equation through a multibody model (theory: Floquet; issue 23 part 3b): a point-mass pendulum
 on a pivot moving vertically, z_p = A sin(omega t + phi).
 
 Derivation (tests/periodic/scene_cases.py): J theta'' + m l (g + z_p'') sin theta = 0 with J = m l^2, so
 about the hanging position K(t) = m l (g - A omega^2 sin(omega t + phi)), M = m l^2, C = 0.  With
 phi = pi / 2 (z_p = A cos omega t), omega = 1 and l = 1 this is theta'' + (delta + eps cos t) theta = 0 with
-delta = g and eps = -A (the SPEC writes +A: its z_p points down; the regions are symmetric in eps).
+delta = g and eps = -A (the theory page writes +A: its z_p points down; the regions are symmetric in eps).
 Inverted (theta = pi): K(t) = -m l (g + z_p''): delta = -g / (l omega^2), eps = A / l (Kapitza).
 Transition curves: Mathieu characteristic values a_r(q), b_r(q) (scipy.special), a = 4 delta, q = -2 eps.
 """

@@ -1,4 +1,4 @@
-"""Stability boundaries and sensitivities against closed forms (issue 15 acceptance; SPEC sections 7 and 12).
+"""Stability boundaries and sensitivities against closed forms (issue 15 acceptance; theory: worked examples, boundaries).
 
 Sources of the reference values (derivations in tests/boundaries/boundary_cases.py, evaluated with mpmath):
 
@@ -6,9 +6,9 @@ Sources of the reference values (derivations in tests/boundaries/boundary_cases.
   two rigid links of length l, masses 2m (middle joint) and m (tip), joint springs k, follower load P:
   det(mu M + K) = m^2 l^4 (2 mu^2 + (7 - 2P) mu + 1) for k = l = m = 1, so P_f = 7/2 - sqrt(2); with equal
   joint dampers c the flutter load is the smallest positive root of the Routh-Hurwitz determinant.
-- The paper's double pendulum (SPEC 7.1, Example 6.2): P_f = 16.4328976484... and the divergence load P_d, the
+- The paper's double pendulum (theory: double pendulum, Example 6.2): P_f = 16.4328976484... and the divergence load P_d, the
   roots of the discriminant of det(mu M + K(P)); damped: Routh-Hurwitz as above.
-- The rotating ring (SPEC 7.3, Example 11.1) with damping: critical speed sqrt(k/m).
+- The rotating ring (theory: rotating ring, Example 11.1) with damping: critical speed sqrt(k/m).
 - A chain of n links under a dead compressive tip force (no gravity): K = k T - P l I in absolute angles,
   buckling at P = (4k/l) sin^2(pi / (2(2n + 1))), the smallest root of det K(P) = 0 (checked also as a
   generalized eigenvalue problem of pinlin's own K(0) and dK/dP).

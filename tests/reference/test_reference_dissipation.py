@@ -1,4 +1,4 @@
-"""Margins that say what they cover, and dissipation-induced instability (issue 25; SPEC section 5).
+"""Margins that say what they cover, and dissipation-induced instability (issue 25; theory: stability).
 
 Sources:
 
@@ -17,7 +17,7 @@ Sources:
   lam = i omega of the undamped polynomial the first-order rate is (implicit function theorem)
   d lam / d eps = -(b3 lam^3 + b1 lam) / (4 a4 lam^3 + 2 a2 lam) = -(b1 - b3 omega^2) / (2 a2 - 4 a4 omega^2),
   real; the Hurwitz determinant H3 / eps^2 = b3 a2 b1 - a4 b1^2 - b3^2 a0 changes sign where it does
-  (SPEC section 5).
+  (theory: stability).
 - Gyroscopic stabilization (Thomson and Tait 1879; Chetaev): M = I, S = diag(k1, k2) with k1, k2 < 0,
   G = g [[0, -1], [1, 0]]: det = lam^4 + (k1 + k2 + g^2) lam^2 + k1 k2, stable iff g^2 > (sqrt(-k1) +
   sqrt(-k2))^2; any full damping destabilizes (Kelvin-Tait-Chetaev); with D = eps I the rate is
@@ -182,7 +182,7 @@ def test_conservative_system_with_positive_stiffness_is_never_destabilized():
     assert "conservative" in st.reason or "D = 0 and G = 0" in st.reason
     for row in st.dissipation:
         assert row.destabilizes is False and row.theorem == "Lagrange-Dirichlet (Kelvin)", row
-    # x = y real: the rate is -x^T D1 x / (2 x^T M x) < 0 (SPEC section 5); D1 = M gives exactly -1/2
+    # x = y real: the rate is -x^T D1 x / (2 x^T M x) < 0 (theory: stability); D1 = M gives exactly -1/2
     assert_allclose(_row(st, "Rayleigh, mass").rate, -0.5, rtol=1e-14)
     assert "dissipation-induced" not in st.reason
 
@@ -329,7 +329,7 @@ def test_vanishing_damping_refuses_bad_input():
 
 
 def test_sleeping_top_is_the_gyroscopic_twin():
-    """The sleeping top (SPEC 12): M = A I, G = C Omega J, S = -m g l I; stable iff C^2 Omega^2 > 4 A m g l.
+    """The sleeping top (theory: boundaries): M = A I, G = C Omega J, S = -m g l I; stable iff C^2 Omega^2 > 4 A m g l.
 
     With D = eps I, p(lam) = (A lam^2 + eps lam - mgl)^2 + (C Omega lam)^2, so at lam = i omega
     (A omega^2 - C Omega omega + mgl = 0) the rate is (A omega^2 + mgl) / (C^2 Omega^2 - 2 A (A omega^2 + mgl)).

@@ -1,4 +1,4 @@
-"""The paper's double pendulum with follower load (Example 6.2; SPEC 7.1), hand-derived.
+"""The paper's double pendulum with follower load (Example 6.2; theory: double pendulum), hand-derived.
 
 Absolute angles phi from the downward vertical, relative URDF angles theta with
 phi = T theta, T = [[1, 0], [1, 1]].  Closed forms:
@@ -38,7 +38,7 @@ def scene_for(m1, l1, m2, l2, k1, k2, P, g):
 
 PARAMETERS = [
     # m1, l1, m2, l2, k1, k2, P, g
-    (1.3, 0.7, 0.9, 0.5, 3.0, 2.0, 4.0, 9.81),  # SPEC 7.1 check values
+    (1.3, 0.7, 0.9, 0.5, 3.0, 2.0, 4.0, 9.81),  # theory: double pendulum check values
     (1.3, 0.7, 0.9, 0.5, 3.0, 2.0, 0.0, 9.81),  # no load
     (1.3, 0.7, 0.9, 0.5, 3.0, 2.0, -6.0, 9.81),  # tensile load
     (2.0, 1.5, 0.4, 0.3, 0.0, 0.0, 25.0, 9.81),  # no springs, strong compression

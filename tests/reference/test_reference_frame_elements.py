@@ -1,4 +1,4 @@
-"""Elements between frames against hand-derived closed forms (issue 12 acceptance; SPEC sections 7.2, 10, 11).
+"""Elements between frames against hand-derived closed forms (issue 12 acceptance; theory: turntable, constraints, elements between frames).
 
 Each case cites its derivation in its docstring; tolerances are those of the issue.
 """
@@ -46,7 +46,7 @@ def frequencies(sys):
 
 @pytest.mark.parametrize("k, m, l0", [(40.0, 1.3, 0.5), (2500.0, 0.2, 1.2)])
 def test_elastic_pendulum(k, m, l0):
-    """Point mass m on a spring k (rest length l0) from a world point, in a vertical plane (SPEC 11).
+    """Point mass m on a spring k (rest length l0) from a world point, in a vertical plane (theory: elements between frames).
 
     At the hanging equilibrium the spring is stretched to l = l0 + m g / k with
     tension T = m g: bounce omega^2 = k / m; swing omega^2 = (T / l) / m = g / l,
@@ -112,13 +112,13 @@ def test_small_motion_matches_the_nonlinear_simulation():
     assert np.abs(nonlinear - linear).max() < 5e-8
 
 
-# ----------------------------------------------------------------------------- turntable (SPEC 7.2)
+# ----------------------------------------------------------------------------- turntable (theory: turntable)
 
 A, MASS, K, L0 = 0.5, 1.3, 10.0, 0.3
 
 
 def cartesian_turntable(omega, damping=0.0):
-    """SPEC 7.2 rebuilt in Cartesian coordinates: table (prescribed) -> x -> y -> particle; A fixed on the table."""
+    """theory: turntable rebuilt in Cartesian coordinates: table (prescribed) -> x -> y -> particle; A fixed on the table."""
     urdf = (
         '<robot name="cartesian_turntable"><link name="ground"/>'
         f'<link name="table">{_inertial(1.0, 1.0, 1.0, 1.0)}</link><link name="slide_x"/>'
@@ -136,7 +136,7 @@ def cartesian_turntable(omega, damping=0.0):
 
 @pytest.mark.parametrize("omega, c", [(0.5, 0.0), (1.5, 0.0), (2.5, 0.0), (1.5, 0.7)])
 def test_turntable_cartesian_matches_polar_closed_form(omega, c):
-    """Example 6.1 (SPEC 7.2): same eigenvalues in Cartesian coordinates with a spring-damper to A.
+    """Example 6.1 (theory: turntable): same eigenvalues in Cartesian coordinates with a spring-damper to A.
 
     Polar form in (theta, r): M = diag(m r0^2, m), G = 2 m W r0 [[0, 1], [-1, 0]],
     S = diag(m W^2 a r0, k - m W^2), r0 = (k l0 + m W^2 a) / (k - m W^2); a dashpot
@@ -168,7 +168,7 @@ def test_turntable_cartesian_matches_polar_closed_form(omega, c):
 
 
 def test_half_car_bounce_and_pitch():
-    """Half-car (SPEC 11): body m, pitch inertia I, springs k_f at a ahead and k_r at b behind.
+    """Half-car (theory: elements between frames): body m, pitch inertia I, springs k_f at a ahead and k_r at b behind.
 
     With z the bounce and theta the pitch (about y, so the front point moves by
     z - a theta and the rear by z + b theta): K = [[k_f + k_r, k_r b - k_f a],
@@ -211,7 +211,7 @@ def test_half_car_bounce_and_pitch():
 
 
 def test_bushing_on_free_body_six_frequencies():
-    """A free-floating body held by a bushing at its centre of mass, at zero deflection (SPEC 11).
+    """A free-floating body held by a bushing at its centre of mass, at zero deflection (theory: elements between frames).
 
     The body's principal axes are the bushing frame's axes, so K = diag(k_i)
     (J_r = I for the free-flyer's body frame) and M = diag(m, m, m, I_1, I_2, I_3):
@@ -253,7 +253,7 @@ def _fourbar_angles(phi1):
 
 
 def _fourbar_rigid_frequency(phi1, k1, k3):
-    """Energy method (SPEC 10): omega^2 = K_eff / M_eff along the loop, theta = phi1.
+    """Energy method (theory: constraints): omega^2 = K_eff / M_eff along the loop, theta = phi1.
 
     Velocity loop: i a w1 e1 + i b w2 e2 + i c w3 e3 = 0 gives w2, w3 per unit w1.
     M_eff = sum m_k |v_ck|^2 + I_k w_k^2 (uniform bars, I = m l^2 / 12);
@@ -281,7 +281,7 @@ def _fourbar_rigid_frequency(phi1, k1, k3):
 
 @pytest.mark.parametrize("closure", ["spring_damper", "bushing"])
 def test_fourbar_stiff_closure_converges_to_rigid(closure):
-    """A planar four-bar (SPEC 10 check case) closed at the rocker tip by a stiff element.
+    """A planar four-bar (theory: constraints check case) closed at the rocker tip by a stiff element.
 
     An open chain crank - coupler - rocker whose tip is tied to the ground pivot
     D = (d, 0) by a zero-length spring (or a bushing with translational stiffness

@@ -1,4 +1,4 @@
-"""Prescribed rotation: the turntable (Example 6.1; SPEC 7.2) and the rotating ring (Example 11.1; SPEC 7.3).
+"""Prescribed rotation: the turntable (Example 6.1; theory: turntable) and the rotating ring (Example 11.1; theory: rotating ring).
 
 Turntable, coordinates (theta, r):  M = diag(m r0^2, m),  G = 2 m W r0 [[0, 1], [-1, 0]],
 S = diag(m W^2 a r0, k - m W^2),  D = N = 0,  r0 = (k l0 + m W^2 a) / (k - m W^2).

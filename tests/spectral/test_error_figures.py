@@ -1,4 +1,4 @@
-"""Every error figure of the spectral results, tested from both sides (issue 16; SPEC sections 4, 5 and 8).
+"""Every error figure of the spectral results, tested from both sides (issue 16; theory: spectrum, stability, error figures).
 
 A figure checked only from above ("error <= tol") passes when it is reported as
 0.  Here each figure is compared with its true value -- exact residuals of the
@@ -7,7 +7,7 @@ worst-case perturbation -- so that it must be positive where the truth is and
 within a stated factor of it:
 
 - backward errors eta: within eps/2 (absolute) of the exact residual of the returned pair;
-- condition numbers kappa: the SPEC section 4 check values, to their printed digits;
+- condition numbers kappa: the theory: spectrum check values, to their printed digits;
 - error bounds: their slope (the sensitivity) is the shift of the worst perturbation, within 2 %;
   the defective bound is the closed-form split of a critically damped oscillator, within 1e-12;
 - the stability margin times the safety factor: the first-order distance of the worst perturbation
@@ -30,9 +30,9 @@ from pinlin.spectral.qualitative import mode_constants
 from spectral_cases import A0, A1, A2, cantilever, double_pendulum
 
 EPS = np.finfo(float).eps
-SPEC_EIGENVALUES = np.array([-3.8513, -0.59217 + 0.80280j, -0.59217 - 0.80280j, 0.52326 + 0.62251j,
+CHECK_EIGENVALUES = np.array([-3.8513, -0.59217 + 0.80280j, -0.59217 - 0.80280j, 0.52326 + 0.62251j,
                              0.52326 - 0.62251j, 0.78909])
-SPEC_KAPPA = np.array([2.3092, 0.70275, 0.70275, 2.7013, 2.7013, 2.0144])
+CHECK_KAPPA = np.array([2.3092, 0.70275, 0.70275, 2.7013, 2.7013, 2.0144])
 
 
 def _mp(A):
@@ -73,9 +73,9 @@ def test_backward_errors_are_the_exact_residuals_of_the_returned_pairs(scaling):
 
 def test_condition_numbers_of_the_result_are_the_spec_check_values():
     m = pinlin.modal_analysis((A2, A1, A0))
-    order = [int(np.argmin(np.abs(m.eigenvalues - v))) for v in SPEC_EIGENVALUES]
-    assert_allclose(m.eigenvalues[order], SPEC_EIGENVALUES, atol=1e-4)
-    assert_allclose(m.condition[order], SPEC_KAPPA, rtol=2e-4)
+    order = [int(np.argmin(np.abs(m.eigenvalues - v))) for v in CHECK_EIGENVALUES]
+    assert_allclose(m.eigenvalues[order], CHECK_EIGENVALUES, atol=1e-4)
+    assert_allclose(m.condition[order], CHECK_KAPPA, rtol=2e-4)
 
 
 def _worst_perturbation(sys, lam, x, y, delta, direction=1.0):
@@ -83,7 +83,7 @@ def _worst_perturbation(sys, lam, x, y, delta, direction=1.0):
 
     With E = t conj(y) x^H / (||y|| ||x||) and phases making lam^2 dM + lam dC + dK = delta w(lam) E (w the
     weight of eta): y^T dL x = t delta w ||x|| ||y||, so d lam = -y^T dL x / y^T L' x has modulus
-    delta * sensitivity (SPEC section 4); the phase t = -direction y^T L' x / |y^T L' x| points it along
+    delta * sensitivity (theory: spectrum); the phase t = -direction y^T L' x / |y^T L' x| points it along
     ``direction``.
     """
     deriv = y @ ((2 * lam * sys.M + sys.C) @ x)
@@ -219,7 +219,7 @@ def test_chain_residuals_are_the_exact_residuals_from_both_sides():
 
 
 def test_mode_constants_residual_from_both_sides():
-    """m lam^2 + (d + i g) lam + (k + i n) = 0 (SPEC section 5), residual of a deliberately shifted lam."""
+    """m lam^2 + (d + i g) lam + (k + i n) = 0 (theory: stability), residual of a deliberately shifted lam."""
     sys = double_pendulum(P=4.0, c=0.1)
     m = pinlin.modal_analysis(sys)
     X = np.asarray(m.right)

@@ -1,8 +1,8 @@
-"""SPEC section 4 check values and closed-form spectra (literature / hand-derived cases).
+"""theory: spectrum check values and closed-form spectra (literature / hand-derived cases).
 
-Sources: SPEC section 4 (eigenvalues and kappa of lam^2 A2 + lam A1 + A0 to
-the digits given there); SPEC 7.3 (rotating ring, closed form in z = x + iy);
-SPEC 7.1 (double pendulum matrices, eigenvalues from mpmath at 50 digits);
+Sources: theory: spectrum (eigenvalues and kappa of lam^2 A2 + lam A1 + A0 to
+the digits given there); theory: rotating ring (rotating ring, closed form in z = x + iy);
+theory: double pendulum (double pendulum matrices, eigenvalues from mpmath at 50 digits);
 Euler-Bernoulli cantilever frequencies (beta L from 1 + cos cosh = 0).
 """
 
@@ -27,9 +27,9 @@ from spectral_cases import (
     ring_closed_form,
 )
 
-SPEC_LAMBDA = np.array([-3.8513, -0.59217 + 0.80280j, -0.59217 - 0.80280j, 0.52326 + 0.62251j,
+CHECK_LAMBDA = np.array([-3.8513, -0.59217 + 0.80280j, -0.59217 - 0.80280j, 0.52326 + 0.62251j,
                         0.52326 - 0.62251j, 0.78909])
-SPEC_KAPPA = np.array([2.3092, 0.70275, 0.70275, 2.7013, 2.7013, 2.0144])
+CHECK_KAPPA = np.array([2.3092, 0.70275, 0.70275, 2.7013, 2.7013, 2.0144])
 
 
 @pytest.fixture(scope="module")
@@ -39,10 +39,10 @@ def check_modes():
 
 def test_spec_check_eigenvalues_and_kappa_to_4_digits(check_modes):
     m = check_modes
-    lam = match(SPEC_LAMBDA, m.eigenvalues)  # computed, in the SPEC's listing order
+    lam = match(CHECK_LAMBDA, m.eigenvalues)  # computed, in the listed order
     order = [int(np.argmin(np.abs(m.eigenvalues - x))) for x in lam]
-    assert_allclose(lam, SPEC_LAMBDA, rtol=5e-5, atol=0)
-    assert_allclose(m.condition[order], SPEC_KAPPA, rtol=5e-5, atol=0)
+    assert_allclose(lam, CHECK_LAMBDA, rtol=5e-5, atol=0)
+    assert_allclose(m.condition[order], CHECK_KAPPA, rtol=5e-5, atol=0)
 
 
 def test_spec_check_eigenvalues_against_mpmath(check_modes):

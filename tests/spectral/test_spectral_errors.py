@@ -97,13 +97,13 @@ def test_complex_input_is_refused_on_both_paths():
 
 
 def test_tuple_input_is_the_general_problem_and_says_so():
-    """A non-symmetric M: refused as a mechanical system, accepted as the general QEP of SPEC section 4."""
+    """A non-symmetric M: refused as a mechanical system, accepted as the general QEP of theory: spectrum."""
     M = np.array([[1.0, 0.5], [0.0, 1.0]])
     with pytest.raises(ParameterError, match="M: must be symmetric"):
         LinearizedSystem.from_matrices(M, Z2, I2)
     m = pinlin.modal_analysis((M, Z2, I2))
     assert m.method == "general" and "no symmetry required or used" in m.method.reason
     assert m.structure.damping is None and m.constants is None  # no mechanical split
-    assert m.stability.theorem is None  # no theorem of SPEC section 5 for general coefficients
+    assert m.stability.theorem is None  # no theorem of theory: stability for general coefficients
     # eigenvalues of the general problem: det(lam^2 M + I) = (lam^2 + 1)^2 (M is unit upper triangular)
     assert np.allclose(np.sort_complex(m.eigenvalues), [-1j, -1j, 1j, 1j], atol=1e-7)

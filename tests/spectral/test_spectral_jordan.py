@@ -1,4 +1,4 @@
-"""Multiple eigenvalues: clusters, block Toeplitz ranks, Jordan chains (SPEC section 4).
+"""Multiple eigenvalues: clusters, block Toeplitz ranks, Jordan chains (theory: spectrum).
 
 Hand-derived cases: the critically damped oscillator (lam0 = -omega, L and L'
 both vanish there: one chain of length 2); a 2-DOF example with a nontrivial

@@ -1,6 +1,6 @@
-"""Modal constants m, d, g, k, n and the structural facts (SPEC section 5, paper Sec. 11).
+"""Modal constants m, d, g, k, n and the structural facts (theory: stability, paper Sec. 11).
 
-Hand derivation for the rotating ring (SPEC 7.3): its modes are circular,
+Hand derivation for the rotating ring (theory: rotating ring): its modes are circular,
 x = (1, -+i)/sqrt(2), so m = 1, d = c, g = -+2 m Omega, k = k - m Omega^2, n = 0.
 """
 

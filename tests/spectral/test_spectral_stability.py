@@ -1,7 +1,7 @@
-"""The honest stability verdict (SPEC sections 5 and 9, issue 3 part 6).
+"""The honest stability verdict (theory: stability, conventions, issue 3 part 6).
 
-Reference cases: the paper's damped double pendulum (SPEC 7.1), the rotating
-ring (SPEC 7.3: undamped marginally stable for Omega != sqrt(k/m), damped
+Reference cases: the paper's damped double pendulum (theory: double pendulum), the rotating
+ring (theory: rotating ring: undamped marginally stable for Omega != sqrt(k/m), damped
 stable iff m Omega^2 < k), Ziegler's paradox on the follower-loaded double
 pendulum.  Property tests check the theorems on random systems against an
 independent computation (state-space eigenvalues, or a sign change of

@@ -5,13 +5,13 @@ import pytest
 
 import pinlin
 
-SPEC = pinlin.LinearizedSystem.from_matrices(
+CHECK = pinlin.LinearizedSystem.from_matrices(
     [[1.04333333333, 0.2325], [0.2325, 0.075]], 0.1 * np.eye(2), [[15.8511, 5.00725], [2.20725, 4.20725]]
 )
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning", "ignore:invalid value:RuntimeWarning")
-@pytest.mark.parametrize("call", [lambda: pinlin.adjugate(SPEC, 1e300), lambda: pinlin.adjugate_eigenvectors(SPEC, 1e300j)])
+@pytest.mark.parametrize("call", [lambda: pinlin.adjugate(CHECK, 1e300), lambda: pinlin.adjugate_eigenvectors(CHECK, 1e300j)])
 def test_adjugate_at_a_huge_point(call):
     with pytest.raises(pinlin.ComputationError, match="overflows double precision"):
         call()
@@ -25,7 +25,7 @@ def test_ragged_matrices_for_modal_analysis():
 def test_check_free_response_of_strings():
     t = np.linspace(0, 1, 6)
     with pytest.raises(pinlin.ParameterError, match="x: expected numbers"):
-        pinlin.check_free_response(SPEC, t, np.zeros((6, 2)).astype(str))
+        pinlin.check_free_response(CHECK, t, np.zeros((6, 2)).astype(str))
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning", "ignore:invalid value:RuntimeWarning")
@@ -36,7 +36,7 @@ def test_check_free_response_of_strings():
 def test_free_response_that_overflows(x0, v0, t):
     """These returned NaN values with error 0, or a NaN error."""
     with pytest.raises(pinlin.ComputationError, match="overflow"):
-        pinlin.free_response(SPEC, x0, v0, t)
+        pinlin.free_response(CHECK, x0, v0, t)
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning", "ignore:invalid value:RuntimeWarning")
@@ -44,7 +44,7 @@ def test_energy_budget_that_overflows():
     x = np.zeros((4, 2))
     x[3, 1] = 1e300
     with pytest.raises(pinlin.ComputationError, match="overflow"):
-        pinlin.energy_budget(SPEC, np.linspace(0, 1, 4), x, x)
+        pinlin.energy_budget(CHECK, np.linspace(0, 1, 4), x, x)
 
 
 @pytest.mark.parametrize(

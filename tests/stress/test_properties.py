@@ -1,14 +1,14 @@
-"""Property tests on random chains and random parameters (issue 7 part 7, SPEC sections 1, 4, 5).
+"""Property tests on random chains and random parameters (issue 7 part 7, theory: equations, spectrum, stability).
 
 hypothesis draws chains (links, masses, lengths, radii, springs, dampers,
 follower loads, gravity) and random mechanical matrices; the properties hold
 for every draw:
 
-- M symmetric positive definite, D and S symmetric, G and N skew (SPEC 1);
-- eigenpair residuals: eta recomputed from the vectors within bounds (SPEC 4);
-- modal flexibility equal to the directly inverted dynamic stiffness (SPEC 4);
+- M symmetric positive definite, D and S symmetric, G and N skew (theory: equations);
+- eigenpair residuals: eta recomputed from the vectors within bounds (theory: spectrum);
+- modal flexibility equal to the directly inverted dynamic stiffness (theory: spectrum);
 - verdicts consistent with the structural theorems and with the computed
-  eigenvalues and their bounds (SPEC 5).
+  eigenvalues and their bounds (theory: stability).
 
 Sizes and example counts are kept small (the whole file runs in well under a minute).
 """
@@ -121,7 +121,7 @@ def test_modal_flexibility_equals_the_direct_inverse(sys, w, sigma):
 
 
 def _consistent(m, sys):
-    """The verdict against the computed eigenvalues with their bounds and the theorems of SPEC 5."""
+    """The verdict against the computed eigenvalues with their bounds and the theorems of theory: stability."""
     kind = m.stability.kind
     lam, r = m.eigenvalues, m.tolerances["safety"] * m.error_bound
     facts = m.structure
@@ -131,7 +131,7 @@ def _consistent(m, sys):
         assert np.all(lam.real <= r)
     elif kind in ("divergence", "flutter"):
         assert np.any(lam.real > -r)  # something on or right of the axis
-    # theorems (SPEC 5), which must never be contradicted
+    # theorems (theory: stability), which must never be contradicted
     if not facts.circulatory:
         if facts.damping == "positive_definite" and facts.stiffness == "positive_definite":
             assert kind == "asymptotically_stable"

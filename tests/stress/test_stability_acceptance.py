@@ -1,4 +1,4 @@
-"""Acceptance of issue 16: stability decided wherever the floating-point data decide it (SPEC section 5).
+"""Acceptance of issue 16: stability decided wherever the floating-point data decide it (theory: stability).
 
 - spring chains of 10 and 30 unit masses, springs alternating 1 and 1e10 / 1e12 / 1e14, dashpots 0.01,
   the ground spring 1, -1e-3 or -0.5 (the issue's numbers; truth from mpmath's eigenvalues of the stored S);
@@ -114,7 +114,7 @@ def test_nlevp_damped_beam_is_bounded_but_undecided():
 
 
 def gyroscopic_circulatory(Omega, s, nu):
-    """A particle in a rotating frame (SPEC 7.3 without damping) with a circulatory force nu J.
+    """A particle in a rotating frame (theory: rotating ring without damping) with a circulatory force nu J.
 
     With z = x + i y: z'' + 2 i Omega z' + (s - i nu) z = 0, so lam = -i Omega +- sqrt(-Omega^2 - s + i nu)
     and their conjugates: for nu != 0 one root of each pair has Re lam = +-nu / (2 sqrt(Omega^2 + s)) > 0.

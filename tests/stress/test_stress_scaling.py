@@ -1,8 +1,8 @@
-"""Stress tests: stiffness and mass ratios, near-massless links, units (issue 7 part 6, SPEC section 8).
+"""Stress tests: stiffness and mass ratios, near-massless links, units (issue 7 part 6, theory: error figures).
 
 Each asserts backward errors recomputed from the returned vectors, eigenvalues
 within their reported error bounds of an mpmath reference, and the verdict the
-theorems of SPEC section 5 imply.
+theorems of theory: stability imply.
 """
 
 from __future__ import annotations

@@ -2,8 +2,7 @@
 
 Each asserts backward errors recomputed from the vectors, the Jordan structure
 and the verdict, or a clear "undecided" -- never a wrong verdict.  References:
-exact structure (K = 0, exact rational discriminants), closed forms (SPEC 7.2,
-7.3) and mpmath.
+exact structure (K = 0, exact rational discriminants), closed forms (theory: turntable, rotating ring) and mpmath.
 """
 
 from __future__ import annotations
@@ -26,7 +25,7 @@ METHODS = ("auto", "general")
 
 @pytest.mark.parametrize("method", METHODS)
 def test_zero_stiffness_chain_drifts(method):
-    """No springs, no gravity: K = C = 0, every eigenvalue 0 with chains of length 2: x = t x0 (SPEC 8)."""
+    """No springs, no gravity: K = C = 0, every eigenvalue 0 with chains of length 2: x = t x0 (theory: error figures)."""
     sys = chain(5, gravity=(0, 0, 0))
     assert sys.nonzero == ("M",)
     m = pinlin.modal_analysis(sys, method=method)
@@ -134,7 +133,7 @@ def _exact_discriminant(sys) -> Fraction:
     return b * b - 4 * a * c
 
 
-#: The flutter load of the SPEC 7.1 pendulum (zero of the discriminant, found by bisection in double).
+#: The flutter load of the theory: double pendulum pendulum (zero of the discriminant, found by bisection in double).
 FLUTTER_P = 16.432897648390227
 
 
@@ -239,7 +238,7 @@ def test_turntable_at_high_speed_matches_spec_7_2(Omega):
 @pytest.mark.parametrize("Omega", [1.0, 1e2, 1e4])
 @pytest.mark.parametrize("c", [0.0, 0.1])
 def test_rotating_ring_at_high_speed_matches_spec_7_3(Omega, c):
-    """SPEC 7.3: undamped marginally stable for Omega != sqrt(k/m); damped stable iff m Omega^2 < k."""
+    """theory: rotating ring: undamped marginally stable for Omega != sqrt(k/m); damped stable iff m Omega^2 < k."""
     k = 4.0
     el = [JointSpring("x", k), JointSpring("y", k)] + ([JointDamper("x", c), JointDamper("y", c)] if c else [])
     scene = pinlin.Scene(pinlin.load_urdf_string(pinlin.rotating_ring_urdf(1.0)), el, prescribed={"ring": Omega})

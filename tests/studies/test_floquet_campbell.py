@@ -3,7 +3,7 @@
 Reference: the three-bladed lag-hinged rotor on an anisotropic hub (Coleman and Feingold, NACA TR 1351, 1958;
 the hand-derived matrices of tests/periodic/floquet_cases.py): in multi-blade coordinates it is time-invariant,
 so at every speed each Floquet exponent of the blade coordinates equals a multi-blade eigenvalue modulo
-i Omega (SPEC-free statement: the Coleman transform has period 2 pi / Omega).
+i Omega (the Coleman transform has period 2 pi / Omega).
 """
 
 from __future__ import annotations

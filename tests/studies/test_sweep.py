@@ -38,7 +38,7 @@ def test_same_results_with_every_executor():
     assert a.shape == (6, 2, 2, 2, 2)
     assert_array_equal(threads.collect(), a)
     assert_array_equal(processes.collect(), a)
-    # the values themselves: N_theta[0, 1] = P l1 / 2 in URDF angles (SPEC 7.1)
+    # the values themselves: N_theta[0, 1] = P l1 / 2 in URDF angles (theory: double pendulum)
     assert_allclose(a[:, 0, 1, 0, 1], np.linspace(0.0, 10.0, 6) * 0.7 / 2, rtol=1e-12, atol=1e-15)
     assert plain.points[1] == {"P": 0.0, "k2": 2.0}  # last name fastest
     assert_array_equal(plain.axes["P"], np.linspace(0.0, 10.0, 6))

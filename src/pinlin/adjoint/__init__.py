@@ -1,4 +1,4 @@
-"""The adjoint module: characteristic polynomial, adjugate, eigenvectors from the adjugate (SPEC section 4).
+"""The adjoint module: characteristic polynomial, adjugate, eigenvectors from the adjugate (theory: adjoint).
 
 Paper Sec. 6-10 and 12, in the order of the data flow:
 

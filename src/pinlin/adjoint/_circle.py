@@ -1,4 +1,4 @@
-"""Polynomial coefficients from samples on circles, by the FFT (SPEC section 4).
+"""Polynomial coefficients from samples on circles, by the FFT (theory: adjoint).
 
 A polynomial ``P(z) = sum_k c_k (z - z0)^k`` of known degree d, scalar or
 matrix-valued, is sampled at ``N > d + 1`` equally spaced points

@@ -1,4 +1,4 @@
-"""The adjugate (classical adjoint) of the dynamic stiffness (SPEC section 4, paper Sec. 7-9).
+"""The adjugate (classical adjoint) of the dynamic stiffness (theory: adjoint, paper Sec. 7-9).
 
 .. math::
     L(\\lambda)\\,\\operatorname{adj} L(\\lambda) = \\operatorname{adj} L(\\lambda)\\,L(\\lambda)
@@ -15,7 +15,7 @@ matrix of rank n - 1 is the rank-one matrix ``prod_{j<n} s_j v_n u_n^H`` up to
 phase) and is computed in logarithms so that it never overflows before the
 final, checked conversion (:mod:`pinlin.adjoint.svd`).  The error figure is the
 residual of the defining identity, ``max(||L A - p I||, ||A L - p I||) / (||L|| ||A||)``
-(Frobenius norms, SPEC section 8).  The adjugate as a matrix polynomial and its
+(Frobenius norms, theory: error figures).  The adjugate as a matrix polynomial and its
 Taylor coefficients are in :mod:`pinlin.adjoint.adjugate_series` (re-exported here).
 """
 
@@ -85,7 +85,7 @@ class AdjugateMatrix(ResultArray):
     log_scale : float
         The adjugate is this array times ``exp(log_scale)`` (0 unless scaled).
     residual : float
-        ``max(||L A - p I||, ||A L - p I||) / (||L|| ||A||)`` (SPEC section 8).
+        ``max(||L A - p I||, ||A L - p I||) / (||L|| ||A||)`` (theory: error figures).
     singular_values : (n,) ndarray
         Singular values of ``L(lam)``, descending.
     rank_one_defect : float
@@ -125,7 +125,7 @@ def adjugate(sys, lam, *, scaled: bool = False) -> AdjugateMatrix:
         \\operatorname{adj} L = \\det U\\,\\det V^H\\, V \\operatorname{diag}\\Bigl(\\prod_{j\\ne i} s_j\\Bigr) U^H,
         \\qquad L(\\lambda) = U \\operatorname{diag}(s) V^H
 
-    (SPEC section 4).  ``L adj L = adj L L = p(lam) I``; at a simple root its
+    (theory: adjoint).  ``L adj L = adj L L = p(lam) I``; at a simple root its
     nonzero columns are right eigenvectors and its nonzero rows left ones
     (:func:`pinlin.adjoint.adjugate_eigenvectors`).
 

@@ -1,4 +1,4 @@
-"""The adjugate as a matrix polynomial and its Taylor coefficients at a point (SPEC section 4, paper Sec. 7-9).
+"""The adjugate as a matrix polynomial and its Taylor coefficients at a point (theory: adjoint, paper Sec. 7-9).
 
 .. math::
     \\operatorname{adj} L(\\lambda) = \\sum_{k=0}^{2n-2} A_k \\lambda^k

@@ -1,4 +1,4 @@
-"""The characteristic differential equation p(d/dt) x_i = 0 (SPEC section 4, paper Sec. 7).
+"""The characteristic differential equation p(d/dt) x_i = 0 (theory: adjoint, paper Sec. 7).
 
 Applying the adjoint operator ``adj L(d/dt)`` to ``L(d/dt) x = 0`` gives, since
 ``adj L(lam) L(lam) = p(lam) I``,

@@ -1,4 +1,4 @@
-"""Eigenvectors read off the adjugate at a root (SPEC section 4, paper Sec. 8 and 9).
+"""Eigenvectors read off the adjugate at a root (theory: adjoint, paper Sec. 8 and 9).
 
 At a simple root ``lam_k`` of ``p``, ``L(lam_k)`` has rank n - 1 and
 ``adj L(lam_k)`` rank one (paper Prop. 8.2):
@@ -48,7 +48,7 @@ __all__ = [
 #: eigenvalue computed to about eta leaves s_n at eta s_1 (1e-8 for a root split by
 #: rounding into a double one), while a point that is no eigenvalue leaves it at O(s_1).
 EIGENVALUE_TOL = 1e-8
-#: Default: the root is simple when its condition number kappa (SPEC section 4) is below
+#: Default: the root is simple when its condition number kappa (theory: adjoint) is below
 #: 1 / SIMPLE_TOL.  A computed double root has kappa of about 1/sqrt(eps) ~ 1e8.
 SIMPLE_TOL = 1e-6
 #: Default for :func:`adjugate_chain`: a Taylor coefficient T_j counts as zero when its
@@ -64,7 +64,7 @@ DERIVATIVE_LOG10_RANGE = 300.0
 
 
 def backward_error(sys, lam: complex, x: np.ndarray, *, left: bool = False) -> float:
-    """Normwise backward error of an eigenpair (SPEC section 4), Frobenius norms.
+    """Normwise backward error of an eigenpair (theory: adjoint), Frobenius norms.
 
     .. math::  \\eta(x, \\lambda) = \\frac{\\|L(\\lambda) x\\|}
                {(|\\lambda|^2\\|M\\| + |\\lambda|\\|C\\| + \\|K\\|)\\,\\|x\\|}
@@ -100,7 +100,7 @@ class AdjugateEigenvectors(Result):
     rank_one_defect : float
         ``s_n / s_{n-1}`` of L = second / largest singular value of the adjugate.
     simplicity : float
-        ``1 / kappa`` with the homogeneous condition number of SPEC section 4,
+        ``1 / kappa`` with the homogeneous condition number of theory: adjoint,
         ``kappa = sqrt(|a|^4 ||M||^2 + |a|^2 |b|^2 ||C||^2 + |b|^4 ||K||^2) /
         |y^T (2 a conj(b) M + (|b|^2 - |a|^2) C - 2 conj(a) b K) x|`` (lam = a / b,
         |a|^2 + |b|^2 = 1, unit x and y); 0 for a multiple root, where
@@ -109,15 +109,15 @@ class AdjugateEigenvectors(Result):
         ``simplicity > simple_tol``: lam is a simple root and ``left`` is
         Lancaster-normalized.
     backward_error_right, backward_error_left : float
-        eta of (x, lam) and (y, lam) (SPEC section 4).
+        eta of (x, lam) and (y, lam) (theory: adjoint).
     adjugate_residual : float
-        Residual of ``L adj L = p I`` (SPEC section 8).
+        Residual of ``L adj L = p I`` (theory: error figures).
     elapsed : float
         Seconds [s].
     method : str
     error : float
         The larger backward error of the two eigenpairs,
-        ``max(backward_error_right, backward_error_left)`` (relative, SPEC section 4).
+        ``max(backward_error_right, backward_error_left)`` (relative, theory: adjoint).
     """
 
     eigenvalue: complex
@@ -257,7 +257,7 @@ def adjugate_eigenvectors(
 
 
 def chain_residual(sys, lam0, vectors) -> float:
-    """Relative residual of the Jordan chain equations (SPEC section 4): the largest over the equations.
+    """Relative residual of the Jordan chain equations (theory: adjoint): the largest over the equations.
 
     .. math::
         \\max_i \\frac{\\|\\sum_{j=0}^{i} L^{(j)}(\\lambda_0)/j!\\; x_{i-j}\\|}

@@ -1,4 +1,4 @@
-"""The characteristic polynomial p(lam) = det L(lam) (SPEC section 4, paper Sec. 6).
+"""The characteristic polynomial p(lam) = det L(lam) (theory: adjoint, paper Sec. 6).
 
 .. math::  p(\\lambda) = \\det(\\lambda^2 M + \\lambda C + K)
            = \\det M\\,\\lambda^{2n} + \\dots + \\det K
@@ -154,7 +154,7 @@ def characteristic_polynomial(
     k is taken from the circle minimizing its error bound ``eps_r / r^k``.  The
     radii span the bounds ``lo/2 ... 2 hi`` on the eigenvalue moduli, with
     ``|lam|^2 <= ||M^-1 C|| |lam| + ||M^-1 K||`` and the same for ``1/lam`` with
-    ``K^-1`` (SPEC section 4).  Leading coefficient ``det M``, constant term
+    ``K^-1`` (theory: adjoint).  Leading coefficient ``det M``, constant term
     ``det K``.
 
     Parameters

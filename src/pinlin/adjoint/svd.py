@@ -1,4 +1,4 @@
-"""The adjugate by the singular value decomposition, in logarithms (SPEC section 4).
+"""The adjugate by the singular value decomposition, in logarithms (theory: adjoint).
 
 .. math::
     L = U \\operatorname{diag}(s) V^H,\\qquad

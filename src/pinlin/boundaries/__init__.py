@@ -1,4 +1,4 @@
-"""Eigenvalue sensitivities and exact stability boundaries (SPEC section 12).
+"""Eigenvalue sensitivities and exact stability boundaries (theory: boundaries).
 
 One concept per module:
 

@@ -1,4 +1,4 @@
-"""The verdict bracket of a boundary search (SPEC section 12).
+"""The verdict bracket of a boundary search (theory: boundaries).
 
 Two parameter values whose stability verdicts fall in different classes
 (:data:`~pinlin.boundaries.evaluation.VERDICT_CLASS`) enclose a boundary.  Every

@@ -1,4 +1,4 @@
-"""A double eigenvalue by Newton's method on its defining system (SPEC section 12).
+"""A double eigenvalue by Newton's method on its defining system (theory: boundaries).
 
 Where two eigenvalues meet and leave an axis of symmetry of the spectrum -- two
 imaginary eigenvalues of an undamped circulatory or gyroscopic system (flutter),

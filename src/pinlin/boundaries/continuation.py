@@ -1,4 +1,4 @@
-"""A stability boundary curve p2*(p1) in a plane of two parameters, by continuation (SPEC section 12).
+"""A stability boundary curve p2*(p1) in a plane of two parameters, by continuation (theory: boundaries).
 
 From point to point the boundary moves little: the next p2* is predicted by
 extrapolating the points found (linearly from two, quadratically from three)
@@ -50,7 +50,7 @@ class BoundaryFailure:
 
 @dataclass(frozen=True, repr=False, eq=False)
 class StabilityBoundary(Result):
-    """The boundary curve p2*(p1) (SPEC section 12).
+    """The boundary curve p2*(p1) (theory: boundaries).
 
     Attributes
     ----------
@@ -144,7 +144,7 @@ def stability_boundary(
     max_evaluations: int = MAX_EVALUATIONS,
     modal_options: Mapping[str, Any] | None = None,
 ) -> StabilityBoundary:
-    """The stability boundary p2*(p1) of ``func2(p1, p2)`` for each p1 in ``p1_values`` (SPEC section 12).
+    """The stability boundary p2*(p1) of ``func2(p1, p2)`` for each p1 in ``p1_values`` (theory: boundaries).
 
     Parameters
     ----------

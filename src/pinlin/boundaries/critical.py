@@ -1,4 +1,4 @@
-"""The parameter value where the stability verdict changes (SPEC section 12).
+"""The parameter value where the stability verdict changes (theory: boundaries).
 
 :func:`critical_parameter` keeps a bracket from the verdicts
 (:mod:`.bracket`) and converges with what the eigenvalues know:
@@ -124,7 +124,7 @@ def critical_parameter(
     modal_options: Mapping[str, Any] | None = None,
     damping=None,
 ) -> CriticalParameter:
-    """The parameter value in ``bracket`` where the stability verdict of ``func(p)`` changes (SPEC section 12).
+    """The parameter value in ``bracket`` where the stability verdict of ``func(p)`` changes (theory: boundaries).
 
     Parameters
     ----------
@@ -156,7 +156,7 @@ def critical_parameter(
         result is then the limit, as eps -> 0, of the flutter boundary of
         ``func(p)`` with D = eps D1 added, found from the limit problem (the
         root of the first-order rate of the axis eigenvalues' real parts,
-        :mod:`pinlin.boundaries.vanishing`; SPEC section 5), mechanism
+        :mod:`pinlin.boundaries.vanishing`; theory: stability), mechanism
         "vanishing damping".  ``func(bracket[0])`` must be marginally stable
         and small damping of the shape must stabilize it there.
 

@@ -11,7 +11,7 @@ __all__ = ["CriticalParameter"]
 
 @dataclass(frozen=True, repr=False, eq=False)
 class CriticalParameter(Result):
-    """A stability boundary p* of a one-parameter family (SPEC section 12).
+    """A stability boundary p* of a one-parameter family (theory: boundaries).
 
     Attributes
     ----------

@@ -1,4 +1,4 @@
-"""Newton's method on a transversal crossing of a stability boundary (SPEC section 12).
+"""Newton's method on a transversal crossing of a stability boundary (theory: boundaries).
 
 Where an eigenvalue crosses the imaginary axis with a nonzero speed, the signed
 distance phi(p) of the critical eigenvalue to the boundary is smooth and has a

@@ -1,4 +1,4 @@
-"""Derivatives dM/dp, dC/dp, dK/dp of a parameter family of systems (SPEC section 12).
+"""Derivatives dM/dp, dC/dp, dK/dp of a parameter family of systems (theory: boundaries).
 
 ``func(p)`` is a black box to pinlin, and Pinocchio computes in real arithmetic
 (no complex step), so the derivatives come from one of

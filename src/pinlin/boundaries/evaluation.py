@@ -1,4 +1,4 @@
-"""Calling a parameter family ``func(p) -> LinearizedSystem`` safely and counting the cost (SPEC section 12).
+"""Calling a parameter family ``func(p) -> LinearizedSystem`` safely and counting the cost (theory: boundaries).
 
 An :class:`Evaluator` wraps the user's function: it checks every value it
 returns (a :class:`~pinlin.LinearizedSystem` of one size and one set of

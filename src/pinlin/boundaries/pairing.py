@@ -1,4 +1,4 @@
-"""Getting close to a coalescence: the critical pair and its squared distance (SPEC section 12).
+"""Getting close to a coalescence: the critical pair and its squared distance (theory: boundaries).
 
 Newton on the defining system (:mod:`.coalescence`) needs a start near the
 double eigenvalue.  Two eigenvalues s_i, s_j about to meet on an axis of

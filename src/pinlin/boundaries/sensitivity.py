@@ -1,4 +1,4 @@
-"""How the eigenvalues move with a parameter: d lambda / dp (SPEC section 12).
+"""How the eigenvalues move with a parameter: d lambda / dp (theory: boundaries).
 
 For L(lam, p) = lam^2 M(p) + lam C(p) + K(p) and L_p = dL/dp at fixed lam:
 
@@ -160,7 +160,7 @@ def eigen_derivatives(modes: Modes, dL: MatrixDerivatives, *, puiseux: bool = Tr
 
 @dataclass(frozen=True, repr=False, eq=False)
 class EigenvalueSensitivity(Result):
-    """d lam / dp of every eigenvalue of ``func(p)`` (SPEC section 12).
+    """d lam / dp of every eigenvalue of ``func(p)`` (theory: boundaries).
 
     Attributes
     ----------
@@ -247,7 +247,7 @@ def eigenvalue_sensitivity(
     levels: int = RICHARDSON_LEVELS,
     modal_options: Mapping[str, Any] | None = None,
 ) -> EigenvalueSensitivity:
-    """d lambda / dp of every eigenvalue of the system ``func(p)`` (SPEC section 12).
+    """d lambda / dp of every eigenvalue of the system ``func(p)`` (theory: boundaries).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""The limit of a flutter boundary as damping of a given shape vanishes (SPEC section 5, issue 25).
+"""The limit of a flutter boundary as damping of a given shape vanishes (theory: stability, issue 25).
 
 For D = eps D1(p) added to a family whose undamped systems func(p) are
 marginally stable, the first-order rate of the axis eigenvalues is
@@ -11,7 +11,7 @@ marginally stable, the first-order rate of the axis eigenvalues is
 damped system is asymptotically stable where g < 0 and unstable where g > 0, so
 the flutter boundary p_c(eps) tends to the root p_d of g: the limit problem,
 solved directly (no sequence of small dampings).  For 2 DOF, g(p) = 0 is
-b3 a2 b1 - a4 b1^2 - b3^2 a0 = 0 (SPEC section 5).  Where g stays negative up to
+b3 a2 b1 - a4 b1^2 - b3^2 a0 = 0 (theory: stability).  Where g stays negative up to
 the point where the undamped eigenvalues meet (a coalescence, beyond which
 func(p) is no longer marginally stable), the limit is that coalescence itself,
 found by :func:`~pinlin.boundaries.critical_parameter` without ``damping``.

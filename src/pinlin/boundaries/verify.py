@@ -1,4 +1,4 @@
-"""Checking a boundary by the verdicts beside it, and bisection on the verdict (SPEC section 12).
+"""Checking a boundary by the verdicts beside it, and bisection on the verdict (theory: boundaries).
 
 A value p* with error bound e found from the eigenvalues is *verified* when the
 stability verdicts at p* - e and p* + e (clipped to the bracket, whose ends'

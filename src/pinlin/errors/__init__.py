@@ -4,7 +4,7 @@ Every error pinlin raises derives from :class:`PinlinError` and from the closest
 built-in exception: :class:`ValueError` for bad input, :class:`RuntimeError` for a
 computation that failed, :class:`MemoryError` for a problem too large for this
 machine.  Subclasses keep the failing data as attributes so that callers can
-react without parsing messages (SPEC section 9).
+react without parsing messages (theory: conventions).
 """
 
 from __future__ import annotations

@@ -158,7 +158,7 @@ class EigenvalueNotIsolatedError(ComputationError):
 
 
 class BracketError(InputError):
-    """A bracket cannot hold a stability boundary (SPEC 12): its ends have the same verdict class, one is
+    """A bracket cannot hold a stability boundary (theory: boundaries): its ends have the same verdict class, one is
     "undecided", or they are not two distinct finite numbers; ``bracket``, ``verdicts`` (the kinds at its ends)."""
 
     def __init__(self, message: str, bracket, verdicts=()):
@@ -167,7 +167,7 @@ class BracketError(InputError):
 
 
 class BoundaryNotIsolatedError(InputError):
-    """The verdict changes, but not at an isolated parameter value (SPEC 12): it stays "undecided" over an
+    """The verdict changes, but not at an isolated parameter value (theory: boundaries): it stays "undecided" over an
     interval far wider than rounding; ``interval``: where."""
 
     def __init__(self, message: str, interval):
@@ -177,7 +177,7 @@ class BoundaryNotIsolatedError(InputError):
 
 class SystemFunctionError(InputError):
     """A user's ``func(p) -> LinearizedSystem`` raised (chained as ``__cause__``), returned something else, or
-    systems of different sizes (SPEC 12); ``p``: the parameter value."""
+    systems of different sizes (theory: boundaries); ``p``: the parameter value."""
 
     def __init__(self, message: str, p: float):
         super().__init__(message)

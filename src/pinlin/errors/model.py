@@ -44,7 +44,7 @@ class SceneFileError(InputError):
 
 
 class MjcfError(InputError):
-    """An MJCF file could not be turned into a usable model (SPEC section 10); ``source``: its path."""
+    """An MJCF file could not be turned into a usable model (theory: constraints); ``source``: its path."""
 
     def __init__(self, message: str, source: str):
         super().__init__(message)
@@ -52,7 +52,7 @@ class MjcfError(InputError):
 
 
 class ConstraintError(InputError):
-    """The constraints do not allow what was asked (SPEC section 10); ``constraints``: the labels concerned."""
+    """The constraints do not allow what was asked (theory: constraints); ``constraints``: the labels concerned."""
 
     def __init__(self, message: str, constraints=()):
         super().__init__(message)

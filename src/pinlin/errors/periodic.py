@@ -1,4 +1,4 @@
-"""Errors of the time-periodic analyses (SPEC section 13): a multi-blade transform that is not exact."""
+"""Errors of the time-periodic analyses (theory: Floquet): a multi-blade transform that is not exact."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Errors of periodic prescribed motions and periodic reference orbits (SPEC section 13)."""
+"""Errors of periodic prescribed motions and periodic reference orbits (theory: Floquet)."""
 
 from __future__ import annotations
 

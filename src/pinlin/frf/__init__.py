@@ -1,4 +1,4 @@
-"""Frequency response functions: H(s) = L(s)^-1 = adj L(s) / p(s) and the responses built on it (SPEC 4, 6).
+"""Frequency response functions: H(s) = L(s)^-1 = adj L(s) / p(s) and the responses built on it (theory: flexibility, responses).
 
 One concept per module:
 

@@ -1,4 +1,4 @@
-"""Input check of the frequency responses: angular frequencies (SPEC section 9).
+"""Input check of the frequency responses: angular frequencies (theory: conventions).
 
 Each raises a :class:`~pinlin.ParameterError` naming the parameter, the
 expected and the found value or shape.  Checks shared beyond ``frf`` live in

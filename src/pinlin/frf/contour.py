@@ -1,4 +1,4 @@
-"""The contour of the residues: circles around a root, sampled H, the argument-principle count (SPEC section 4).
+"""The contour of the residues: circles around a root, sampled H, the argument-principle count (theory: flexibility).
 
 On a circle ``s_l = c + r exp(2 pi i l / N)`` the H(s) engine's direct method
 (:func:`pinlin.frf.engine.lu_solve`) gives H(s_l); the number of eigenvalues

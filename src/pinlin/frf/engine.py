@@ -1,4 +1,4 @@
-"""The one engine for the dynamic flexibility H(s) = L(s)^-1 (SPEC sections 4, 6 and 8; paper Sec. 10).
+"""The one engine for the dynamic flexibility H(s) = L(s)^-1 (theory: flexibility, responses, error figures; paper Sec. 10).
 
 Every frequency-domain result of pinlin is ``X(s) = H(s) B`` for a block B of
 right-hand sides: identity columns for :func:`pinlin.flexibility` and
@@ -22,7 +22,7 @@ right-hand sides: identity columns for :func:`pinlin.flexibility` and
            + \\sum_b V_b (sI - J_b)^{-1} d_b,
 
   with (c, d) the coefficients of the state (0, M^{-1} B) on the modes and
-  chains (for a simple L, ``c_k = y_k^T B``: the SPEC's sum
+  chains (for a simple L, ``c_k = y_k^T B``: the modal sum of the theory pages (theory: flexibility)
   ``sum_k x_k y_k^T / (s - lam_k)``).  O(n) per point, output and input once
   the eigen-data are known: faster for many points; its accuracy follows the
   conditioning of the eigenvectors, which the error figure shows.  Its check

@@ -1,4 +1,4 @@
-"""The modal expansion of the first-order state space: eigenvectors and Jordan chains (SPEC sections 4 and 6).
+"""The modal expansion of the first-order state space: eigenvectors and Jordan chains (theory: flexibility, responses).
 
 Built on the spectral module (:func:`pinlin.modal_analysis`,
 :func:`pinlin.jordan_chains`); the modal method of the H(s) engine
@@ -12,7 +12,7 @@ w = (a, b):
 
 .. math::  c_k = y_k^T \\left((\\lambda_k M + C)\\, a + M b\\right)
 
-(the SPEC's modal solution is this with w = z(0)).  A Jordan chain
+(the modal solution of the theory pages, theory: free response, is this with w = z(0)).  A Jordan chain
 x_0, ..., x_{r-1} at lam0 spans v_i = (x_i, lam0 x_i + x_{i-1}) with
 A v_i = lam0 v_i + v_{i-1}: the states of the free solutions
 u_i(t) = exp(lam0 t) sum_{j<=i} t^j/j! x_{i-j}.  A defective eigenvalue has
@@ -202,7 +202,7 @@ class ModalExpansion(Result):
     ) -> tuple[np.ndarray, list[np.ndarray], float]:
         """Coefficients of the state w = (a, b) on the modes and chains ((n,) or (n, m) columns).
 
-        The SPEC's left-vector formula (and least squares for the chains) gives
+        The left-vector formula (theory: flexibility) (and least squares for the chains) gives
         a first guess; ``refine`` steps of iterative refinement, each applying
         the same formula to the residual w - V (c, d), then make the expansion
         reproduce w to rounding even where the left vectors are less accurate
@@ -330,7 +330,7 @@ def modal_expansion(sys: LinearizedSystem, modes=None) -> ModalExpansion:
 
     Semisimple eigenvalues (single, or clusters whose left vectors were
     normalized) enter with their vectors; every other cluster enters through
-    its Jordan chains (:func:`pinlin.jordan_chains`, SPEC section 4).
+    its Jordan chains (:func:`pinlin.jordan_chains`, theory: flexibility).
 
     Parameters
     ----------

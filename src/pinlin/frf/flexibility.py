@@ -1,4 +1,4 @@
-"""The dynamic flexibility H(s) = L(s)^-1 and the spectral form of the adjugate (SPEC section 4, paper Sec. 10).
+"""The dynamic flexibility H(s) = L(s)^-1 and the spectral form of the adjugate (theory: flexibility, paper Sec. 10).
 
 .. math::
     H(s) = L(s)^{-1} = \\frac{\\operatorname{adj} L(s)}{p(s)}
@@ -95,7 +95,7 @@ def flexibility_columns(sys, s, *, rows=None, cols=None, method: str = DEFAULT_M
 
 
 def flexibility(sys, s, *, method: str = DEFAULT_METHOD, modes=None, tol: float = DEFAULT_TOL) -> FlexibilityArray:
-    """The dynamic flexibility ``H(s) = L(s)^-1`` [rad/(N m), m/N], vectorized over s (SPEC section 4).
+    """The dynamic flexibility ``H(s) = L(s)^-1`` [rad/(N m), m/N], vectorized over s (theory: flexibility).
 
     .. math::  H(s) = (s^2 M + s C + K)^{-1} = \\sum_k \\frac{x_k y_k^T}{s - \\lambda_k}
                + \\text{(Jordan-block terms)}
@@ -172,7 +172,7 @@ def _modal_weights(lam: complex, ev: np.ndarray, log_det_m: float, sign_m: float
 
 
 def modal_adjugate(sys, lam, modes=None) -> AdjugateMatrix:
-    """The spectral representation of the adjugate (paper Corollary 10.2, SPEC section 4).
+    """The spectral representation of the adjugate (paper Corollary 10.2, theory: flexibility).
 
     .. math::
         \\operatorname{adj} L(\\lambda) = \\det M \\sum_{k} x_k y_k^T \\prod_{j\\ne k}(\\lambda - \\lambda_j)

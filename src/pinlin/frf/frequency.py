@@ -1,4 +1,4 @@
-"""Frequency response ``H(i omega)`` of selected inputs and outputs (SPEC section 6, paper Sec. 12).
+"""Frequency response ``H(i omega)`` of selected inputs and outputs (theory: responses, paper Sec. 12).
 
 The steady state of ``M x'' + C x' + K x = Re(F exp(i omega t))`` is
 ``x(t) = Re(H(i omega) F exp(i omega t))``.  Inputs and outputs are coordinates
@@ -48,7 +48,7 @@ class FrequencyResponse(Result):
     defects : (n_frequencies,) ndarray or None
         Per frequency, the relative defect ``||L(i w) H_c - I_c|| / (||L(i w)||
         ||H_c|| + ||I_c||)`` over the input columns c (all n rows): the
-        normwise backward error (SPEC section 8, :mod:`pinlin.frf.engine`).
+        normwise backward error (theory: error figures, :mod:`pinlin.frf.engine`).
         The modal method on more frequencies than
         :data:`pinlin.frf.modal.CHECK_SAMPLES` computes it exactly at that many
         sampled frequencies and gives an upper bound of it at the others
@@ -155,7 +155,7 @@ def frequency_response(
     check: bool = True,
     tol: float = DEFAULT_TOL,
 ) -> FrequencyResponse:
-    """Frequency response ``H(i omega) = L(i omega)^-1`` from ``inputs`` to ``outputs`` (SPEC section 6).
+    """Frequency response ``H(i omega) = L(i omega)^-1`` from ``inputs`` to ``outputs`` (theory: responses).
 
     .. math::
         H(i\\omega) = (-\\omega^2 M + i\\omega C + K)^{-1}

@@ -1,4 +1,4 @@
-"""Steady-state response to harmonic forcing (SPEC section 6): X = H(i omega) F."""
+"""Steady-state response to harmonic forcing (theory: responses): X = H(i omega) F."""
 
 from __future__ import annotations
 
@@ -71,7 +71,7 @@ def harmonic_response(
     modes=None,
     tol: float = DEFAULT_TOL,
 ) -> HarmonicResponse:
-    """Steady-state amplitude of M x'' + C x' + K x = Re(F exp(i omega t)) (SPEC section 6).
+    """Steady-state amplitude of M x'' + C x' + K x = Re(F exp(i omega t)) (theory: responses).
 
     .. math::
         X = H(i\\omega) F = L(i\\omega)^{-1} F

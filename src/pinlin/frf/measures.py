@@ -1,4 +1,4 @@
-"""The measures of an evaluation of H(s) B: ||L(s)|| without forming L(s), and ||L(s) X - B|| (SPEC section 8).
+"""The measures of an evaluation of H(s) B: ||L(s)|| without forming L(s), and ||L(s) X - B|| (theory: error figures).
 
 Used by every method of the engine (:mod:`pinlin.frf.engine`) for the relative
 defect ||L X - B|| / (||L|| ||X|| + ||B||) and for the amplification test at a pole.

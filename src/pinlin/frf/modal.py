@@ -1,4 +1,4 @@
-"""The modal method of the H(s) engine and its defect bound (SPEC sections 4, 6 and 8).
+"""The modal method of the H(s) engine and its defect bound (theory: flexibility, responses, error figures).
 
 X(s) = H(s) B from the modal expansion (:mod:`pinlin.frf.expansion`): with
 coefficients c_k (rows of c, (2n, m)) of the state (0, M^-1 B) on the

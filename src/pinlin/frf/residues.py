@@ -1,4 +1,4 @@
-"""Residues of the dynamic flexibility at a root of any multiplicity (SPEC section 4, paper Sec. 10).
+"""Residues of the dynamic flexibility at a root of any multiplicity (theory: flexibility, paper Sec. 10).
 
 Near a root lam0 of p of algebraic multiplicity m (paper Theorem 10.2):
 
@@ -278,7 +278,7 @@ def residues(
         H(s) \\approx \\sum_{j=1}^{m_0} \\frac{R_j}{(s-\\lambda_0)^j},\\qquad
         R_j = \\frac{1}{2\\pi i}\\oint H(s)(s-\\lambda_0)^{j-1} ds
 
-    (SPEC section 4, paper Theorem 10.2).  For a simple root ``R_1 = x y^T`` with
+    (theory: flexibility, paper Theorem 10.2).  For a simple root ``R_1 = x y^T`` with
     ``y^T L'(lam0) x = 1`` (Lancaster) ``= adj L(lam0) / p'(lam0)``.  H on the
     contour is evaluated by the direct method of the H(s) engine
     (:func:`pinlin.frf.engine.lu_solve`).

@@ -1,4 +1,4 @@
-"""H(s) B at many points from one generalized real Schur form (SPEC sections 4 and 6; Laub 1981 in pencil form).
+"""H(s) B at many points from one generalized real Schur form (theory: flexibility, responses; Laub 1981 in pencil form).
 
 The direct method's LU of L(s) per point costs O(n^3) per point.  For many
 points the pencil of the scaled first companion form (s = gamma mu, see

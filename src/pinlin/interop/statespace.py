@@ -1,4 +1,4 @@
-"""State-space form of the linearized equations, for python-control and scipy (issue 17; SPEC sections 1, 9).
+"""State-space form of the linearized equations, for python-control and scipy (issue 17; theory: equations, conventions).
 
 With the state s = [x; x'] (coordinates, then their rates), the second-order
 equation M x'' + C x' + K x = F u (C = D + G, K = S + N) reads
@@ -165,7 +165,7 @@ def _output_matrix(sys, signals: list[Signal], point: OperatingPoint | None) -> 
 def state_space(
     sys, inputs=None, outputs=None, scene=None, *, periodic_tol: float = PERIODIC_TOL
 ) -> StateSpaceModel:
-    """The linearized system as a state-space model, ready for python-control or scipy (SPEC sections 1, 9).
+    """The linearized system as a state-space model, ready for python-control or scipy (theory: equations, conventions).
 
     .. math::
         \\dot s = A s + B u,\\quad y = C s + D u,\\qquad

@@ -18,7 +18,7 @@ One concept per module:
   :mod:`.batch_moving` (steady motions proved time-invariant), with
   :mod:`.batch_common` (stacked norms, checks, result objects);
 - :mod:`.system` -- :class:`LinearizedSystem`, the frozen result;
-- constraints (SPEC section 10): :mod:`.constraint_set` (Phi, J_c, rank and
+- constraints (theory: constraints): :mod:`.constraint_set` (Phi, J_c, rank and
   multipliers at one q), :mod:`.closure` (closing the loops, :func:`close_loops`),
   :mod:`.singularity` (redundant constraints or a singular configuration?, probed)
   and :mod:`.constrained_structure` (redundancy proved: planar loops),

@@ -1,7 +1,7 @@
 """Evaluate the equation of motion of a scene and its analytic derivatives at one point.
 
 The equation of the free coordinates is r(q, v, a) = tau(q, v, a, fext) - Q_e(q, v)
-= 0 (SPEC section 1).  :func:`assemble` evaluates r at (q, v0, a = 0) and,
+= 0 (theory: equations).  :func:`assemble` evaluates r at (q, v0, a = 0) and,
 on request, M = dr/da, C = dr/dv and K = dr/dq on the whole tangent space,
 running only the Pinocchio algorithms the scene calls for:
 
@@ -146,7 +146,7 @@ def assemble(
     ``q`` must already be checked (:meth:`Scene.check_configuration`); ``v``
     defaults to the steady velocity ``scene.v0``.  The static algorithms are
     used whenever v = 0 and no acceleration is given.  ``a`` (nv,): the actual
-    acceleration of a motion (SPEC section 13: the variational equation along a
+    acceleration of a motion (theory: Floquet: the variational equation along a
     periodic orbit), evaluated with ``computeRNEADerivatives(q, v, a)``; the residual is
     then tau(q, v, a) - Q_e.  Pinocchio writes into ``ws`` (default: the calling
     thread's workspace for the scene).

@@ -1,7 +1,7 @@
 """The batched linearization of a steady motion (prescribed joint velocities): Pinocchio per point, the rest stacked.
 
 :func:`pinlin.linearize_many` takes this path for scenes whose prescribed joints
-move (the turntable of SPEC 7.2) when every prescribed joint's time invariance is
+move (the turntable of theory: turntable) when every prescribed joint's time invariance is
 proved once per scene (``plan_of(scene).proofs``, within the call's
 ``periodic_tol``: no numerical check per call), there is no constraint and no
 world-fixed wrench, and the elements are joint springs and dampers.  Per point

@@ -1,4 +1,4 @@
-"""Loop closure: closing a scene's loops from a configuration that violates them (SPEC section 10).
+"""Loop closure: closing a scene's loops from a configuration that violates them (theory: constraints).
 
 Levenberg-Marquardt on Phi(q) = 0 on the configuration manifold: with the exact
 J = dPhi/dq = U S V^T (singular values below ``rank_tol`` times the largest dropped),
@@ -168,7 +168,7 @@ def close_loops(
     max_iterations: int = 100,
     rank_tol: float = RANK_TOL,
 ) -> ClosureResult:
-    """Close the scene's constraints from ``q0``: the loop-closure step (SPEC section 10).
+    """Close the scene's constraints from ``q0``: the loop-closure step (theory: constraints).
 
     Levenberg-Marquardt steps q <- q (+) alpha dx (module docstring), alpha by
     Armijo backtracking on ||Phi||.  :func:`pinlin.find_equilibrium` runs it first

@@ -1,4 +1,4 @@
-"""Linearization of scenes with constraints in independent coordinates (SPEC section 10).
+"""Linearization of scenes with constraints in independent coordinates (theory: constraints).
 
 At an equilibrium (q0, lambda0) (:mod:`.constrained_equilibrium`), v0 = 0, in
 coordinates z with x = B z, B a basis of ker J_c (:mod:`.coordinates`):
@@ -93,7 +93,7 @@ def linearize_constrained(
     constraint_tol: float = CONSTRAINT_TOL,
     rank_tol: float = RANK_TOL,
 ) -> LinearizedSystem:
-    """The linearized equations of a scene with constraints in independent coordinates (SPEC section 10).
+    """The linearized equations of a scene with constraints in independent coordinates (theory: constraints).
 
     Called by :func:`pinlin.linearize` for scenes with constraints, with ``q``
     already checked (:meth:`Scene.check_configuration`); see there for the
@@ -234,7 +234,7 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
 
 
 def constraint_stiffness(scene: Scene, q, lam) -> np.ndarray:
-    """K_lambda = d(J_c(q)^T lambda)/dq at fixed lambda (nv x nv, tangent space; SPEC section 10).
+    """K_lambda = d(J_c(q)^T lambda)/dq at fixed lambda (nv x nv, tangent space; theory: constraints).
 
     The stiffness of the constraint forces alone: the dead-wrench stiffness of
     lambda at each constrained frame's origin and -lambda at its target frame's

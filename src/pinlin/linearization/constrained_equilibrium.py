@@ -1,4 +1,4 @@
-"""Equilibria of scenes with constraints: closed loops and contacts (SPEC section 10).
+"""Equilibria of scenes with constraints: closed loops and contacts (theory: constraints).
 
 With constraints Phi(q) = 0 (m equations, Jacobian J_c) and multipliers lambda
 (the constraint forces on each constraint's frame, world axes):
@@ -67,7 +67,7 @@ def find_constrained_equilibrium(
     closure_tol: float = CLOSURE_TOL,
     rank_tol: float = RANK_TOL,
 ) -> EquilibriumResult:
-    """An equilibrium of a scene with constraints (SPEC section 10); see the module docstring.
+    """An equilibrium of a scene with constraints (theory: constraints); see the module docstring.
 
     Called by :func:`pinlin.find_equilibrium` for scenes with constraints.
 

@@ -1,4 +1,4 @@
-"""Redundant constraint equations proved from the mechanism's structure: planar constraints (SPEC section 10).
+"""Redundant constraint equations proved from the mechanism's structure: planar constraints (theory: constraints).
 
 A rank-deficient J_c is either redundant (the same rank at every assembled
 configuration nearby) or singular (a toggle); :func:`~.singularity.check_regular`

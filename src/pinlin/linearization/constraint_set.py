@@ -1,4 +1,4 @@
-"""A scene's constraints at one configuration: Phi, J_c, its rank and the multipliers (SPEC section 10).
+"""A scene's constraints at one configuration: Phi, J_c, its rank and the multipliers (theory: constraints).
 
 :func:`evaluate_constraints` stacks the constraints of a scene in scene order
 (3 rows per point constraint, 6 per frame constraint).  The rank of J_c comes from
@@ -169,7 +169,7 @@ class ConstraintState:
         return lam, r - self.J.T @ lam
 
     def force_stiffness(self, lam: np.ndarray) -> np.ndarray:
-        """K_lambda = d(J_c^T lambda)/dq at fixed lambda (nv x nv; SPEC section 10)."""
+        """K_lambda = d(J_c^T lambda)/dq at fixed lambda (nv x nv; theory: constraints)."""
         before = self.scene.robot.dof_supports
         if self.frames is not None:
             return dead_wrench_stiffness(self.frames, lam.reshape(-1, 3), None, before, linear=self.J)

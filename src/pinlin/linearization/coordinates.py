@@ -1,4 +1,4 @@
-"""Independent coordinates of a constrained system: a basis B of ker J_c (SPEC section 10).
+"""Independent coordinates of a constrained system: a basis B of ker J_c (theory: constraints).
 
 The admissible motions at q are x = B z (joint velocities, nv) with B an
 (nv x n) basis of ker J_c, n = nv - rank J_c.  Three choices, all giving the

@@ -1,4 +1,4 @@
-"""Equilibria and steady motions: Newton on the configuration manifold (SPEC section 3)."""
+"""Equilibria and steady motions: Newton on the configuration manifold (theory: equilibrium)."""
 
 from __future__ import annotations
 
@@ -66,7 +66,7 @@ def equilibrium_residual(scene: Scene, q) -> np.ndarray:
     """r(q) = tau(q, v0, 0, fext) - Q_e(q, v0) on the free coordinates (n,).
 
     Constraint forces are not included: with constraints, the equilibrium
-    condition is r = J_c^T lambda (SPEC section 10), and
+    condition is r = J_c^T lambda (theory: constraints), and
     :func:`find_equilibrium` reports ||r - J_c^T lambda|| as its residual.
 
     Raises
@@ -88,7 +88,7 @@ def find_equilibrium(
     max_iterations: int = MAX_ITERATIONS,
     min_step: float = MIN_STEP,
 ) -> EquilibriumResult:
-    """Newton's method for r(q) = 0 on the configuration manifold (SPEC sections 3, 10).
+    """Newton's method for r(q) = 0 on the configuration manifold (theory: equilibrium, constraints).
 
     Each step solves K dx = -r with the analytic stiffness K of the free
     coordinates (least squares if K is singular), then backtracks along

@@ -39,7 +39,7 @@ class EquilibriumResult(Result):
         constraints: the loop-closure step, redundant equations, contacts whose force
         the ground cannot give).
     constraint_forces : tuple of ConstraintForce
-        With constraints (SPEC section 10): one entry per constraint, in scene
+        With constraints (theory: constraints): one entry per constraint, in scene
         order, the world-axes force (``.force`` [N]) and, for a frame constraint,
         torque (``.torque`` [N m]) that the constraint applies on its frame (at the
         frame origin; the target frame receives the opposite).  Minimum-norm when

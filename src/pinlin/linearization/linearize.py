@@ -1,4 +1,4 @@
-"""Linearization of a scene at an equilibrium or steady motion (SPEC section 1).
+"""Linearization of a scene at an equilibrium or steady motion (theory: equations).
 
 :func:`linearize` runs the scene's Pinocchio passes once (:mod:`.assembly`),
 with everything that does not depend on q decided beforehand in the scene's
@@ -56,7 +56,7 @@ def linearize(
     constraint_tol: float = CONSTRAINT_TOL,
     rank_tol: float = RANK_TOL,
 ) -> LinearizedSystem:
-    """The linearized equations of ``scene`` around configuration ``q`` (SPEC sections 1, 10).
+    """The linearized equations of ``scene`` around configuration ``q`` (theory: equations, constraints).
 
     .. math::
         M = \\partial\\tau/\\partial a,\\quad
@@ -69,7 +69,7 @@ def linearize(
     scene needs are run (see :mod:`pinlin.linearization.assembly`); they are listed in
     ``sys.calls``.
 
-    With constraints (closed loops, contacts; SPEC section 10) the system has
+    With constraints (closed loops, contacts; theory: constraints) the system has
     n = nv - rank J_c coordinates z, joint velocities = ``sys.basis @ z``:
 
     .. math::
@@ -213,12 +213,12 @@ def _prescribed_notes(
 
 
 def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:
-    """Generalized force of a wrench on the free coordinates at q (SPEC section 1).
+    """Generalized force of a wrench on the free coordinates at q (theory: equations).
 
     Use it to build the input vector of f(t) in M x'' + C x' + K x = f(t): for a
     follower couple of unit size, ``generalized_force(scene, q,
     FollowerWrench("tip", torque=(0, 1, 0)))``.  With constraints the system's
-    coordinates are z (SPEC section 10): its input vector is
+    coordinates are z (theory: constraints): its input vector is
     ``sys.basis.T @ generalized_force(scene, q, wrench)``.
 
     Returns

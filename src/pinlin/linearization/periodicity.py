@@ -21,7 +21,7 @@ from .assembly import Assembly, assemble
 
 __all__ = ["numeric_change", "refuse_motions", "PERIODIC_TEST_ANGLES", "FLOQUET_HINT"]
 
-#: How a time-periodic scene is analysed instead (SPEC section 13), named in every :class:`TimePeriodicError`.
+#: How a time-periodic scene is analysed instead (theory: Floquet), named in every :class:`TimePeriodicError`.
 FLOQUET_HINT = (
     "; analyse it with pinlin.periodic_orbit(scene, q0) (the periodic reference motion) and "
     "pinlin.floquet_analysis(scene, orbit) (Floquet multipliers)"

@@ -1,6 +1,6 @@
 """Is a rank deficiency of J_c structural (redundant constraints) or a singular configuration?
 
-A rank-deficient J_c at q has two causes (SPEC section 10):
+A rank-deficient J_c at q has two causes (theory: constraints):
 
 - redundant equations that hold on the whole constraint manifold (a planar
   loop's out-of-plane equation): the rank is the same at every assembled

@@ -1,4 +1,4 @@
-"""The symmetric and skew parts of C and K, rounding-level parts set to exactly zero (SPEC section 1).
+"""The symmetric and skew parts of C and K, rounding-level parts set to exactly zero (theory: equations).
 
 :func:`split_stiffness` (S, N) and :func:`split_damping` (D, G) for
 :func:`~pinlin.linearization.linearize`; what was set to zero and its relative

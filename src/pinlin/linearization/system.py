@@ -1,4 +1,4 @@
-"""The linearized equations of motion as a frozen value (SPEC section 1).
+"""The linearized equations of motion as a frozen value (theory: equations).
 
 .. math::  M \\ddot x + (D + G) \\dot x + (S + N) x = f(t)
 """
@@ -79,7 +79,7 @@ class LinearizedSystem(Result):
     notes : tuple of str
         Anything the builder wants the user to know.
     basis : (nv, n) ndarray or None
-        For a scene with constraints (SPEC section 10): the basis B of ker J_c
+        For a scene with constraints (theory: constraints): the basis B of ker J_c
         with joint velocities = ``basis @ z`` (z the coordinates, ``dof_names``);
         ``expand`` maps mode shapes and responses to all joints.  None without
         constraints (the coordinates are the free joints themselves).
@@ -337,7 +337,7 @@ class LinearizedSystem(Result):
         degrees of freedom (``basis_names``).  Without constraints x is returned
         unchanged (a copy).
 
-        .. math::  \\dot q = B z  \\quad \\text{(SPEC section 10)}
+        .. math::  \\dot q = B z  \\quad \\text{(theory: constraints)}
 
         Raises
         ------

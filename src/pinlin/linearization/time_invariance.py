@@ -1,4 +1,4 @@
-"""Do the linearized equations depend on the position of a prescribed joint? (SPEC section 2)
+"""Do the linearized equations depend on the position of a prescribed joint? (theory: elements)
 
 A prescribed joint moves at a constant velocity Omega, so its position grows with
 time; the linearized equations are constant-coefficient only if they do not

@@ -304,7 +304,7 @@ class Evaluation:
 
         The same matrix as ``frame_jacobian(frame_id, pin.LOCAL_WORLD_ALIGNED)`` (and
         the same cache entry), read in one Pinocchio call: cheaper when the local
-        Jacobian is not needed too (constraints, SPEC section 10).
+        Jacobian is not needed too (constraints, theory: constraints).
         """
         key = (frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
         if self._jacobians is None:

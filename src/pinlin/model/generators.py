@@ -1,4 +1,4 @@
-"""URDF generators for the reference cases of SPEC section 7.
+"""URDF generators for the reference cases of theory: worked examples.
 
 The bundled files in ``pinlin/data/urdf`` are the output of these functions with
 their default arguments (a test keeps them in sync), so every reference model
@@ -60,7 +60,7 @@ def pendulum_chain_urdf(
     name: str = "pendulum_chain",
     tip_frame: bool = True,
 ) -> str:
-    """URDF text of an n-link pendulum chain of uniform bars (SPEC 7.4).
+    """URDF text of an n-link pendulum chain of uniform bars (theory: pendulum chains).
 
     The chain hangs from a fixed ``base`` link; ``joint{i}`` (i = 1..n) joins
     ``link{i-1}`` to ``link{i}`` about +y, at the lower end of the previous bar.
@@ -129,7 +129,7 @@ def pendulum_chain_urdf(
 def double_pendulum_urdf(
     m1: float = 1.3, l1: float = 0.7, m2: float = 0.9, l2: float = 0.5, *, damping: float = 0.0
 ) -> str:
-    """The paper's double pendulum of uniform slender bars (SPEC 7.1, Example 6.2).
+    """The paper's double pendulum of uniform slender bars (theory: double pendulum, Example 6.2).
 
     Bars OA (m1 [kg], l1 [m]) and AB (m2, l2); joints ``joint1`` at O and
     ``joint2`` at A (relative angles theta1 = phi1, theta2 = phi2 - phi1); frame
@@ -142,7 +142,7 @@ def double_pendulum_urdf(
 
 
 def turntable_urdf(a: float = 0.5, mass: float = 1.0, table_inertia: float = 1.0) -> str:
-    """Particle on a turntable (SPEC 7.2, Example 6.1).
+    """Particle on a turntable (theory: turntable, Example 6.1).
 
     ``table`` (continuous about z; give it a prescribed velocity) carries
     ``arm`` (revolute about z at distance ``a`` [m] from O; angle theta), which
@@ -185,7 +185,7 @@ def turntable_urdf(a: float = 0.5, mass: float = 1.0, table_inertia: float = 1.0
 
 
 def rotating_ring_urdf(mass: float = 1.0, ring_inertia: float = 1.0) -> str:
-    """Particle in a rotating ring (SPEC 7.3, Example 11.1).
+    """Particle in a rotating ring (theory: rotating ring, Example 11.1).
 
     ``ring`` (continuous about z; give it a prescribed velocity) carries the
     prismatic joints ``x`` and ``y`` (the particle's Cartesian coordinates in

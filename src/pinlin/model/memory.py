@@ -1,6 +1,6 @@
 """The memory guard in front of every Pinocchio ``createData``.
 
-``pin.Data`` keeps second-order derivative tensors of 32 nv^3 bytes (SPEC section 1):
+``pin.Data`` keeps second-order derivative tensors of 32 nv^3 bytes (theory: equations):
 4 GB at nv = 500.  Every ``createData`` in pinlin goes through :func:`check_memory`
 first, so a model too large is refused with a clear error, never an out-of-memory kill.
 """
@@ -27,7 +27,7 @@ def pinocchio_data_bytes(nv: int) -> int:
     """Estimated peak bytes of one ``createData`` for a model with ``nv`` velocities.
 
     ``pin.Data`` keeps four nv x nv x nv tensors of doubles for the second-order
-    derivatives (SPEC section 1): 32 nv^3 bytes.  While ``createData`` builds
+    derivatives (theory: equations): 32 nv^3 bytes.  While ``createData`` builds
     them it transiently holds about twice that (peak resident growth of a
     :class:`~pinlin.Scene` measured at 2.25x, 2.14x and 2.10x of 32 nv^3 for
     nv = 100, 150 and 200), so the estimate is 72 nv^3 plus the quadratic terms

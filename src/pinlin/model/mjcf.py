@@ -1,4 +1,4 @@
-"""Loading an MJCF (MuJoCo) model with its closed loops into a :class:`Robot` (SPEC section 10).
+"""Loading an MJCF (MuJoCo) model with its closed loops into a :class:`Robot` (theory: constraints).
 
 Pinocchio's ``buildModelAndConstraintsFromMJCF`` builds the kinematic tree and
 turns the ``<equality>`` entries into constraint models: ``<connect>`` into a

@@ -1,4 +1,4 @@
-"""Periodic prescribed joint motions q_p(t) (SPEC section 13): :class:`Harmonic`, :class:`FourierMotion`,
+"""Periodic prescribed joint motions q_p(t) (theory: Floquet): :class:`Harmonic`, :class:`FourierMotion`,
 :class:`PeriodicMotion`, and the common period of several (:func:`common_period`).
 
 A prescribed joint either turns at a constant velocity (a number in ``Scene(prescribed=...)``) or follows
@@ -145,7 +145,7 @@ class FourierMotion(Motion):
 
 
 class Harmonic(Motion):
-    """q(t) = offset + amplitude sin(omega t + phase) [rad or m] (SPEC section 13).
+    """q(t) = offset + amplitude sin(omega t + phase) [rad or m] (theory: Floquet).
 
     .. math::
         v(t) = A\\omega \\cos(\\omega t + \\varphi), \\qquad a(t) = -A\\omega^2 \\sin(\\omega t + \\varphi)

@@ -73,7 +73,7 @@ class Robot:
         Kinematic constraints that come with the model (an MJCF file's
         ``<equality>`` connects and welds, :func:`pinlin.load_mjcf`); empty for
         URDF robots.  A :class:`~pinlin.Scene` includes them unless its
-        ``constraints=`` says otherwise (SPEC section 10).
+        ``constraints=`` says otherwise (theory: constraints).
 
     Raises
     ------

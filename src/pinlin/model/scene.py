@@ -37,7 +37,7 @@ _UNIT_BLOCKS = {"FreeFlyer": 4, "Spherical": 4, "RUBX": 2, "RUBY": 2, "RUBZ": 2,
 
 
 class Scene:
-    """What acts on a robot: elements, constraints, gravity, prescribed joint velocities (SPEC sections 2, 10).
+    """What acts on a robot: elements, constraints, gravity, prescribed joint velocities (theory: elements, constraints).
 
     A scene is an immutable description: it owns a copy of the robot's model
     (with the scene's gravity) and no Pinocchio ``Data``.  Each computation runs
@@ -56,7 +56,7 @@ class Scene:
     prescribed : mapping of str to float or Motion, optional
         Joint name -> constant velocity [rad/s or m/s] of a 1-DOF joint (a
         turntable, a rotor), or a periodic motion q_p(t) (:class:`~pinlin.Harmonic`,
-        :class:`~pinlin.FourierMotion`, :class:`~pinlin.PeriodicMotion`; SPEC section 13).
+        :class:`~pinlin.FourierMotion`, :class:`~pinlin.PeriodicMotion`; theory: Floquet).
         These joints are not coordinates of the result.  Constant velocities are
         kept in ``prescribed``, periodic motions in ``motions``; ``motion_period`` is the
         common period of the motions (None without any), ``v0`` holds their velocity at t = 0.
@@ -69,7 +69,7 @@ class Scene:
         at most once.  Default: the robot's own
         (``robot.constraints``, from an MJCF file; none for a URDF); a list given
         here replaces them (``robot.constraints + (...)`` adds to them).  The
-        linearized system then has n = nv - rank J_c coordinates (SPEC section 10).
+        linearized system then has n = nv - rank J_c coordinates (theory: constraints).
     urdf_damping : bool
         Add the URDF's ``<dynamics damping>`` as joint dampers (Pinocchio reads
         it into ``model.damping`` but its dynamics ignore it).  Off by default.

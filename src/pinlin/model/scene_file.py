@@ -58,7 +58,7 @@ Format (every table is optional except ``[robot]``)::
     damping = [10.0, 10.0, 10.0, 0.1, 0.1, 0.1]     # optional, same form
     offset = { xyz = [0.0, 0.0, -1.2], rpy = [0.0, 0.0, 0.0] }  # optional unloaded placement
 
-    # [[constraint]]                # a closed loop or a contact (SPEC section 10)
+    # [[constraint]]                # a closed loop or a contact (theory: constraints)
     # type = "point"                # "point" (keeps the frame's origin at target) or "frame"
     # frame = "rocker_tip"          # (a frame of the bundled four_bar.urdf: see scenes/four_bar.toml)
     # target = [0.7, 0.0, 0.0]      # a frame, a world point [m], or (frame) a world placement
@@ -165,7 +165,7 @@ class SceneSpec:
 
 
 def default_scene_path() -> Path:
-    """The bundled default scene: the paper's double pendulum with follower load (SPEC 7.1)."""
+    """The bundled default scene: the paper's double pendulum with follower load (theory: double pendulum)."""
     return data_path("scenes/double_pendulum.toml")
 
 
@@ -346,7 +346,7 @@ def load_scene(path) -> SceneSpec:
     if not isinstance(prescribed, dict):
         r.fail("prescribed", "expected a table joint = velocity")
     for name in prescribed:
-        try:  # a table is a harmonic motion (SPEC section 13), a number a constant velocity
+        try:  # a table is a harmonic motion (theory: Floquet), a number a constant velocity
             if isinstance(prescribed[name], dict):
                 prescribed[name] = harmonic_from_table(prescribed[name])
             else:

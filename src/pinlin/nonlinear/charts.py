@@ -8,7 +8,7 @@ so the integration runs in a chart around a base point q_b:
     q = \\mathrm{integrate}(q_b, dq), \\qquad
     \\dot{dq} = \\left(\\partial\\, \\mathrm{integrate}(q_b, dq) / \\partial dq\\right)^{-1} v
 
-(SPEC section 1: all derivatives in the tangent space).  For joints whose group
+(theory: equations: all derivatives in the tangent space).  For joints whose group
 is flat (R^n, SO(2)) the chart is global and d integrate / d dq = I.  On the
 curved groups the chart is good only for rotations well below pi: when the
 rotation part of dq leaves a ball of radius ``chart_radius``, the base point

@@ -1,4 +1,4 @@
-"""Nonlinear configurations as the coordinates x of a linearized system (SPEC section 1)."""
+"""Nonlinear configurations as the coordinates x of a linearized system (theory: equations)."""
 
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ def linear_coordinates(scene: Scene, q_op, q, v=None) -> tuple[np.ndarray, np.nd
         \\dot x = \\left(\\partial\\, \\mathrm{difference}(q_{op}, q) / \\partial q\\; v\\right)_f
 
     restricted to the free coordinates f (the tangent-space coordinates in
-    which :func:`pinlin.linearize` differentiates, SPEC section 1).  Pinocchio's
+    which :func:`pinlin.linearize` differentiates, theory: equations).  Pinocchio's
     ``difference`` acts joint by joint, so the advancing angle of a prescribed
     joint does not enter: for a steady motion x is the deviation from it.
     xdot is the exact time derivative of x (not just v_f, which differs from

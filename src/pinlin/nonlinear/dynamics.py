@@ -1,4 +1,4 @@
-"""The right-hand side of the nonlinear equations of motion of a scene (SPEC sections 1-2).
+"""The right-hand side of the nonlinear equations of motion of a scene (theory: equations, elements).
 
 The free coordinates obey
 
@@ -11,7 +11,7 @@ their generalized forces Q_e, follower and dead wrenches through Pinocchio's
 ``fext`` (:func:`pinlin.linearization.assembly.external_forces`), gravity in the
 scene's model.  Prescribed joints keep their constant velocity (zero
 acceleration) or follow their periodic motion q_p(t), v_p(t), a_p(t)
-(:meth:`FreeDynamics.apply_motions`, SPEC section 13); the torque that takes is not computed.  Without prescribed
+(:meth:`FreeDynamics.apply_motions`, theory: Floquet); the torque that takes is not computed.  Without prescribed
 joints the accelerations come from ``aba`` directly.
 """
 

@@ -13,7 +13,7 @@ __all__ = ["Simulation"]
 class Simulation(ResultArray):
     """A nonlinear trajectory of a scene: the (len(t), nq) array of configurations, with its figures.
 
-    The array itself holds the configurations (SPEC section 9: ``simulate``
+    The array itself holds the configurations (theory: conventions: ``simulate``
     returns (len(t), nq)); time is the first index.  The rest are attributes;
     like every :class:`~pinlin.results.ResultArray` they live on the whole
     array only, and the array is read-only.

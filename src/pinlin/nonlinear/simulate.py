@@ -1,6 +1,6 @@
 """``simulate``: the nonlinear reference, Pinocchio forward dynamics of a scene integrated on its manifold.
 
-The linearized equations (SPEC section 1) describe small deviations from an
+The linearized equations (theory: equations) describe small deviations from an
 equilibrium or steady motion; :func:`simulate` integrates the full nonlinear
 equations of the same scene so that the linearization can be validated against
 them (issue 5, parts 4 and 5).  The right-hand side is
@@ -50,7 +50,7 @@ ERROR_TOL_FACTOR = 10.0
 #: Smallest rtol ``solve_ivp`` honours (it raises smaller ones to this, with a warning).
 MIN_RTOL = 100 * np.finfo(float).eps
 #: Default ``max_steps`` of each integration run: at the default tolerances DOP853 takes about 40
-#: steps per period of the paper's double pendulum (SPEC 7.1), so this covers hours of its motion
+#: steps per period of the paper's double pendulum (theory: double pendulum), so this covers hours of its motion
 #: in about a minute of wall time, while ``simulate(scene, q0, v0, [0, 1e9])`` stops in a second.
 DEFAULT_MAX_STEPS = 100_000
 
@@ -145,7 +145,7 @@ def simulate(
     max_steps: int | None = DEFAULT_MAX_STEPS,
     max_time: float | None = None,
 ) -> Simulation:
-    """Integrate the nonlinear equations of motion of a scene (issue 5 part 4; SPEC sections 1-2).
+    """Integrate the nonlinear equations of motion of a scene (issue 5 part 4; theory: equations, elements).
 
     The free coordinates obey
 

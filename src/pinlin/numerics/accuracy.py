@@ -1,4 +1,4 @@
-"""Backward error eta, condition number kappa and the Jordan-chain residual (SPEC sections 4 and 8).
+"""Backward error eta, condition number kappa and the Jordan-chain residual (theory: spectrum, error figures).
 
 For an eigenpair (lam, x) with left vector y (``y^T L(lam) = 0``, plain
 transpose) of L(lam) = lam^2 M + lam C + K, with Frobenius norms:
@@ -151,7 +151,7 @@ def _matrices(M, C, K):
 
 
 def backward_error(M, C, K, lam: complex, x, *, left: bool = False) -> float:
-    """eta of one pair (SPEC section 4); with ``left`` the residual is ``x^T L(lam)``."""
+    """eta of one pair (theory: spectrum); with ``left`` the residual is ``x^T L(lam)``."""
     M, C, K = _matrices(M, C, K)
     if left:
         M, C, K = M.T, C.T, K.T
@@ -162,7 +162,7 @@ def backward_error(M, C, K, lam: complex, x, *, left: bool = False) -> float:
 
 
 def condition_number(M, C, K, lam: complex, x, y) -> float:
-    """kappa of one eigenvalue (SPEC section 4) from its right x and plain-transpose left y (any scaling)."""
+    """kappa of one eigenvalue (theory: spectrum) from its right x and plain-transpose left y (any scaling)."""
     M, C, K = _matrices(M, C, K)
     x = np.asarray(x) / np.linalg.norm(x)
     y = np.asarray(y) / np.linalg.norm(y)
@@ -172,7 +172,7 @@ def condition_number(M, C, K, lam: complex, x, y) -> float:
 
 
 def chain_residuals(M, C, K, lam0: complex, chain: Sequence[np.ndarray]) -> tuple[float, ...]:
-    """Relative residual of each Jordan chain equation (SPEC section 4).
+    """Relative residual of each Jordan chain equation (theory: spectrum).
 
     .. math::
         \\rho_i = \\frac{\\|\\sum_{j=0}^{\\min(i,2)} L^{(j)}(\\lambda_0)/j!\\; x_{i-j}\\|}

@@ -1,4 +1,4 @@
-"""Input checks shared by the analyses (SPEC section 9: bad input raises a ParameterError naming it).
+"""Input checks shared by the analyses (theory: conventions: bad input raises a ParameterError naming it).
 
 Every check takes the value first and its name (``label``) second, returns the
 value in canonical form, and raises :class:`~pinlin.ParameterError` with the

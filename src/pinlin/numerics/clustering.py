@@ -1,4 +1,4 @@
-"""Grouping computed eigenvalues that rounding cannot tell apart (SPEC section 4).
+"""Grouping computed eigenvalues that rounding cannot tell apart (theory: spectrum).
 
 Rounding splits an eigenvalue with Jordan chains of length p into p computed
 eigenvalues about eta^(1/p) |lam| apart; a multiple eigenvalue is recognised

@@ -1,4 +1,4 @@
-"""Definiteness, inertia and determinant signs decided against the rounding bound of the data (SPEC section 5).
+"""Definiteness, inertia and determinant signs decided against the rounding bound of the data (theory: stability).
 
 Determinant signs are in :mod:`pinlin.numerics.determinant` (``det_sign`` is
 re-exported here, its home in pinlin 0.2).
@@ -318,7 +318,7 @@ def definiteness(
     with w the eigenvalues computed by ``eigvalsh`` (see the module doc);
     when these leave positive definiteness open while w_min > 0, the Cholesky
     certificate (:func:`cholesky_lower_bound`) is tried.  The matrix that is
-    exactly zero is "zero" (all n eigenvalues zero, exactly).  SPEC section 5.
+    exactly zero is "zero" (all n eigenvalues zero, exactly).  theory: stability.
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Whether a square matrix is certainly nonsingular, and the sign of its determinant (SPEC section 5).
+"""Whether a square matrix is certainly nonsingular, and the sign of its determinant (theory: stability).
 
 The leading coefficient of p(lam) = det L(lam) is det M and p(0) = det K:
 opposite signs prove a real positive root.  The signs are decided like

@@ -1,4 +1,4 @@
-"""Double-precision constants and the checked return from logarithms (SPEC section 8).
+"""Double-precision constants and the checked return from logarithms (theory: error figures).
 
 Determinants and adjugates of large systems are carried as ``mantissa *
 exp(log_scale)``; :func:`checked_exp` is the one place where such a number

@@ -75,7 +75,7 @@ def _frobenius(A: np.ndarray) -> float:
 
 
 def coefficient_norms(M, C, K) -> tuple[float, float, float]:
-    """Frobenius norms (||M||, ||C||, ||K||): the weights of eta and kappa (SPEC section 4)."""
+    """Frobenius norms (||M||, ||C||, ||K||): the weights of eta and kappa (theory: spectrum)."""
     with np.errstate(over="ignore", under="ignore", invalid="ignore"):
         return _frobenius(np.asarray(M)), _frobenius(np.asarray(C)), _frobenius(np.asarray(K))
 

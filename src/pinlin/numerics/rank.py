@@ -1,4 +1,4 @@
-"""Numerical rank decisions and their two default tolerances (SPEC section 4).
+"""Numerical rank decisions and their two default tolerances (theory: spectrum).
 
 Two decisions with different needs, hence two names:
 

@@ -1,4 +1,4 @@
-"""Scales of the quadratic eigenproblem L(lam) = lam^2 M + lam C + K (SPEC section 4).
+"""Scales of the quadratic eigenproblem L(lam) = lam^2 M + lam C + K (theory: spectrum).
 
 - :class:`Scaling` and :func:`fan_lin_van_dooren`: the Fan-Lin-Van Dooren
   scaling lambda = gamma mu, used by the eigensolver, the Jordan rank
@@ -41,7 +41,7 @@ INVERTIBLE_K_FACTOR = 1e3
 @persistent
 @dataclass(frozen=True)
 class Scaling:
-    """Fan-Lin-Van Dooren scaling lambda = gamma mu, L_s(mu) = delta L(gamma mu) (SPEC section 4).
+    """Fan-Lin-Van Dooren scaling lambda = gamma mu, L_s(mu) = delta L(gamma mu) (theory: spectrum).
 
     .. math::
         \\gamma = \\sqrt{\\|K\\|/\\|M\\|},\\quad
@@ -140,7 +140,7 @@ def natural_scale(sys) -> float:
     .. math::  \\Bigl|\\frac{\\det K}{\\det M}\\Bigr|^{1/2n} = \\Bigl(\\prod_k |\\lambda_k|\\Bigr)^{1/2n}
 
     the geometric mean of the eigenvalue moduli when K is nonsingular, otherwise
-    the Fan-Lin-Van Dooren gamma (SPEC section 4).
+    the Fan-Lin-Van Dooren gamma (theory: spectrum).
     """
     sk, lk = np.linalg.slogdet(sys.K)
     if sk != 0 and np.isfinite(lk):

@@ -1,4 +1,4 @@
-"""Evaluating L(s) on many points in chunks of bounded memory (SPEC section 1: never an OOM kill)."""
+"""Evaluating L(s) on many points in chunks of bounded memory (theory: equations: never an OOM kill)."""
 
 from __future__ import annotations
 

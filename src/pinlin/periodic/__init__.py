@@ -1,4 +1,4 @@
-"""Time-periodic linear equations: Floquet analysis and the multi-blade transform (SPEC section 13).
+"""Time-periodic linear equations: Floquet analysis and the multi-blade transform (theory: Floquet).
 
 One concept per module:
 

@@ -1,5 +1,5 @@
 """Floquet analysis of linear T-periodic equations: :func:`floquet_from_first_order` (y' = A(t) y) and
-:func:`floquet_analysis_matrices` (M(t) x'' + C(t) x' + K(t) x = 0) (SPEC section 13).
+:func:`floquet_analysis_matrices` (M(t) x'' + C(t) x' + K(t) x = 0) (theory: Floquet).
 
 The pipeline: step transitions by Gauss-Legendre collocation with step doubling (:mod:`.collocation`),
 grouped into well-conditioned segments; multipliers and periodic eigenvectors of the segment product from the

@@ -1,5 +1,5 @@
 """Error bounds of Floquet multipliers: integration error and eigensolver backward error, each through the
-multiplier's condition in the periodic eigenproblem (SPEC section 13).
+multiplier's condition in the periodic eigenproblem (theory: Floquet).
 
 With z_j, w_j the right and left periodic eigenvectors at the segment boundaries (:mod:`.cyclic`) and
 u_s, v_s their images inside a segment (u_s = P_s u_{s-1} forward from z_{j-1}, v_{s-1}^H = v_s^H P_s

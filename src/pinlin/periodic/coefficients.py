@@ -1,4 +1,4 @@
-"""The variational equation along a motion, from Pinocchio (SPEC section 13): :func:`variational_coefficients`.
+"""The variational equation along a motion, from Pinocchio (theory: Floquet): :func:`variational_coefficients`.
 
 Along a motion q*(t), v*(t) of the free coordinates (prescribed joints at q_p(t), v_p(t), a_p(t)), small
 deviations x in the tangent space of the free coordinates obey

@@ -1,4 +1,4 @@
-"""Transition matrices of y' = A(t) y by Gauss-Legendre collocation with step doubling (SPEC section 13).
+"""Transition matrices of y' = A(t) y by Gauss-Legendre collocation with step doubling (theory: Floquet).
 
 One step of the s-stage Gauss-Legendre method (collocation at the zeros of the shifted Legendre polynomial
 P_s(2 c - 1); order 2 s, symplectic) applied to the matrix equation Y' = A(t) Y, Y(t_0) = I, is one linear

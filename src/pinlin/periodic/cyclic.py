@@ -1,4 +1,4 @@
-"""Eigenvalues of a product Phi_K ... Phi_1 without forming it: the lifted block-cyclic matrix (SPEC section 13).
+"""Eigenvalues of a product Phi_K ... Phi_1 without forming it: the lifted block-cyclic matrix (theory: Floquet).
 
 The (K m) x (K m) matrix
 

@@ -1,4 +1,4 @@
-"""The stability verdict from Floquet multipliers and their error bounds (SPEC sections 5 and 13).
+"""The stability verdict from Floquet multipliers and their error bounds (theory: stability, Floquet).
 
 Mapping to :data:`pinlin.spectral.stability.verdict.KINDS` (each multiplier mu with bound b, widened by ``safety``):
 

@@ -1,4 +1,4 @@
-"""Frequency identification of Floquet modes by their harmonic content (SPEC section 13).
+"""Frequency identification of Floquet modes by their harmonic content (theory: Floquet).
 
 A Floquet mode y_k(t) = Phi(t) x_k = exp(Lambda_k t) p_k(t), Lambda_k = log(mu_k) / T (principal branch), has
 a T-periodic part p_k with Fourier coefficients

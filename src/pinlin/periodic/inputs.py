@@ -1,4 +1,4 @@
-"""Validation of the coefficient callables and the period of a Floquet analysis (SPEC section 13).
+"""Validation of the coefficient callables and the period of a Floquet analysis (theory: Floquet).
 
 Every coefficient is turned into a function t -> a real (rows, cols) float array that checks each value it
 returns (the callables will be Pinocchio evaluations along an orbit, where a NaN means a broken orbit, not a

@@ -1,4 +1,4 @@
-"""Multi-blade (Coleman) coordinates of N identical, equally spaced blades (SPEC section 13).
+"""Multi-blade (Coleman) coordinates of N identical, equally spaced blades (theory: Floquet).
 
 Blade k = 1..N at azimuth psi_k = Omega t + psi0 + 2 pi (k - 1) / N carries one coordinate beta_k; the
 multi-blade coordinates z (collective beta_0, cyclic beta_jc, beta_js for j = 1..(N-1)/2, and for even N the

@@ -1,4 +1,4 @@
-"""The periodic reference motion of a scene: :class:`PeriodicOrbit` (SPEC section 13)."""
+"""The periodic reference motion of a scene: :class:`PeriodicOrbit` (theory: Floquet)."""
 
 from __future__ import annotations
 

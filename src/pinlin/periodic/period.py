@@ -1,4 +1,4 @@
-"""The period of a scene's motion (SPEC section 13): :func:`scene_period`.
+"""The period of a scene's motion (theory: Floquet): :func:`scene_period`.
 
 Everything that moves periodically sets a period: each periodic prescribed motion (:class:`~pinlin.Harmonic`
 etc.) its own T_j, and each joint turning at a constant speed Omega whose position the equations depend on

@@ -1,4 +1,4 @@
-"""The result of a Floquet analysis: :class:`FloquetAnalysis` (SPEC section 13)."""
+"""The result of a Floquet analysis: :class:`FloquetAnalysis` (theory: Floquet)."""
 
 from __future__ import annotations
 

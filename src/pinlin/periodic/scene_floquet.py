@@ -1,4 +1,4 @@
-"""Floquet analysis of a scene along its periodic orbit (SPEC section 13): :func:`floquet_analysis`."""
+"""Floquet analysis of a scene along its periodic orbit (theory: Floquet): :func:`floquet_analysis`."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Periodic reference motions by shooting (SPEC section 13): :func:`periodic_orbit`.
+"""Periodic reference motions by shooting (theory: Floquet): :func:`periodic_orbit`.
 
 With x = (dq_f, v_f) the free coordinates (tangent displacement from q0) and velocities, the flow over
 one period is integrated with the variational equation Phi' = A(t) Phi alongside (A from
@@ -258,7 +258,7 @@ def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: dict) -
 def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, tol: float = 1e-10,
                    rtol: float = 1e-13, atol: float = 1e-15, max_iterations: int = 30,
                    constant_tol: float = CONSTANT_TOL) -> PeriodicOrbit:
-    """The T-periodic motion of a scene's free coordinates, by shooting (SPEC section 13).
+    """The T-periodic motion of a scene's free coordinates, by shooting (theory: Floquet).
 
     A scene driven by periodic prescribed motions (or by constant-speed joints its equations depend on)
     has the period T of :func:`~pinlin.periodic.period.scene_period`, and the orbit is the forced response

@@ -45,7 +45,7 @@ def animate_mode(scene, sys, mode, ax=None, *, n_frames: int = DEFAULT_FRAMES, d
     .. math::  q(\\theta_k) = q_0 \\oplus a \\, \\mathrm{Re}(e \\, e^{i\\theta_k})
 
     over the operating point (grey, dashed), with e the mode on all joints
-    (``sys.basis @ z`` with constraints), largest entry 1 (SPEC sections 4 and 10).
+    (``sys.basis @ z`` with constraints), largest entry 1 (theory: spectrum, constraints).
 
     Parameters
     ----------

@@ -34,7 +34,7 @@ def campbell(speed, eigenvalues, ax=None, *, vectors=None, orders: Sequence[floa
     One member of each complex conjugate pair of tracked modes is drawn
     (:func:`pinlin.studies.tracking.one_per_conjugate_pair`), so a whirl branch
     whose frequency passes through zero (lambda = i (omega_0 - speed) of a
-    rotating ring, SPEC section 7.3) is drawn as a V instead of being dropped.
+    rotating ring, theory: rotating ring) is drawn as a V instead of being dropped.
 
     Parameters
     ----------

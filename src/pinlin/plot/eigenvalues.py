@@ -44,7 +44,7 @@ def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = Tru
         Where to draw; a new figure by default.
     error_bars : bool
         Draw each eigenvalue's error bound [1/s] as a horizontal bar (its distance
-        to the imaginary axis is what a stability verdict must beat, SPEC section 8).
+        to the imaginary axis is what a stability verdict must beat, theory: error figures).
     title : bool
         Title the axes with the stability verdict, when ``modes`` has one.
 

@@ -172,7 +172,7 @@ def mode_shape(scene, sys, mode, ax=None, *, phases: Sequence[float] = DEFAULT_P
 
     with e the mode on all joints (``sys.basis @ z`` with constraints), largest
     entry 1: a complex mode (damped, gyroscopic) moves every coordinate with its
-    own phase (SPEC sections 4 and 10; :func:`~pinlin.plot.skeleton.mode_motion`).
+    own phase (theory: spectrum, constraints; :func:`~pinlin.plot.skeleton.mode_motion`).
 
     Parameters
     ----------

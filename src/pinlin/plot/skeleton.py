@@ -8,7 +8,7 @@ Its geometry at a configuration q comes from Pinocchio's forward kinematics in
 the calling thread's workspace (:func:`pinlin.model.evaluation.workspace`),
 never from a ``Data`` of its own.
 
-:func:`mode_motion` moves it along a mode (SPEC sections 4 and 10): with the
+:func:`mode_motion` moves it along a mode (theory: spectrum, constraints): with the
 mode's joint displacement e (``sys.basis @ z`` with constraints, z itself
 without; complex for damped and gyroscopic modes), normalized so that its
 largest entry is 1, the configuration at phase theta [rad] is
@@ -235,7 +235,7 @@ def mode_motion(scene, sys, mode, phases, *, scale: float | None = None, frames:
 
     .. math::  q(\\theta) = q_0 \\oplus a \\, \\mathrm{Re}(e \\, e^{i\\theta}), \\quad e = B z / (B z)_{max}
 
-    (B = ``sys.basis`` with constraints, else the identity; SPEC sections 4 and 10.)
+    (B = ``sys.basis`` with constraints, else the identity; theory: spectrum, constraints.)
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""The stability map: verdicts over a grid of two parameters and the exact boundary over them (SPEC section 12).
+"""The stability map: verdicts over a grid of two parameters and the exact boundary over them (theory: boundaries).
 
 matplotlib is imported only when a map is drawn (:func:`pinlin.plot.style.pyplot`); the verdict
 colours are :data:`pinlin.plot.style.VERDICT_COLORS`.

@@ -1,4 +1,4 @@
-"""What ``pinlin analyze`` computes and its JSON document (SPEC sections 3-5 and 8).
+"""What ``pinlin analyze`` computes and its JSON document (theory: equilibrium, stability, error figures).
 
 The document is made of the results' own ``to_dict()`` (docs/conventions.md):
 each section is the dictionary of the result that the analysis returned, with a
@@ -86,7 +86,7 @@ def matrix_structure(modes: Modes) -> dict[str, Any]:
     used (``modes.structure.definiteness_M``, ``_D``, ``_S``, made by
     :func:`pinlin.numerics.definiteness` against the rounding bound of the data
     and ``modes.structure.uncertainty``), so the report cannot disagree with
-    ``modes.structure`` (SPEC section 5).
+    ``modes.structure`` (theory: stability).
 
     Parameters
     ----------

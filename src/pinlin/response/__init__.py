@@ -1,4 +1,4 @@
-"""Time-domain responses of the linearized system (SPEC section 6).
+"""Time-domain responses of the linearized system (theory: responses).
 
 One concept per module:
 

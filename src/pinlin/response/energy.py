@@ -1,4 +1,4 @@
-"""The linearized power theorem: an energy budget along a trajectory (SPEC section 6).
+"""The linearized power theorem: an energy budget along a trajectory (theory: responses).
 
 .. math::
     E = \\tfrac12 \\dot x^T M \\dot x + \\tfrac12 x^T S x, \\qquad
@@ -33,7 +33,7 @@ METHOD = "linearized power theorem; work by the two-point Hermite rule of order 
 
 @dataclass(frozen=True, repr=False, eq=False)
 class EnergyBudget(Result):
-    """Energy, powers and work along a trajectory (SPEC section 6).
+    """Energy, powers and work along a trajectory (theory: responses).
 
     Attributes
     ----------
@@ -133,7 +133,7 @@ def energy_budget(
     *,
     interpolation: str = "linear",
 ) -> EnergyBudget:
-    """Energy budget of a trajectory of the linearized system (SPEC section 6).
+    """Energy budget of a trajectory of the linearized system (theory: responses).
 
     E(t) = 1/2 x'^T M x' + 1/2 x^T S x is evaluated at the samples; the work of
     damping, circulatory and applied forces is integrated interval by interval

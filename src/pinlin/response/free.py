@@ -1,4 +1,4 @@
-"""Free vibration from the modal solution (SPEC section 6, issue 5 part 1)."""
+"""Free vibration from the modal solution (theory: responses, issue 5 part 1)."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ class FreeResponse(ResultArray):
     defect : float
         Largest relative defect of the equation over t:
         ||M x'' + C x' + K x|| / (||M|| ||x''|| + ||C|| ||x'|| + ||K|| ||x||)
-        (Frobenius matrix norms), with x, x', x'' from the expansion (SPEC section 8).
+        (Frobenius matrix norms), with x, x', x'' from the expansion (theory: error figures).
     initial_defect : float
         max(||x(t0) - x0|| / r_x, ||x'(t0) - v0|| / r_v) with r_x = ||x0|| +
         ||v0|| / gamma, r_v = gamma ||x0|| + ||v0|| (gamma the natural
@@ -210,9 +210,9 @@ def free_response(
     modes=None,
     tol: float = DEFAULT_TOL,
 ) -> FreeResponse:
-    """Free vibration x(t) of M x'' + (D + G) x' + (S + N) x = 0 by the modal solution (SPEC section 6).
+    """Free vibration x(t) of M x'' + (D + G) x' + (S + N) x = 0 by the modal solution (theory: responses).
 
-    For a simple dynamic stiffness (SPEC section 4: every eigenvalue semisimple)
+    For a simple dynamic stiffness (theory: spectrum: every eigenvalue semisimple)
 
     .. math::
         x(t) = \\sum_{k=1}^{2n} e^{\\lambda_k (t - t_0)}\\, x_k\\, y_k^T
@@ -223,7 +223,7 @@ def free_response(
     :func:`pinlin.modal_analysis`.  A defective eigenvalue (a rigid-body mode:
     lam = 0 with chains of length two; coalescing roots at flutter onset or
     critical damping) contributes the exponential polynomial of its Jordan
-    chains (:func:`pinlin.jordan_chains`, SPEC section 4),
+    chains (:func:`pinlin.jordan_chains`, theory: spectrum),
     exp(lam0 t) sum_{j<=i} t^j/j! x_{i-j}, with coefficients fitted to the
     part of the initial state the other modes leave (see
     :mod:`pinlin.frf.expansion`).  The coefficients from the left vectors

@@ -1,4 +1,4 @@
-"""Spectral analysis of L(lam) = lam^2 M + lam C + K (SPEC sections 4, 5 and 9).
+"""Spectral analysis of L(lam) = lam^2 M + lam C + K (theory: spectrum, stability, conventions).
 
 One concept per module, in the order of :func:`modal_analysis`:
 

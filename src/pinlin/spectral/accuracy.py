@@ -1,4 +1,4 @@
-"""Backward errors, condition numbers and error bounds of eigenpairs (SPEC section 4).
+"""Backward errors, condition numbers and error bounds of eigenpairs (theory: spectrum).
 
 For an eigenpair (lam, x) with left vector y (``y^T L(lam) = 0``, plain
 transpose) of L(lam) = lam^2 M + lam C + K, with Frobenius norms:
@@ -21,7 +21,7 @@ relative condition number times eta |lam|:
         \\frac{(|\\lambda|^2\\|M\\| + |\\lambda|\\|C\\| + \\|K\\|)\\,\\|x\\|\\,\\|y\\|}
         {|y^T L'(\\lambda) x|},\\qquad L'(\\lambda) = 2\\lambda M + C
 
-(the SPEC section 5 "kappa eta |lambda|"), which stays finite at lam = 0.  It
+(the theory: stability "kappa eta |lambda|"), which stays finite at lam = 0.  It
 is a first-order estimate, infinite for a defective eigenvalue.  In the bound
 eta is taken at least :data:`~pinlin.numerics.ETA_FLOOR` (machine epsilon).
 eta and kappa themselves are computed by :mod:`pinlin.numerics.accuracy`.

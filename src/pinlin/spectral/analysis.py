@@ -1,6 +1,6 @@
 """``modal_analysis``: choose a solver path, solve, and attach every error figure.
 
-See SPEC sections 4, 5 and 9, :mod:`pinlin.spectral.paths` for the choice of
+See theory: spectrum, stability, conventions, :mod:`pinlin.spectral.paths` for the choice of
 path and :mod:`pinlin.spectral.structured` for the paths themselves.
 """
 
@@ -59,7 +59,7 @@ def modal_analysis(
     eigh_tol: float = EIGH_TOL,
     definiteness_tol: float | None = None,
 ) -> Modes:
-    """Eigenvalues, eigenvectors, error figures and a stability verdict (SPEC sections 4, 5, 9).
+    """Eigenvalues, eigenvectors, error figures and a stability verdict (theory: spectrum, stability, conventions).
 
     Solves L(lam) x = 0, y^T L(lam) = 0 with L(lam) = lam^2 M + lam C + K for
     all 2n eigentriples by the cheapest exact path the structure allows
@@ -74,9 +74,9 @@ def modal_analysis(
         A LinearizedSystem is mechanical: M symmetric positive definite, D, S
         symmetric, G, N skew (checked by its constructor and
         :meth:`~pinlin.LinearizedSystem.from_matrices`).  A tuple is a *general*
-        quadratic eigenproblem (SPEC section 4): real square matrices of one
+        quadratic eigenproblem (theory: spectrum): real square matrices of one
         size, M nonsingular and not necessarily symmetric; it always takes the
-        general path and no theorem of SPEC section 5 is applied to it.
+        general path and no theorem of theory: stability is applied to it.
     method : {"auto", "symmetric", "squared", "proportional", "general"}
         "auto" picks the cheapest applicable path; naming one forces it
         (ParameterError if it does not apply).
@@ -236,7 +236,7 @@ def _owned(a: np.ndarray) -> np.ndarray:
 
 
 def _check_range(problem: QuadraticProblem, lam: np.ndarray, weight: np.ndarray | None = None) -> None:
-    """Every eigenvalue finite, with |lam|^2 ||M|| + |lam| ||C|| + ||K|| representable (SPEC section 4's weight).
+    """Every eigenvalue finite, with |lam|^2 ||M|| + |lam| ||C|| + ||K|| representable (theory: spectrum's weight).
 
     ``weight``: that weight when the solver path formed it already.
 

@@ -136,7 +136,7 @@ def mass_notes(facts: StructuralFacts, lam: np.ndarray, bound: np.ndarray) -> li
 def with_contact_notes(stability: Stability, system) -> Stability:
     """The verdict's reason quotes a contact that the equilibrium violates (the ground would have to pull, or
     friction exceed mu): the linearization treats contacts as bilateral, so such a verdict holds only while
-    the contact is held (SPEC section 10, issue 11)."""
+    the contact is held (theory: constraints, issue 11)."""
     notes = [n for n in getattr(system, "notes", ()) if n.startswith("contact '")]
     if not notes:
         return stability

@@ -1,4 +1,4 @@
-"""Jordan chains of L(lam) at an eigenvalue (SPEC section 4).
+"""Jordan chains of L(lam) at an eigenvalue (theory: spectrum).
 
 A Jordan chain x_0, ..., x_{r-1} of L(lam) at lam0 satisfies
 
@@ -192,7 +192,7 @@ def _not_an_eigenvalue(problem, lam0: complex, rank_tol: float) -> None:
 
 
 def jordan_chains(sys, lam0, *, rank_tol: float = RANK_TOL, max_length: int | None = None) -> JordanChains:
-    """A canonical set of Jordan chains of L(lam) = lam^2 M + lam C + K at lam0 (SPEC section 4).
+    """A canonical set of Jordan chains of L(lam) = lam^2 M + lam C + K at lam0 (theory: spectrum).
 
     For each length k, from the longest down, the kernel of the block Toeplitz
     matrix T_k holds the stacked chains (x_0, ..., x_{k-1}) of length k; new

@@ -1,4 +1,4 @@
-"""The result of a modal analysis (SPEC sections 4, 5 and 9)."""
+"""The result of a modal analysis (theory: spectrum, stability, conventions)."""
 
 from __future__ import annotations
 
@@ -80,14 +80,14 @@ class Modes(Result):
         unit 2-norm and ``left_normalized[k]`` is False.
     left_normalized : (2n,) bool
     backward_error : (2n,) float
-        eta of (lam_k, x_k), Frobenius norms (SPEC section 4).
+        eta of (lam_k, x_k), Frobenius norms (theory: spectrum).
     condition : (2n,) float
-        kappa of lam_k in the homogeneous form (SPEC section 4); inf for a
+        kappa of lam_k in the homogeneous form (theory: spectrum); inf for a
         defective eigenvalue.  Formed on first access from products kept by the
         analysis (the verdict does not need it).
     error_bound : (2n,) float
         First-order absolute error estimate of lam_k [rad/s]: eta times
-        Tisseur's absolute condition number (SPEC section 5's kappa eta |lam|),
+        Tisseur's absolute condition number (theory: stability's kappa eta |lam|),
         with eta at least machine epsilon.
         For a defective cluster: the spread of the cluster plus
         c eta^(1/p), p the longest chain and c of
@@ -107,12 +107,11 @@ class Modes(Result):
     multiplicity : (2n,) int
         Algebraic multiplicity of the (cluster of the) eigenvalue.
     clusters : tuple of Cluster
-        Multiple eigenvalues with their partial multiplicities (SPEC section 4).
+        Multiple eigenvalues with their partial multiplicities (theory: spectrum).
     is_simple : bool
         True when every eigenvalue is semisimple (the dynamic stiffness is simple).
     constants : ModeConstants or None
-        m, d, g, k, n per mode and the residual of their equation (SPEC
-        section 5); None for tuple input.  Formed on first access.
+        m, d, g, k, n per mode and the residual of their equation (theory: stability); None for tuple input.  Formed on first access.
     participation : (n, 2n) float
         Each coordinate's share of each mode's kinetic plus potential energy
         (columns sum to 1; :func:`pinlin.spectral.participation.participation`);
@@ -155,7 +154,7 @@ class Modes(Result):
         Formed on first access (the last of them needs the structural facts).
     error : float
         The largest backward error eta of the eigenpairs, ``max(backward_error)``
-        (relative, SPEC section 4); the per-pair figures are ``backward_error``,
+        (relative, theory: spectrum); the per-pair figures are ``backward_error``,
         ``condition`` and ``error_bound``.
 
     ``to_dict()`` leaves out ``system`` and ``matrices`` (the input); it

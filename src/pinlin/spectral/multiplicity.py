@@ -1,4 +1,4 @@
-"""Multiple eigenvalues: clusters and their partial multiplicities (SPEC section 4).
+"""Multiple eigenvalues: clusters and their partial multiplicities (theory: spectrum).
 
 The partial multiplicities m_1 >= m_2 >= ... of an eigenvalue lam0 (the
 lengths of its Jordan chains) follow from the ranks of the block Toeplitz
@@ -221,7 +221,7 @@ def partial_multiplicities(
     rank_tol: float = JORDAN_RANK_TOL,
     max_total: int | None = None,
 ) -> tuple[tuple[int, ...], tuple[int, ...]]:
-    """Partial multiplicities of lam0 from dim ker T_k, k = 1, 2, ... (SPEC section 4).
+    """Partial multiplicities of lam0 from dim ker T_k, k = 1, 2, ... (theory: spectrum).
 
     Stops when no chain is longer than k - 1, at k = ``max_length``, or when
     dim ker T_k exceeds ``max_total`` (the algebraic multiplicity, when known:

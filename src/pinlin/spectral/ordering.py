@@ -1,4 +1,4 @@
-"""The order of a computed spectrum and the per-eigenvalue kinds (SPEC section 9, docs/conventions.md).
+"""The order of a computed spectrum and the per-eigenvalue kinds (theory: conventions, docs/conventions.md).
 
 Eigenvalues are listed by ascending |lam|; a conjugate pair is adjacent with
 Im lam > 0 first; among equal |lam| the smaller real part comes first.  Both
@@ -172,7 +172,7 @@ def mode_kinds(
     """Per eigenvalue one of MODE_KINDS against its bound r; cluster members by the cluster's mean.
 
     "rigid_body": |lam| <= r; "unstable": Re lam > r; "underdamped": |Im lam| > r;
-    "overdamped" otherwise (SPEC section 5).  With ``undamped`` (D = 0 and G = 0 or
+    "overdamped" otherwise (theory: stability).  With ``undamped`` (D = 0 and G = 0 or
     N = 0 exactly: the spectrum is symmetric in the imaginary axis) an oscillating
     eigenvalue with |Re lam| <= r is "undamped": its damping is none, not small (issue 25).
     """
@@ -181,7 +181,7 @@ def mode_kinds(
         typical = lam.copy()
         for c in clusters:
             typical[list(c.indices)] = c.center
-    # codes into _KINDS, the later tests taking precedence as in SPEC section 5's order
+    # codes into _KINDS, the later tests taking precedence as in theory: stability's order
     code = np.full(typical.shape[0], 2)  # "overdamped"
     code[np.abs(typical.imag) > r] = 1  # "underdamped"
     if undamped:

@@ -39,7 +39,7 @@ def participation(lam, X, M, S) -> np.ndarray:
     kinetic (equally potential) energy fraction of each coordinate whenever the
     products x_i (M x)_i are nonnegative.  A mode with T = V = 0 (lam = 0 with
     S x = 0, a rigid-body mode) is shared by |Re(x_i^* (M x)_i)|, its shape's
-    kinetic energy.  SPEC section 5 (modal energies), issue 17.
+    kinetic energy.  theory: stability (modal energies), issue 17.
     """
     X = np.asarray(X)
     kinetic = np.abs((np.conj(X) * (M @ X)).real)

@@ -1,4 +1,4 @@
-"""Which solver path a modal analysis takes, and running it (SPEC section 4).
+"""Which solver path a modal analysis takes, and running it (theory: spectrum).
 
 :func:`choose_path` picks the cheapest exact path the structure of the system
 allows (or the one requested, refusing one that does not apply) and says why;

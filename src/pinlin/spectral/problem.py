@@ -1,4 +1,4 @@
-"""The quadratic eigenvalue problem behind a modal analysis (SPEC section 4).
+"""The quadratic eigenvalue problem behind a modal analysis (theory: spectrum).
 
 .. math::  L(\\lambda) x = (\\lambda^2 M + \\lambda C + K) x = 0,
            \\qquad y^T L(\\lambda) = 0
@@ -13,9 +13,9 @@ nonsingular, which need not be mechanical at all.
 Two rules, on purpose (issue 13): a LinearizedSystem is a mechanical system,
 and its constructor and :meth:`~pinlin.LinearizedSystem.from_matrices` refuse
 an M that is not symmetric positive definite; a tuple is the general quadratic
-eigenvalue problem of SPEC section 4 ("any nonsingular leading" coefficient,
-such as the SPEC's own check problem with a non-symmetric A2), solved by the
-general path with no theorem of SPEC section 5 applied.  Both refuse complex,
+eigenvalue problem of theory: spectrum ("any nonsingular leading" coefficient,
+such as the check problem of the theory pages (theory: spectrum) with a non-symmetric A2), solved by the
+general path with no theorem of theory: stability applied.  Both refuse complex,
 non-finite and non-square input with the same messages.
 """
 
@@ -56,7 +56,7 @@ class QuadraticProblem:
     system : LinearizedSystem or None
         The mechanical system when built from one; None for a plain tuple.
     norm_M, norm_C, norm_K : float
-        Frobenius norms: the weights of eta and kappa (SPEC section 4).
+        Frobenius norms: the weights of eta and kappa (theory: spectrum).
     scaling : Scaling
         Fan-Lin-Van Dooren parameters for these norms.
     """

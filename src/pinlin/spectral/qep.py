@@ -1,4 +1,4 @@
-"""The general solver: companion linearization, scaling and QZ (SPEC section 4).
+"""The general solver: companion linearization, scaling and QZ (theory: spectrum).
 
 For real M, C, K with M nonsingular, the first companion form of the scaled
 problem (lambda = gamma mu, see :class:`~pinlin.spectral.problem.Scaling`)

@@ -1,4 +1,4 @@
-"""Qualitative properties of the spectrum (SPEC section 5, paper Sec. 11).
+"""Qualitative properties of the spectrum (theory: stability, paper Sec. 11).
 
 Per mode: for an eigenpair (lam, x) of a mechanical system scaled to
 x^H M x = 1, the real numbers
@@ -50,7 +50,7 @@ __all__ = [
 @persistent
 @dataclass(frozen=True)
 class ModeConstants:
-    """The real constants m, d, g, k, n of each mode (SPEC section 5), x^H M x = 1.
+    """The real constants m, d, g, k, n of each mode (theory: stability), x^H M x = 1.
 
     Attributes
     ----------
@@ -127,7 +127,7 @@ def constants_of(lam, X, quad, M, C, K, norm_M: float) -> ModeConstants:
 @persistent
 @dataclass(frozen=True)
 class StructuralFacts:
-    """What the matrices alone say about the spectrum (SPEC section 5).
+    """What the matrices alone say about the spectrum (theory: stability).
 
     Every decision is made against the rounding bound of the data and the
     relative data ``uncertainty`` (:func:`pinlin.numerics.definiteness`): a

@@ -1,4 +1,4 @@
-"""What a solver path hands to the modal analysis: :class:`RawSpectrum` (SPEC section 4).
+"""What a solver path hands to the modal analysis: :class:`RawSpectrum` (theory: spectrum).
 
 The general path (:mod:`pinlin.spectral.qep`) and the structured paths
 (:mod:`pinlin.spectral.structured`) return one; :mod:`pinlin.spectral.ordering`

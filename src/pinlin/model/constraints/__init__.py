@@ -1,4 +1,4 @@
-"""Kinematic constraints: closed loops and contacts (SPEC section 10).
+"""Kinematic constraints: closed loops and contacts (theory: constraints).
 
 A constraint is a small frozen value, like an element: it names a frame and a
 target and, at a configuration q, gives
@@ -19,7 +19,7 @@ target and, at a configuration q, gives
 
 On the constraint manifold the velocity form is dPhi/dq; away from it the two
 differ by terms that vanish on the manifold, which changes neither the
-equilibrium nor the projected stiffness B^T (K - K_lambda) B (SPEC section 10).
+equilibrium nor the projected stiffness B^T (K - K_lambda) B (theory: constraints).
 
 Contacts are point constraints on the ground (``contact=True``): the linearization
 treats them as bilateral, and :meth:`PointConstraint.contact_status` says whether

@@ -1,4 +1,4 @@
-"""The constraint interface: what every kinematic constraint of a scene implements (SPEC section 10)."""
+"""The constraint interface: what every kinematic constraint of a scene implements (theory: constraints)."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ __all__ = ["Constraint", "constraint_list"]
 
 
 class Constraint(ABC):
-    """A kinematic constraint Phi(q) = 0 between a frame and a target (SPEC section 10).
+    """A kinematic constraint Phi(q) = 0 between a frame and a target (theory: constraints).
 
     Subclasses are frozen dataclasses with fields ``frame``, ``target`` and
     ``name``; a :class:`~pinlin.Scene` checks them against its robot.

@@ -53,7 +53,7 @@ class ConstraintForce:
 
 @dataclass(frozen=True)
 class ContactStatus:
-    """Whether a contact's force is one the ground can give (SPEC section 10).
+    """Whether a contact's force is one the ground can give (theory: constraints).
 
     Attributes
     ----------

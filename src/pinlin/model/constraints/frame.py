@@ -39,7 +39,7 @@ def _placement(value, label: str) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class FrameConstraint(Constraint):
-    """Keep the whole placement of ``frame`` equal to ``target`` (SPEC section 10).
+    """Keep the whole placement of ``frame`` equal to ``target`` (theory: constraints).
 
     .. math::
         \\Phi = \\begin{bmatrix} p_a - p_b \\\\ \\log_3(R_a R_b^T) \\end{bmatrix},\\qquad

@@ -21,7 +21,7 @@ __all__ = ["PointConstraint", "ground_contacts"]
 
 @dataclass(frozen=True, eq=False)
 class PointConstraint(Constraint):
-    """Keep the origin of ``frame`` at ``target`` (SPEC section 10).
+    """Keep the origin of ``frame`` at ``target`` (theory: constraints).
 
     .. math::  \\Phi = p_a(q) - p_b(q) \\in \\mathbb{R}^3,\\qquad J_c = J_a - J_b
 

@@ -1,4 +1,4 @@
-"""The stiffness of world-fixed wrenches at frame origins, in closed form (SPEC sections 2, 10).
+"""The stiffness of world-fixed wrenches at frame origins, in closed form (theory: elements, constraints).
 
 :func:`dead_wrench_stiffness` is d(J^T w)/dq at fixed w from the frames' Jacobians
 alone (no kinematic Hessian, no Pinocchio pass): the constraint stiffness
@@ -40,8 +40,7 @@ def dead_wrench_stiffness(
     where j <= i means that j's joint supports i's (its own included: every pair of a
     multi-DOF joint).  Hence K[i, j] = A[i, j] for j <= i and A[j, i] otherwise, with
     A = sum_k U_k^T [F_k]x W_k (A[i, j] = F . (w_j x u_i)), plus sum_k W_k^T [T_k]x W_k
-    for j <= i: the dead-wrench stiffness of :class:`~pinlin.DeadWrench` (SPEC
-    section 2) in world axes, without a kinematic Hessian.  Exact for 1-DOF joints and
+    for j <= i: the dead-wrench stiffness of :class:`~pinlin.DeadWrench` (theory: elements) in world axes, without a kinematic Hessian.  Exact for 1-DOF joints and
     :data:`CONSTANT_SUBSPACE_JOINTS`; checked against central differences through
     ``pin.integrate`` in the tests.  The mask is the same for every wrench, so the
     wrenches are summed first (one product for all of them) and masked once.

@@ -4,7 +4,7 @@ An element is a small frozen value naming a joint or frame and its parameters.
 At a point (q, v) it gives its generalized force Q_e(q, v) and adds its analytic
 derivatives to the linearized matrices:
 
-    K += -dQ_e/dq,    C += -dQ_e/dv          (SPEC section 1)
+    K += -dQ_e/dq,    C += -dQ_e/dv          (theory: equations)
 
 Wrench elements (forces on a frame) do not compute Q_e themselves during
 assembly: they hand Pinocchio a wrench in their joint's frame (``fext``) and add
@@ -212,7 +212,7 @@ class ElementGroup:
 
 
 class Element(ABC):
-    """A force element of a scene (SPEC section 2).
+    """A force element of a scene (theory: elements).
 
     Subclasses are frozen dataclasses that name a joint or frame; they are
     checked against a robot by :meth:`check` when a :class:`~pinlin.Scene` is

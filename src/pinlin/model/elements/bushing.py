@@ -1,4 +1,4 @@
-"""A six-axis linear spring and damper on the relative placement of two frames (SPEC section 11)."""
+"""A six-axis linear spring and damper on the relative placement of two frames (theory: elements between frames)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """Kinematics shared by the elements between two frames (spring-dampers, bushings).
 
-Notation (SPEC section 11).  J0 = :meth:`Evaluation.world_jacobian`: column k is
+Notation (theory: elements between frames).  J0 = :meth:`Evaluation.world_jacobian`: column k is
 the world twist xi_k = (v_k, omega_k) of degree of freedom k (linear velocity of
 the body point at the world origin).  A body's Jacobian is J0 on its supporting
 joints, ``J0 * m`` with m its 0/1 support mask, and a point p of it moves with

@@ -15,7 +15,7 @@ __all__ = ["JointDamper", "DamperGroup"]
 
 @dataclass(frozen=True, eq=False)
 class JointDamper(Element):
-    """A viscous damper on one joint's velocity (SPEC section 2).
+    """A viscous damper on one joint's velocity (theory: elements).
 
     .. math::  Q = -c\\, v_j
 

@@ -24,7 +24,7 @@ FEW_SPRINGS = 3
 
 @dataclass(frozen=True, eq=False)
 class JointSpring(Element):
-    """A linear spring on one joint (SPEC section 2).
+    """A linear spring on one joint (theory: elements).
 
     .. math::  Q = -K_s\\, e(q), \\qquad e = \\mathrm{difference}(q_{rest}, q_j)
 

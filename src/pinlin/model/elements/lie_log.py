@@ -1,7 +1,7 @@
 """The log of a joint's Lie group and its Jacobian, accurate at every angle: what a joint spring needs.
 
 A spring on a free-flyer, spherical or planar joint has the deflection
-e = log(q_rest^{-1} q) and the stiffness K_s de/dq (SPEC section 2), with
+e = log(q_rest^{-1} q) and the stiffness K_s de/dq (theory: elements), with
 de/dq = J_log(X) at X = q_rest^{-1} q (right perturbations, Pinocchio's
 convention: ``difference`` and ``dDifference(..., ARG1)``).  Pinocchio 4.1's
 ``dDifference`` on these groups (``Jlog6``, ``Jlog3``) loses accuracy for

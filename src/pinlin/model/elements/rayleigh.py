@@ -16,7 +16,7 @@ __all__ = ["RayleighDamping"]
 
 @dataclass(frozen=True, eq=False)
 class RayleighDamping(Element):
-    """Rayleigh damping on the free coordinates (SPEC section 2).
+    """Rayleigh damping on the free coordinates (theory: elements).
 
     .. math::  Q = -(\\alpha M(q) + \\beta K_e)\\, v_{free}
 

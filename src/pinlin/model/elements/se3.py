@@ -1,6 +1,6 @@
 """The logarithm of SE(3) to second order: what a bushing needs beyond Pinocchio's ``log6`` and ``Jlog6``.
 
-A bushing's deflection is e = log6(X) (SPEC section 11).  Its stiffness away
+A bushing's deflection is e = log6(X) (theory: elements between frames).  Its stiffness away
 from e = 0 needs how the Jacobian of the log changes, i.e. the second-order
 expansion of
 

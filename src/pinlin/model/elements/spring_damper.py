@@ -1,4 +1,4 @@
-"""A linear spring and dashpot along the line between two points (SPEC section 11)."""
+"""A linear spring and dashpot along the line between two points (theory: elements between frames)."""
 
 from __future__ import annotations
 
@@ -51,7 +51,7 @@ class LinearSpringDamper(FramePairElement):
     .. math::  T = k (l - l_0) + c\\,\\dot l,\\qquad Q = -J_{rel}^T\\, T u
 
     (force T u on a, -T u on b; J_rel = J_b - J_a, linear velocities in world
-    axes).  At v = 0 the element adds (SPEC section 11)
+    axes).  At v = 0 the element adds (theory: elements between frames)
 
     .. math::  K \\mathrel{+}= J_{rel}^T\\Big[k u u^T + \\frac{T}{l}(I - u u^T)\\Big] J_{rel}
                - \\frac{\\partial (J_a^T F_a + J_b^T F_b)}{\\partial q}\\Big|_{F},\\qquad

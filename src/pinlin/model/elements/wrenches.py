@@ -21,7 +21,7 @@ class FollowerWrench(WrenchElement):
     """A force and torque at a frame origin, constant in the frame's own axes.
 
     The load turns with the body, so its stiffness is in general not symmetric:
-    its skew part is the circulatory matrix N (SPEC section 2).  Pinocchio's
+    its skew part is the circulatory matrix N (theory: elements).  Pinocchio's
     ``computeRNEADerivatives`` with ``fext`` differentiates exactly this load
     (the wrench held constant in the joint frame), so the element adds nothing
     to K itself.

@@ -1,12 +1,11 @@
 """What ``pinlin sweep`` computes: the modes at every point, tracked, the verdicts and their boundaries.
 
-Every point is analysed as ``pinlin analyze`` analyses a scene (SPEC sections
-3-5): the equilibrium from the spec's start when it asks for one, the
+Every point is analysed as ``pinlin analyze`` analyses a scene (theory: equilibrium, stability): the equilibrium from the spec's start when it asks for one, the
 linearization, the modal analysis.  Over one parameter the modes are tracked by
 shape (:func:`pinlin.studies.track_modes`); wherever the verdict changes class
 between two neighbouring points (stable, divergence, flutter) the exact
 parameter value is found by :func:`pinlin.critical_parameter` between them
-(SPEC section 12).  Over two parameters (a stability map) the boundaries are
+(theory: boundaries).  Over two parameters (a stability map) the boundaries are
 found along the first parameter at each value of the second.  Points where the
 scene has no equilibrium or is refused are recorded, with their error, never
 dropped.

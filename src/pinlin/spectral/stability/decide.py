@@ -1,4 +1,4 @@
-"""The honest stability verdict (SPEC sections 5 and 9).
+"""The honest stability verdict (theory: stability, conventions).
 
 The verdict is one of
 
@@ -16,7 +16,7 @@ The verdict is one of
 
 each with a reason naming the theorem, or the eigenvalue and its error bound.
 
-Order of the arguments: first the theorems of SPEC section 5, which decide
+Order of the arguments: first the theorems of theory: stability, which decide
 from definiteness and determinant signs alone, each decided against the
 rounding bound of the data (:func:`pinlin.numerics.definiteness`); then the
 computed eigenvalues with their error bounds r (first-order estimates at the
@@ -28,7 +28,7 @@ axis (D = 0 and G = 0 or N = 0), a simple eigenvalue lam whose disk of radius
 image -conj(lam), so it lies exactly on the axis.
 
 The verdict is the first of the rules in :data:`pinlin.spectral.stability.rules.RULES`
-that decides; each rule is one theorem of SPEC section 5 or one numerical
+that decides; each rule is one theorem of theory: stability or one numerical
 decision, and says which in its docstring.  A relative data ``uncertainty``
 (default 0: the data as stored) widens every threshold and bound, so that the
 verdict holds for every system within it; the ``margin`` says how large an

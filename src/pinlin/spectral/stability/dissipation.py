@@ -1,4 +1,4 @@
-"""Which small damping moves an eigenvalue off the imaginary axis, and which way (SPEC section 5, issue 25).
+"""Which small damping moves an eigenvalue off the imaginary axis, and which way (theory: stability, issue 25).
 
 For D = eps D1 added to a system with a simple eigenvalue lam on the imaginary
 axis, right vector x and left vector y (y^T L(lam) = 0) normalized so that
@@ -13,7 +13,7 @@ for symmetric D1 (<A, B> = trace(A B)).  H is real symmetric of rank at most
 2, so some positive semidefinite D1 destabilizes exactly when H has a positive
 eigenvalue (then D1 = v v^T with v its eigenvector), and every positive
 definite D1 does when H is positive semidefinite and nonzero.  Where a theorem
-of SPEC section 5 applies, it decides instead of the computed sign:
+of theory: stability applies, it decides instead of the computed sign:
 
 - N = 0, S positive definite: Re lam <= 0 for every D >= 0 (Lagrange-Dirichlet,
   Kelvin): no positive semidefinite D1 destabilizes;
@@ -136,7 +136,7 @@ def _psd(D1: np.ndarray) -> tuple[bool, bool]:
 
 
 def _theorem(facts, psd: bool, pd: bool) -> tuple[bool | None, str | None, str]:
-    """The theorem of SPEC section 5 that decides for this shape, if any."""
+    """The theorem of theory: stability that decides for this shape, if any."""
     if facts is None or facts.circulatory is None or facts.circulatory:
         return None, None, ""
     base_psd = facts.definiteness_D is not None and facts.definiteness_D.certainly_psd

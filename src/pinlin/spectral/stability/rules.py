@@ -1,9 +1,9 @@
-"""The rules of the stability verdict, tried in order (SPEC section 5).
+"""The rules of the stability verdict, tried in order (theory: stability).
 
 Each rule takes the :class:`Evidence` (structural facts, computed eigenvalues,
 their error bounds r after the safety factor and the data uncertainty, the
 clusters) and returns a :class:`~pinlin.spectral.Stability` or None when it
-does not decide.  The first three are theorems of SPEC section 5 (the
+does not decide.  The first three are theorems of theory: stability (the
 structure alone, then Kelvin-Tait-Chetaev and Lagrange-Dirichlet completed by
 the spectrum); the others are numerical decisions on the computed spectrum,
 the last of which always decides ("undecided").  Every definiteness the
@@ -157,7 +157,7 @@ class Evidence:
 
 
 def structure_theorems(ev: Evidence) -> Stability | None:
-    """SPEC section 5 from the structure alone (:func:`theorem_verdict`), with the deciding eigenvalue attached."""
+    """theory: stability from the structure alone (:func:`theorem_verdict`), with the deciding eigenvalue attached."""
     pure = theorem_verdict(ev.facts, safety=ev.safety)
     if pure is None:
         return None
@@ -179,7 +179,7 @@ def structure_theorems(ev: Evidence) -> Stability | None:
 
 
 def _certificates(facts) -> str:
-    """What certified the definiteness the theorems used (SPEC section 5; :func:`pinlin.numerics.definiteness`)."""
+    """What certified the definiteness the theorems used (theory: stability; :func:`pinlin.numerics.definiteness`)."""
     parts = [
         f"{name} {d.kind.replace('_', ' ')} by {d.certificate} (margin {d.margin:.1e})"
         for name, d in (("M", facts.definiteness_M), ("D", facts.definiteness_D), ("S", facts.definiteness_S))

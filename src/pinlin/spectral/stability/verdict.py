@@ -1,7 +1,7 @@
-"""The stability verdict and the theorems that decide it without eigenvalues (SPEC section 5).
+"""The stability verdict and the theorems that decide it without eigenvalues (theory: stability).
 
 :class:`Stability` is the verdict; :func:`theorem_verdict` applies the theorems
-of SPEC section 5 that need only the structural facts (definiteness of D and S,
+of theory: stability that need only the structural facts (definiteness of D and S,
 N = 0, determinant signs).  The rules that also look at the computed
 eigenvalues are in :mod:`pinlin.spectral.stability.rules`.
 """
@@ -308,7 +308,7 @@ _LD_REASON = (
 def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) -> Stability | None:
     """"undecided" when M is positive definite (or, for a tuple, nonsingular) only within rounding, else None.
 
-    Every theorem of SPEC section 5 assumes M > 0, and a rounding-level change of
+    Every theorem of theory: stability assumes M > 0, and a rounding-level change of
     such an M makes it singular (an infinite eigenvalue) or indefinite: the data
     decide nothing (issue 13).
     """
@@ -333,7 +333,7 @@ def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) ->
 
 
 def theorem_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) -> Stability | None:
-    """The verdict the theorems of SPEC section 5 give without any eigenvalue, or None.
+    """The verdict the theorems of theory: stability give without any eigenvalue, or None.
 
     Decides (every definiteness and sign certain within rounding and the
     uncertainty, :func:`pinlin.numerics.definiteness`): sign(det M) !=
