@@ -103,7 +103,7 @@ suppress_warnings: list[str] = []
 API_PACKAGES = [
     "pinlin.model", "pinlin.model.elements", "pinlin.model.constraints", "pinlin.linearization",
     "pinlin.spectral", "pinlin.adjoint", "pinlin.frf", "pinlin.response", "pinlin.nonlinear",
-    "pinlin.studies", "pinlin.boundaries", "pinlin.interop", "pinlin.plot", "pinlin.results",
+    "pinlin.periodic", "pinlin.studies", "pinlin.boundaries", "pinlin.interop", "pinlin.plot", "pinlin.results",
     "pinlin.errors", "pinlin.numerics", "pinlin.report", "pinlin.report.sweep", "pinlin.testing", "pinlin.cli",
 ]
 

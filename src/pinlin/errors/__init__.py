@@ -86,6 +86,7 @@ __all__ = [
     "SingularConstraintError",
     "OverconstrainedError",
     "QuasiPeriodicError",
+    "MultibladeNotExactError",
     "NoPeriodError",
     "PeriodicOrbitError",
     "OrbitLimitError",

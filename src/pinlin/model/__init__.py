@@ -2,6 +2,8 @@
 
 One concept per module:
 
+- :mod:`.motions` -- periodic prescribed motions (:class:`Harmonic`, :class:`FourierMotion`,
+  :class:`PeriodicMotion`) and their common period;
 - :mod:`.robot` -- :class:`Robot` (a Pinocchio model without geometry), URDF and
   example-robot-data loading, the memory guard in front of every ``createData``;
 - :mod:`.generators` -- URDF text of the reference models (pendulum chains, the
@@ -43,6 +45,7 @@ from .generators import double_pendulum_urdf, pendulum_chain_urdf, rotating_ring
 from .inertia import InertiaWarning
 from .loading import EXAMPLES, data_path, load_example, load_urdf, load_urdf_string
 from .mjcf import load_mjcf
+from .motions import FourierMotion, Harmonic, Motion, PeriodicMotion, common_period
 from .robot import Robot
 from .scene import Scene
 from .scene_file import SceneSpec, load_scene
@@ -50,6 +53,11 @@ from .standing import Standing, standing_scene
 from .xacro import expand_xacro
 
 __all__ = [
+    "Harmonic",
+    "FourierMotion",
+    "PeriodicMotion",
+    "Motion",
+    "common_period",
     "Robot",
     "load_urdf",
     "load_urdf_string",

@@ -92,6 +92,8 @@ class FourierMotion(Motion):
     offset : float
         Mean position [rad or m].
 
+    Notes
+    -----
     .. math::
         v(t) = \\sum_k k\\omega (s_k \\cos k\\omega t - c_k \\sin k\\omega t), \\qquad
         a(t) = -\\sum_k (k\\omega)^2 (c_k \\cos k\\omega t + s_k \\sin k\\omega t)
@@ -202,6 +204,8 @@ class PeriodicMotion(Motion):
         Position [rad or m], velocity and acceleration at time t [s].
     period : float
         T [s], positive and finite.
+    rtol : float
+        The derivatives' relative tolerance of the check by differences (default :data:`DERIVATIVE_RTOL`).
 
     Raises
     ------

@@ -215,6 +215,10 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
     conservative : bool or None
         None: detect the constant-M structure above; True: the caller asserts a Lagrangian (conservative)
         system; False: never use structure in the verdict.
+    rtol, stages, growth, harmonics, autonomous, safety, max_steps, max_time
+        As :func:`floquet_from_first_order`.
+    structure_tolerance : float
+        Relative tolerance, in units of eps, of the tests of the conservative structure.
 
     Raises
     ------
