@@ -24,7 +24,7 @@ Conventions (names, units, axis orders, what ``.error`` means per result) are in
 from ``docs/`` with Sphinx (``docs/index.md`` says how).
 """
 
-from . import testing  # noqa: F401 -- pinlin.testing.check_element after a plain `import pinlin`
+from . import plot, testing  # noqa: F401 -- pinlin.plot.* and pinlin.testing.check_element after `import pinlin`
 from .adjoint import (
     AdjugateMatrix,
     CharacteristicPolynomial,
