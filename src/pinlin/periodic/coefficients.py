@@ -10,8 +10,8 @@ deviations x in the tangent space of the free coordinates obey
 with r(q, v, a) = tau(q, v, a, f_ext) - Q_e(q, v) evaluated at the *actual* acceleration a*(t)
 (``computeRNEADerivatives(q*, v*, a*)``, elements' stiffness and damping included: the same assembly as
 :func:`pinlin.linearize`, :func:`pinlin.linearization.assembly.assemble` with ``a``), restricted to the
-free coordinates.  Each point costs one forward-dynamics pass (``rnea`` and ``crba``, or ``aba``, for a*)
-and one RNEA-derivative pass.
+free coordinates.  Each point costs one forward-dynamics pass (``rnea`` and ``crba``, or ``aba``, for a*; none along a
+constant orbit, whose free acceleration is 0) and one RNEA-derivative pass.
 """
 
 from __future__ import annotations
@@ -59,11 +59,14 @@ class Point:
         return A
 
 
-def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray, t: float) -> Point:
+def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray, t: float,
+                   at_rest: bool = False) -> Point:
     """The coefficients at (q, v) and time t; q and v (full, nq and nv) get the prescribed motions at t
-    (in place).  ``dyn``: the thread's :class:`~pinlin.nonlinear.dynamics.FreeDynamics` of ``scene``."""
+    (in place).  ``dyn``: the thread's :class:`~pinlin.nonlinear.dynamics.FreeDynamics` of ``scene``.
+    ``at_rest``: the free coordinates stay at an equilibrium (a constant orbit), so their acceleration is
+    exactly 0 and the forward-dynamics pass is skipped."""
     a_p = dyn.apply_motions(t, q, v)
-    a_f = dyn.acceleration(q, v, a_p)
+    a_f = np.zeros(scene.n) if at_rest else dyn.acceleration(q, v, a_p)
     free = scene.free_dofs
     a = np.zeros(scene.model.nv) if a_p is None else a_p.copy()
     if a_f.shape[0] == scene.model.nv:  # the aba path: no prescribed joint
@@ -102,7 +105,8 @@ class VariationalCoefficients:
         hit = self._cache.get(t)
         if hit is not None:
             return hit
-        p = evaluate_point(self.scene, self.dyn, self.orbit.q(t), self.orbit.v(t), t)
+        p = evaluate_point(self.scene, self.dyn, self.orbit.q(t), self.orbit.v(t), t,
+                           at_rest=bool(getattr(self.orbit, "constant", False)))
         self.evaluations += 1
         self._cache[t] = p
         if len(self._cache) > self._size:
