@@ -318,12 +318,7 @@ def _sweep(args) -> int:
         outcome = run_sweep(plan)
     document = sweep_document(outcome)
     print(render_sweep_text(document, args.precision))
-    if args.json is not None:
-        _write(args, "--json", args.json, lambda: write_json(args.json, document))
-    if args.plot is not None:
-        _write(args, "--plot", args.plot, lambda: write_sweep_plot(args.plot, outcome))
-    print(args.clock.summary())
-    return EXIT_OK
+    return _finish(args, document, lambda: write_sweep_plot(args.plot, outcome))
 
 
 def _campbell(args) -> int:
@@ -338,10 +333,15 @@ def _campbell(args) -> int:
         outcome = run_sweep(plan)
     document = campbell_document(outcome)
     print(render_campbell_text(document, args.precision))
+    return _finish(args, document, lambda: write_campbell_plot(args.plot, outcome))
+
+
+def _finish(args, document: dict, write_plot) -> int:
+    """Write the ``--json`` document and the ``--plot`` figure (each named as written), print the total."""
     if args.json is not None:
         _write(args, "--json", args.json, lambda: write_json(args.json, document))
     if args.plot is not None:
-        _write(args, "--plot", args.plot, lambda: write_campbell_plot(args.plot, outcome))
+        _write(args, "--plot", args.plot, write_plot)
     print(args.clock.summary())
     return EXIT_OK
 

@@ -94,3 +94,34 @@ def test_bad_brackets_and_families_are_refused():
             lambda d: mathieu(d) if d < 0.2 else pinlin.LinearizedSystem.from_matrices(np.eye(1)), (0.1, 0.3))
     with pytest.raises(pinlin.errors.SystemFunctionError, match="max_evaluations = 3"):
         periodic_critical_parameter(mathieu, (0.05, 0.25), max_evaluations=3)
+
+
+def test_ground_resonance_range_from_floquet_equals_the_multiblade_range():
+    """Coleman and Feingold's ground resonance (three lag-hinged blades on an anisotropic hub, the hand-derived
+    matrices of tests/periodic/floquet_cases.py): the speed range of instability from the Floquet analysis in
+    blade coordinates equals the one from the time-invariant multi-blade eigenvalues."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "periodic"))
+    from floquet_cases import lag_rotor
+
+    def blade(w):
+        (M, C, K), T = lag_rotor(3, Omega=w)
+        return pinlin.floquet_analysis_matrices(M, C, K, T)
+
+    def multiblade(w):
+        (M, C, K), _ = lag_rotor(3, Omega=w)
+        return pinlin.multiblade_transform_matrices(M, C, K, [2, 3, 4], w)
+
+    speeds = np.linspace(0.5, 8.0, 31)
+    unstable = [w for w in speeds if np.max(pinlin.modal_analysis(multiblade(w)).eigenvalues.real) > 0]
+    assert unstable, "the case has a ground-resonance range"
+    step = speeds[1] - speeds[0]
+    for edge in (unstable[0] - step, unstable[-1]):
+        bracket = (edge, edge + step)
+        mbc = pinlin.critical_parameter(multiblade, bracket)
+        flo = pinlin.critical_parameter(blade, bracket)
+        assert flo.mechanism == "multiplier crossing" and mbc.mechanism != "multiplier crossing"
+        assert abs(flo.value - mbc.value) <= 1e-9 + flo.error_bound + mbc.error_bound
+        assert flo.error_bound < 1e-8 and mbc.error_bound < 1e-8
