@@ -169,7 +169,7 @@ def test_equilibrium_without_assembly_has_no_assembly_note(four_bar_scene):
 
 
 def test_equilibrium_no_convergence_is_reported(four_bar_scene):
-    with pytest.raises(pinlin.ConvergenceError, match="no convergence in 1 iterations"):
+    with pytest.raises(pinlin.ConvergenceError, match="no convergence in 1 iteration "):
         pinlin.find_equilibrium(four_bar_scene, [0.3, 0.2, -0.4], max_iterations=1)
     with pytest.raises(pinlin.ParameterError, match="max_iterations"):
         pinlin.find_equilibrium(four_bar_scene, np.zeros(3), max_iterations=-1)

@@ -61,7 +61,7 @@ def test_floating_base_in_zero_gravity_is_in_equilibrium():
 
 def test_iteration_limit_reports_history():
     scene = double_pendulum(elements=[pinlin.JointSpring("joint1", 1.0, rest=1.0)])
-    with pytest.raises(pinlin.ConvergenceError, match="no convergence in 1 iterations") as info:
+    with pytest.raises(pinlin.ConvergenceError, match="no convergence in 1 iteration ") as info:
         pinlin.find_equilibrium(scene, [2.0, 0.5], max_iterations=1)
     assert len(info.value.history) == 2
 

@@ -145,7 +145,7 @@ def find_constrained_equilibrium(
                     history,
                 )
     raise ConvergenceError(
-        f"find_equilibrium: no convergence in {max_iterations} iterations on the constraint manifold "
+        f"find_equilibrium: no convergence in {max_iterations} iteration{'s' if max_iterations != 1 else ''} on the constraint manifold "
         f"(relative residual {rel:.2e} > tol {tol:g}); residual history: {[f'{h:.2e}' for h in history]}",
         history,
     )
@@ -158,7 +158,7 @@ def _equilibrium_result(scene, q, state, lam, norm, rel, iteration, history, lea
             0,
             f"assembly step: q0 violated the constraints by {closure.initial_gap:.4g} m"
             + (f" and {closure.initial_rotation_gap:.3g} rad" if closure.initial_rotation_gap else "")
-            + f"; {closure.iterations} Levenberg-Marquardt steps closed them to {closure.gap:.1e} m",
+            + f"; {closure.iterations} Levenberg-Marquardt step{'s' if closure.iterations != 1 else ''} closed them to {closure.gap:.1e} m",
         )
     method = "newton-kkt (Newton on (q, lambda) with the KKT matrix, after closing the loops)"
     if least_squares:

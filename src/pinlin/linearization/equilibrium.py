@@ -175,7 +175,7 @@ def find_equilibrium(
                 )
     stalled = len(history) > 4 and history[-1] > STALL_RATIO * history[-4]
     raise ConvergenceError(
-        f"find_equilibrium: no convergence in {max_iterations} iterations (relative residual "
+        f"find_equilibrium: no convergence in {max_iterations} iteration{'s' if max_iterations != 1 else ''} (relative residual "
         f"{rel:.2e} > tol {tol:g})"
         + (
             "; the residual has stalled at a local minimum of ||r||, which Newton's line search "
