@@ -39,6 +39,7 @@ from pathlib import Path
 import scipy.linalg as sla
 
 import pinlin
+from pinlin.model.generators import branched_chain_urdf
 from pinlin.model.loading import example_urdf_path
 from pinlin.spectral.multiplicity import analyse_cluster
 from pinlin.spectral.problem import as_problem
@@ -49,35 +50,6 @@ from .common import THREAD_VARIABLES, Report, Table, interleaved_medians, load_a
 
 #: talos_full_v2 (legs, torso, arms, head and both grippers) beside talos_reduced in example-robot-data.
 TALOS = example_urdf_path("talos_reduced").parent / "talos_full_v2.urdf"
-
-
-def _link(name: str, mass: float, length: float) -> str:
-    i = mass * length**2 / 12
-    return (
-        f'<link name="{name}"><inertial><origin xyz="0 0 {-length / 2}"/><mass value="{mass}"/>'
-        f'<inertia ixx="{i}" iyy="{i}" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>'
-    )
-
-
-def _joint(name: str, parent: str, child: str, z: float, axis: str) -> str:
-    return (
-        f'<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
-        f'<origin xyz="0 0 {z}"/><axis xyz="{axis}"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
-    )
-
-
-def branched_chain_urdf(branches: int = 8) -> str:
-    """A trunk (revolute about y) carrying ``branches`` identical two-link branches (about x, then y).
-
-    The same system as tests/spectral/test_multiplicity_certificate.py's catalog.
-    """
-    parts = ['<robot name="branched">', '<link name="base"/>', _link("trunk", 2.0, 0.5),
-             _joint("trunk", "base", "trunk", 0.0, "0 1 0")]
-    for b in range(branches):
-        parts += [_link(f"b{b}_1", 0.3, 0.2), _link(f"b{b}_2", 0.2, 0.15),
-                  _joint(f"b{b}_j1", "trunk", f"b{b}_1", -0.5, "1 0 0"),
-                  _joint(f"b{b}_j2", f"b{b}_1", f"b{b}_2", -0.2, "0 1 0")]
-    return "\n".join(parts + ["</robot>"])
 
 
 def branched_chain(damping: float = 0.0) -> pinlin.LinearizedSystem:

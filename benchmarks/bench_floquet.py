@@ -36,7 +36,6 @@ import pinlin
 
 from .common import Report, Table, Target, interleaved_medians
 
-
 G = 9.81
 
 

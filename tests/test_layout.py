@@ -18,8 +18,8 @@ Walks ``src/pinlin`` with :mod:`ast` (nothing is imported):
 from __future__ import annotations
 
 import ast
-import re
 import io
+import re
 import tokenize
 from pathlib import Path
 

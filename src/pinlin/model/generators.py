@@ -21,6 +21,7 @@ __all__ = [
     "double_pendulum_urdf",
     "turntable_urdf",
     "rotating_ring_urdf",
+    "branched_chain_urdf",
 ]
 
 
@@ -223,3 +224,33 @@ def rotating_ring_urdf(mass: float = 1.0, ring_inertia: float = 1.0) -> str:
 {lim}  </joint>
 </robot>
 """
+
+
+def _bar_link(name: str, mass: float, length: float) -> str:
+    i = mass * length**2 / 12
+    return (
+        f'<link name="{name}"><inertial><origin xyz="0 0 {-length / 2}"/><mass value="{mass}"/>'
+        f'<inertia ixx="{i}" iyy="{i}" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+    )
+
+
+def _hinge(name: str, parent: str, child: str, z: float, axis: str) -> str:
+    return (
+        f'<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+        f'<origin xyz="0 0 {z}"/><axis xyz="{axis}"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
+    )
+
+
+def branched_chain_urdf(branches: int = 8) -> str:
+    """URDF of a trunk (revolute about y) carrying ``branches`` identical two-link branches (about x, then y).
+
+    Identical branches give clusters of equal eigenvalues (one per branch mode): the reference case of
+    repeated eigenvalues whose Jordan structure is semisimple (benchmarks and tests of the multiplicities).
+    """
+    parts = ['<robot name="branched">', '<link name="base"/>', _bar_link("trunk", 2.0, 0.5),
+             _hinge("trunk", "base", "trunk", 0.0, "0 1 0")]
+    for b in range(branches):
+        parts += [_bar_link(f"b{b}_1", 0.3, 0.2), _bar_link(f"b{b}_2", 0.2, 0.15),
+                  _hinge(f"b{b}_j1", "trunk", f"b{b}_1", -0.5, "1 0 0"),
+                  _hinge(f"b{b}_j2", f"b{b}_1", f"b{b}_2", -0.2, "0 1 0")]
+    return "\n".join(parts + ["</robot>"])

@@ -9,7 +9,6 @@ eigenvalues are in :mod:`pinlin.spectral.stability.rules`.
 from __future__ import annotations
 
 import inspect
-
 from collections.abc import Callable
 
 from ...numerics.floating import EPS
