@@ -14,6 +14,7 @@ What the text promises, each checked by a test:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -173,7 +174,7 @@ def _dominant(modes: dict, i: int) -> str:
 
 
 def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> str:
-    """The mode table of a report's ``modes`` section: lam, |lam|, zeta, eta, kappa, bound, multiplicity, kind,
+    """The mode table of a report's ``modes`` section: lam, |lam| in rad/s and Hz, zeta, eta, kappa, bound, multiplicity, kind,
     dominant coordinates (their share of the mode's energy, issue 17).
 
     The verdict is not part of it (the report prints it once, in its own section).
@@ -192,7 +193,7 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
     rows = range(k) if max_rows is None else range(min(k, max_rows))
     w = max(precision + _CELL_PADDING, len("Im lam [rad/s]"))
     head = (
-        f"{'#':>4}  {'Re lam [1/s]':>{w}} {'Im lam [rad/s]':>{w}} {'|lam| [rad/s]':>{w}} "
+        f"{'#':>4}  {'Re lam [1/s]':>{w}} {'Im lam [rad/s]':>{w}} {'|lam| [rad/s]':>{w}} {'|lam| [Hz]':>11} "
         f"{'zeta':>9} {'eta':>8} {'kappa':>8} {'bound':>8} {'mult':>4}  {'kind':<12} dominant coordinates"
     )
     method = f"{modes['method']}: {modes['method_reason']}" if modes.get("method_reason") else modes["method"]
@@ -202,6 +203,7 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
         cells = [number(x, precision).rjust(w) for x in
                  (re[i], modes["eigenvalues"]["im"][i], modes["natural_frequency"][i])]
         size = _float(modes["natural_frequency"][i])
+        cells.append(number(size / (2 * math.pi), 5).rjust(11))
         # zeta at the rounding level of lam (|Re lam| within its bound) prints as 0
         zeta_floor = bound / size if size > 0 else 0.0
         figures = [number(modes["damping_ratio"][i], 4, zero_below=zeta_floor).rjust(9)] + [
