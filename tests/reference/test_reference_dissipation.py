@@ -238,7 +238,7 @@ def test_default_scene_quotes_one_bound_and_has_no_negative_zero(tmp_path):
     assert "underdamped" not in modes["kind"] and set(modes["kind"]) == {"undamped"}
     # the table's bound column is modes.error_bound, and the verdict names the factor it applied to it
     bounds = [float(b) for b in modes["error_bound"]]
-    column = [line.split()[7] for line in modes["table"].splitlines()[3:7]]
+    column = [line.split()[8] for line in modes["table"].splitlines()[3:7]]  # after |lam| in rad/s and Hz
     assert column == [f"{b:.1e}" for b in bounds]
     reason = report["stability"]["reason"]
     i = int(np.argmax(bounds))
