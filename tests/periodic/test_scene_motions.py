@@ -128,3 +128,25 @@ def test_batch_linearization_and_equilibrium_refuse_periodic_motions():
         pinlin.linearize_many(scene, [q0])
     with pytest.raises(pinlin.TimePeriodicError, match="pinlin.floquet_analysis"):
         pinlin.find_equilibrium(scene, q0)
+
+
+@pytest.mark.parametrize("bad", ["0.02", True, None, [0.02]])
+def test_motion_numbers_given_as_text_or_flags_are_refused(bad):
+    with pytest.raises(pinlin.ParameterError, match="amplitude: expected a number"):
+        pinlin.Harmonic(bad, 60.0)
+    with pytest.raises(pinlin.ParameterError, match=r"cosines\[0\]: expected a number"):
+        pinlin.FourierMotion([bad], omega=2.0)
+    with pytest.raises(pinlin.ParameterError, match="period: expected a number"):
+        pinlin.PeriodicMotion(math.sin, math.cos, lambda t: -math.sin(t), bad)
+
+
+def test_motions_are_immutable_once_made():
+    """A scene holding a motion is shared by threads: the motion cannot change under it."""
+    motions = [pinlin.Harmonic(0.02, 60.0), pinlin.FourierMotion([0.1, 0.2], omega=3.0),
+               pinlin.PeriodicMotion(math.sin, math.cos, lambda t: -math.sin(t), 2 * math.pi)]
+    for m in motions:
+        with pytest.raises(AttributeError, match="immutable"):
+            m.period = 1.0
+    with pytest.raises(ValueError, match="read-only"):
+        motions[1].cosines[0] = 5.0
+    assert motions[0].q(0.1) == 0.02 * math.sin(6.0)   # unchanged

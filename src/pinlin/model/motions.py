@@ -14,6 +14,7 @@ from collections.abc import Callable, Iterable
 import numpy as np
 
 from ..errors import ParameterError, PrescribedJointError, QuasiPeriodicError
+from .numbers import numeric_scalar
 
 __all__ = [
     "Motion",
@@ -46,10 +47,7 @@ PERIOD_RATIO_RTOL = 1e-12
 
 
 def _real(value, name: str, *, positive: bool = False) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, f"expected a real number, got {value!r}") from None
+    x = numeric_scalar(value, name)  # text and booleans are refused, as for every element's numbers
     if not math.isfinite(x):
         raise ParameterError(name, f"must be finite, got {value!r}")
     if positive and not x > 0:
@@ -64,6 +62,12 @@ class Motion:
     """
 
     period: float
+
+    def __setattr__(self, name, value):
+        # immutable once made (a scene holding it is shared by threads): subclasses set _frozen last
+        if self.__dict__.get("_frozen", False):
+            raise AttributeError(f"{type(self).__name__} is immutable: cannot set {name!r}; make a new one")
+        object.__setattr__(self, name, value)
 
     def q(self, t: float) -> float:  # pragma: no cover (abstract)
         raise NotImplementedError
@@ -123,6 +127,8 @@ class FourierMotion(Motion):
         self.offset = _real(offset, "offset")
         self.period = 2.0 * math.pi / w
         self._k = np.arange(1, K + 1) * w
+        self._k.flags.writeable = False
+        self._frozen = True
 
     def _cs(self, t: float):
         x = self._k * float(t)
@@ -175,6 +181,7 @@ class Harmonic(Motion):
         self.offset = _real(offset, "offset")
         self.phase = _real(phase, "phase")
         self.period = 2.0 * math.pi / abs(self.frequency)
+        self._frozen = True
 
     def q(self, t: float) -> float:
         return self.offset + self.amplitude * math.sin(self.frequency * t + self.phase)
@@ -222,6 +229,7 @@ class PeriodicMotion(Motion):
                 raise ParameterError(name, f"expected a callable t -> float, got {f!r}")
         self._q, self._v, self._a = q, v, a
         self._check(rtol)
+        self._frozen = True
 
     def _value(self, name: str, f, t: float) -> float:
         try:
