@@ -9,6 +9,7 @@ import pinocchio as pin
 
 from ..model.scene import Scene
 from ..nonlinear.dynamics import FreeDynamics
+from ..numerics.arrays import readonly
 from ..results import Result
 
 __all__ = ["PeriodicOrbit"]
@@ -76,6 +77,11 @@ class PeriodicOrbit(Result):
     solution: object = field(repr=False)
 
     _dict_exclude = ("scene", "base", "solution")
+
+    def __post_init__(self):
+        # a result may be shared by threads: its arrays are read-only copies
+        for name in ("q0", "v0", "monodromy", "base"):
+            object.__setattr__(self, name, readonly(getattr(self, name)))
 
     def _state(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         scene = self.scene
