@@ -125,3 +125,26 @@ def test_ground_resonance_range_from_floquet_equals_the_multiblade_range():
         assert flo.mechanism == "multiplier crossing" and mbc.mechanism != "multiplier crossing"
         assert abs(flo.value - mbc.value) <= 1e-9 + flo.error_bound + mbc.error_bound
         assert flo.error_bound < 1e-8 and mbc.error_bound < 1e-8
+
+
+def test_the_error_bound_is_its_documented_formula():
+    """error_bound = (b - a) + max(e_a, e_b) / |slope| over the final bracket (a, b), widened by powers of 10
+    until the verdicts at value -+ bound are decided and differ; recomputed here from fresh analyses."""
+    crit = periodic_critical_parameter(mathieu, (0.0, 0.25))
+    a, b = crit.bracket
+    (sa, ea, _), (sb, eb, _) = stability_function(mathieu(a)), stability_function(mathieu(b))
+    assert (sa < 0) != (sb < 0)
+    formula = (b - a) + max(ea, eb) / abs((sb - sa) / (b - a))
+    k = math.log10(crit.error_bound / formula)
+    assert k > -1e-9 and abs(k - round(k)) < 1e-9   # a power of ten times the formula: half of it fails
+    from pinlin.boundaries.evaluation import VERDICT_CLASS
+
+    def kind(p):
+        return VERDICT_CLASS[mathieu(p).stability.kind]
+
+    below, above = kind(crit.value - crit.error_bound), kind(crit.value + crit.error_bound)
+    assert "undecided" not in (below, above) and (below == "stable") != (above == "stable")
+    if round(k) > 0:   # widened: one step less did not decide
+        w = crit.error_bound / 10
+        assert "undecided" in (kind(crit.value - w), kind(crit.value + w)) or \
+            (kind(crit.value - w) == "stable") == (kind(crit.value + w) == "stable")

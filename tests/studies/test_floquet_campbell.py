@@ -63,3 +63,15 @@ def test_bad_input_is_refused():
         pinlin.floquet_campbell(lambda w: None, [1.0, 2.0])
     with pytest.raises(pinlin.errors.SystemFunctionError, match=r"func\(2.0\) raised ZeroDivisionError"):
         pinlin.floquet_campbell(lambda w: blade_floquet(w) if w < 2 else 1 / 0, [1.0, 2.0])
+
+
+def test_error_figures_are_the_analyses_own():
+    """error = the largest relative multiplier bound over the speeds; error_bound[s, j] = b / (|mu| T) of the
+    multiplier tracked into column j (recomputed from fresh analyses)."""
+    result = pinlin.floquet_campbell(blade_floquet, SPEEDS[:3])
+    fresh = [blade_floquet(w) for w in SPEEDS[:3]]
+    assert result.error == max(f.error for f in fresh)
+    for s, f in enumerate(fresh):
+        expected = np.asarray(f.error_bound) / np.abs(f.multipliers) / f.period
+        order = np.asarray(result.tracked.order[s])
+        np.testing.assert_allclose(result.error_bound[s], expected[order], rtol=1e-12)
