@@ -132,16 +132,20 @@ class FloquetAnalysis(Result):
         })
 
     def table(self) -> str:
-        """One line per multiplier: mu, |mu|, its bound, the exponent, the chosen frequency and its share."""
+        """One line per multiplier: mu, |mu|, its bound, the exponent's real part (0 where it is within its own
+        error, bound / (|mu| T)), the chosen frequency in rad/s and Hz, and the share of its harmonic."""
         lines = [f"{'k':>3} {'multiplier':>34} {'|mu|':>11} {'bound':>9} {'Re exponent':>12} "
-                 f"{'frequency':>12} {'j*':>4} {'share':>6}",
-                 f"{'':>3} {'':>34} {'':>11} {'':>9} {'[1/s]':>12} {'[rad/s]':>12}"]
+                 f"{'frequency':>12} {'':>10} {'j*':>4} {'share':>6}",
+                 f"{'':>3} {'':>34} {'':>11} {'':>9} {'[1/s]':>12} {'[rad/s]':>12} {'[Hz]':>10}"]
         J = (self.harmonic_content.shape[1] - 1) // 2
+        floor = self.error_bound / np.maximum(np.abs(self.multipliers), np.finfo(float).tiny) / self.period
         for k, mu in enumerate(self.multipliers):
             share = self.harmonic_content[k, self.dominant_harmonic[k] + J]
             note = "  trivial" if self.trivial[k] else ""
-            lines.append(f"{k:>3} {complex(mu):>34.10g} {abs(mu):>11.4e} {self.error_bound[k]:>9.2e} "
-                         f"{self.exponents[k].real:>12.5e} {self.frequencies[k]:>12.6g} "
+            rate = self.exponents[k].real if abs(self.exponents[k].real) > floor[k] else 0.0
+            f = self.frequencies[k] + 0.0
+            lines.append(f"{k:>3} {complex(mu) + 0.0:>34.10g} {abs(mu):>11.4e} {self.error_bound[k]:>9.2e} "
+                         f"{rate + 0.0:>12.5e} {f:>12.6g} {f / (2 * np.pi) + 0.0:>10.4g} "
                          f"{self.dominant_harmonic[k]:>4d} {share:>6.3f}{note}")
         lines.append(f"stability: {self.stability}")
         return "\n".join(lines)

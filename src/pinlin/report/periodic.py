@@ -12,8 +12,6 @@ from __future__ import annotations
 import time
 from typing import Any
 
-import numpy as np
-
 from ..errors import ParameterError
 from ..model.scene_file import SceneSpec
 from ..periodic import floquet_analysis, periodic_orbit, scene_period
@@ -66,24 +64,9 @@ def analyze_periodic(spec: SceneSpec):
     return report, orbit, flo
 
 
-def _multiplier_rows(flo, digits: int) -> list[str]:
-    rows = [f"  {'k':>3} {'multiplier mu':>{2 * digits + 12}} {'|mu|':>{digits + 6}} {'bound':>8} "
-            f"{'Re exponent [1/s]':>18} {'frequency [rad/s]':>18} {'[Hz]':>10}"]
-    mu, bound = np.asarray(flo.multipliers), np.asarray(flo.error_bound)
-    exponent, freq = np.asarray(flo.exponents), np.asarray(flo.frequencies)
-    rate_floor = bound / np.maximum(np.abs(mu), np.finfo(float).tiny) / flo.period   # Re exponent's own error
-    for k in np.argsort(-np.abs(mu), kind="stable"):
-        z = complex(mu[k]) + 0.0
-        rate = 0.0 if abs(exponent[k].real) <= rate_floor[k] else exponent[k].real   # rounding level: 0
-        text = f"{z.real:+.{digits}f}{z.imag:+.{digits}f}i"
-        note = "  trivial" if flo.trivial[k] else ""
-        rows.append(f"  {k + 1:>3} {text:>{2 * digits + 12}} {abs(z):>{digits + 6}.{digits}f} {bound[k]:>8.1e} "
-                    f"{rate + 0.0:>18.6g} {freq[k] + 0.0:>18.6g} {freq[k] / (2 * np.pi) + 0.0:>10.4g}{note}")
-    return rows
-
-
 def render_periodic_text(report: dict, orbit, flo, precision: int = 6) -> str:
-    """The periodic report as text: scene, orbit, the multipliers' table and the verdict."""
+    """The periodic report as text: scene, orbit, the multipliers' table (:meth:`FloquetAnalysis.table`) and
+    the verdict; ``precision`` is accepted for the command line's option (the table has its own digits)."""
     sc = report["scene"]
     lines = [f"pinlin {report['pinlin_version']}: {sc['robot']} ({sc['source']}), periodic",
              f"  free coordinates ({sc['n']}): {', '.join(sc['dof_names'])}"]
@@ -98,7 +81,7 @@ def render_periodic_text(report: dict, orbit, flo, precision: int = 6) -> str:
     lines.append(f"Floquet multipliers ({flo.steps} steps in {flo.segments} segment"
                  f"{'s' if flo.segments != 1 else ''}, {flo.evaluations} evaluations of the coefficients, "
                  f"largest relative bound {flo.error:.1e})")
-    lines += _multiplier_rows(flo, precision)
+    lines += ["  " + line for line in flo.table().splitlines()[:-1]]   # the verdict follows in its own section
     lines += ["", f"Stability: {flo.stability.kind.replace('_', ' ').upper()}", f"  {flo.stability.reason}", ""]
     lines.append(f"Analysis {report['elapsed'] * 1e3:.1f} ms (periodic orbit, Floquet analysis)")
     return "\n".join(lines)
