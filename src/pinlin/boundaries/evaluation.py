@@ -22,7 +22,7 @@ from ..linearization.system import LinearizedSystem
 from ..periodic import FloquetAnalysis
 from ..spectral import Modes, modal_analysis
 
-__all__ = ["Evaluator", "PeriodicFamily", "VERDICT_CLASS", "verdict_class", "check_parameter"]
+__all__ = ["Evaluator", "PeriodicFamily", "call_family", "VERDICT_CLASS", "verdict_class", "check_parameter"]
 
 #: The stability kinds (``modes.stability.kind``) grouped into the classes whose change is a boundary:
 #: asymptotic and marginal stability are one class ("stable"); "undecided" is its own.
@@ -55,6 +55,15 @@ def check_parameter(value, label: str) -> float:
     if not math.isfinite(out):
         raise ParameterError(label, f"expected a finite number, got {value!r}")
     return out
+
+
+def call_family(func: Callable, p: float, label: str = "func"):
+    """``func(p)``; any failure of the user's function as a :class:`~pinlin.errors.SystemFunctionError`
+    naming the parameter value (the cause chained)."""
+    try:
+        return func(p)
+    except Exception as exc:  # noqa: BLE001 - any failure of the user's function is reported with p
+        raise SystemFunctionError(f"{label}({p!r}) raised {type(exc).__name__}: {exc}", p) from exc
 
 
 class PeriodicFamily(Exception):  # noqa: N818 - a signal to the search, not an error the user sees
@@ -113,12 +122,7 @@ class Evaluator:
         if p in self._systems:
             return self._systems[p]
         self.calls += 1
-        try:
-            sys = self.func(p)
-        except Exception as exc:  # noqa: BLE001 - any failure of the user's function is reported with p
-            raise SystemFunctionError(
-                f"{self.label}({p!r}) raised {type(exc).__name__}: {exc}", p
-            ) from exc
+        sys = call_family(self.func, p, self.label)
         if isinstance(sys, FloquetAnalysis) and self._first is None:
             raise PeriodicFamily(p, sys)
         if not isinstance(sys, LinearizedSystem):

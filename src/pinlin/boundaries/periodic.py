@@ -31,7 +31,7 @@ import scipy.optimize
 from ..errors import BracketError, ParameterError, SystemFunctionError
 from ..periodic import FloquetAnalysis
 from .critical_result import CriticalParameter
-from .evaluation import VERDICT_CLASS, check_parameter
+from .evaluation import VERDICT_CLASS, call_family, check_parameter
 
 __all__ = ["periodic_critical_parameter", "stability_function", "is_periodic_family"]
 
@@ -99,10 +99,7 @@ class _Family:
             raise SystemFunctionError(
                 f"the search needed more than max_evaluations = {self.max_evaluations} Floquet analyses", p)
         self.calls += 1
-        try:
-            flo = self.func(p)
-        except Exception as exc:  # noqa: BLE001 - the user's function: reported with its p
-            raise SystemFunctionError(f"func({p!r}) raised {type(exc).__name__}: {exc}", p) from exc
+        flo = call_family(self.func, p)
         if not is_periodic_family(flo):
             raise SystemFunctionError(
                 f"func({p!r}) returned {type(flo).__name__}; the family returned a FloquetAnalysis elsewhere", p)

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..boundaries.evaluation import call_family
 from ..errors import ParameterError, SystemFunctionError
 from ..numerics.arrays import readonly
 from ..periodic import FloquetAnalysis
@@ -91,10 +92,7 @@ def floquet_campbell(func: Callable[[float], FloquetAnalysis], speeds) -> Floque
         raise ParameterError("speeds", f"expected at least two finite speeds, got {speeds!r}")
     rows, bounds, kinds, worst = [], [], [], 0.0
     for s in w.tolist():
-        try:
-            flo = func(float(s))
-        except Exception as exc:  # noqa: BLE001 - the user's function: reported with its speed
-            raise SystemFunctionError(f"func({s!r}) raised {type(exc).__name__}: {exc}", float(s)) from exc
+        flo = call_family(func, float(s))
         if not isinstance(flo, FloquetAnalysis):
             raise SystemFunctionError(f"func({s!r}) returned {type(flo).__name__}; expected a FloquetAnalysis",
                                       float(s))
