@@ -6,9 +6,22 @@ Nothing here imports an optional package at import time; a missing one raises
 
 from __future__ import annotations
 
+import importlib
+
 from .errors import MissingDependencyError
 
-__all__ = ["import_control", "import_pandas"]
+__all__ = ["import_control", "import_pandas", "import_ray", "optional_module"]
+
+
+def optional_module(name: str, message: str):
+    """The module ``name``, or :class:`~pinlin.errors.MissingDependencyError` with ``message`` (the install line).
+
+    A module that was blocked (``sys.modules[name] = None``) counts as missing.
+    """
+    try:
+        return importlib.import_module(name)
+    except ImportError as exc:
+        raise MissingDependencyError(message) from exc
 
 
 def import_control():
@@ -19,13 +32,7 @@ def import_control():
     MissingDependencyError
         python-control is not installed.
     """
-    try:
-        import control
-    except ImportError as exc:
-        raise MissingDependencyError(
-            "this needs python-control (>= 0.10): pip install 'pinlin[control]'"
-        ) from exc
-    return control
+    return optional_module("control", "this needs python-control (>= 0.10): pip install 'pinlin[control]'")
 
 
 def import_pandas():
@@ -36,8 +43,15 @@ def import_pandas():
     MissingDependencyError
         pandas is not installed.
     """
-    try:
-        import pandas
-    except ImportError as exc:
-        raise MissingDependencyError("this needs pandas (>= 2.0): pip install 'pinlin[pandas]'") from exc
-    return pandas
+    return optional_module("pandas", "this needs pandas (>= 2.0): pip install 'pinlin[pandas]'")
+
+
+def import_ray():
+    """The ``ray`` module (for :class:`pinlin.studies.RayExecutor`).
+
+    Raises
+    ------
+    MissingDependencyError
+        Ray is not installed.
+    """
+    return optional_module("ray", "RayExecutor needs Ray: pip install ray")

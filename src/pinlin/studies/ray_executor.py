@@ -19,7 +19,7 @@ from collections.abc import Callable
 from concurrent.futures import Executor, Future
 from typing import Any
 
-from ..errors import MissingDependencyError
+from ..extras import import_ray
 
 __all__ = ["RayExecutor"]
 
@@ -63,10 +63,7 @@ class RayExecutor(Executor):
         MissingDependencyError
             Ray is not installed.
         """
-        try:
-            import ray
-        except ImportError as exc:
-            raise MissingDependencyError("RayExecutor needs Ray: pip install ray") from exc
+        ray = import_ray()
         remote = self._remote.get(fn)
         if remote is None:
             remote = self._remote[fn] = ray.remote(**self.options)(fn) if self.options else ray.remote(fn)
