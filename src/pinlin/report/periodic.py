@@ -27,7 +27,7 @@ PERIODIC_REPORT_VERSION = 1
 def is_periodic(spec: SceneSpec) -> bool:
     """True when the scene's linearized equations are time-periodic at the file's start."""
     scene = spec.scene
-    if getattr(scene, "motions", None):
+    if scene.motions:
         return True
     return bool(scene.prescribed) and scene_period(scene, spec.q0) is not None
 
