@@ -31,9 +31,15 @@ def reference():
     return reference_multipliers(*second_order_parts(C_PARTS, K_PARTS), steps=20)
 
 
+@pytest.fixture(scope="module", params=["spectral", "nodes"])
+def sampling(request):
+    """Both ways of taking the coefficients: sampled once per period (interpolant) and at every node."""
+    return request.param
+
+
 @pytest.fixture(scope="module")
-def result():
-    return floquet_analysis_matrices(np.eye(2), _C, _K, 2 * np.pi)
+def result(sampling):
+    return floquet_analysis_matrices(np.eye(2), _C, _K, 2 * np.pi, sampling=sampling)
 
 
 def _errors(result, reference):
@@ -75,9 +81,9 @@ def test_stable_variant_is_asymptotically_stable():
     assert_allclose(np.prod(res.multipliers), np.exp(-11.5 * 2 * np.pi), rtol=1e-11)
 
 
-def test_first_order_entry_point_gives_the_same_multipliers(result):
+def test_first_order_entry_point_gives_the_same_multipliers(result, sampling):
     A0, A1, A2 = second_order_parts(C_PARTS, K_PARTS)
-    res = floquet_from_first_order(lambda t: A0 + A1 * np.cos(t) + A2 * np.sin(t), 2 * np.pi)
+    res = floquet_from_first_order(lambda t: A0 + A1 * np.cos(t) + A2 * np.sin(t), 2 * np.pi, sampling=sampling)
     assert_allclose(res.multipliers, result.multipliers, rtol=1e-11)
     assert res.evaluations == result.evaluations
 

@@ -66,10 +66,21 @@ def test_first_order_argument_checks():
 
 def test_step_budget():
     with pytest.raises(IntegrationBudgetError, match="max_steps reached") as info:
-        floquet_analysis_matrices(I1, None, lambda t: np.array([[400.0 + np.cos(t)]]), 2 * np.pi, max_steps=5)
+        floquet_analysis_matrices(I1, None, lambda t: np.array([[400.0 + np.cos(t)]]), 2 * np.pi, max_steps=5,
+                                  sampling="nodes")
     err = info.value
     assert isinstance(err, PinlinError) and isinstance(err, RuntimeError)
     assert err.budget == "max_steps" and err.steps == 5 and 0 <= err.t_reached < err.t_end == 2 * np.pi
+
+
+def test_step_budget_on_the_sampled_grid():
+    # A = [[0, 1], [-401, 0]] at its fastest, balanced by powers of two to [[0, 16], [-401 / 16, 0]] (2-norm
+    # 25.06); Gauss s = 6 has the error constant (6!)^4 / (12!^3 13) = 1.88e-16, so the first grid's step is
+    # (1e-13 / 1.88e-16)^(1/13) / 25.06 = 0.0646 s: 98 steps over 2 pi, the first round alone over the budget
+    with pytest.raises(IntegrationBudgetError, match="98 more needed \\(max_steps reached") as info:
+        floquet_analysis_matrices(I1, None, lambda t: np.array([[400.0 + np.cos(t)]]), 2 * np.pi, max_steps=5)
+    err = info.value
+    assert err.budget == "max_steps" and err.steps == 0 and err.t_reached == 0.0 and err.t_end == 2 * np.pi
 
 
 def test_time_budget():

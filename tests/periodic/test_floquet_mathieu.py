@@ -85,10 +85,11 @@ def _reference(delta, eps):
 
 @pytest.mark.parametrize("delta, eps", [(0.3, 0.2), (0.6, 0.3)])     # in the first tongue; stable, |mu| = 1
 @pytest.mark.parametrize("rtol", [1e-13, 1e-10, 1e-7])
-def test_error_bounds_against_mpmath(delta, eps, rtol):
+@pytest.mark.parametrize("sampling", ["spectral", "nodes"])
+def test_error_bounds_against_mpmath(delta, eps, rtol, sampling):
     """Every bound contains the 36-digit reference and is at most 100 times the true error (measured 2.4-38)."""
     reference = _reference(delta, eps)
-    res = floquet_analysis_matrices(*mathieu(delta, eps), 2 * np.pi, rtol=rtol)
+    res = floquet_analysis_matrices(*mathieu(delta, eps), 2 * np.pi, rtol=rtol, sampling=sampling)
     for mu, bound in zip(res.multipliers, res.error_bound):
         err = min(float(abs(mpmath.mpc(mu) - z)) for z in reference)
         assert err <= bound <= 100 * err + 1e-15 * abs(mu), (mu, err, bound)

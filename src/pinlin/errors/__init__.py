@@ -48,7 +48,7 @@ from .model import (
     SingularConstraintError,
     UrdfError,
 )
-from .periodic import MultibladeNotExactError
+from .periodic import MultibladeNotExactError, SamplingError
 from .periodic_motion import NoPeriodError, OrbitLimitError, PeriodicOrbitError, QuasiPeriodicError
 
 __all__ = [
@@ -87,6 +87,7 @@ __all__ = [
     "OverconstrainedError",
     "QuasiPeriodicError",
     "MultibladeNotExactError",
+    "SamplingError",
     "NoPeriodError",
     "PeriodicOrbitError",
     "OrbitLimitError",

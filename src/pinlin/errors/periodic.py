@@ -1,10 +1,11 @@
-"""Errors of the time-periodic analyses (theory: Floquet): a multi-blade transform that is not exact."""
+"""Errors of the time-periodic analyses (theory: Floquet): a multi-blade transform that is not exact, periodic
+coefficients that sampling cannot resolve."""
 
 from __future__ import annotations
 
-from .base import InputError
+from .base import ComputationError, InputError
 
-__all__ = ["MultibladeNotExactError"]
+__all__ = ["MultibladeNotExactError", "SamplingError"]
 
 
 class MultibladeNotExactError(InputError):
@@ -24,3 +25,22 @@ class MultibladeNotExactError(InputError):
     def __init__(self, message: str, matrix: str, variation: float, tolerance: float):
         super().__init__(message)
         self.matrix, self.variation, self.tolerance = matrix, float(variation), float(tolerance)
+
+
+class SamplingError(ComputationError):
+    """``sampling="spectral"`` was asked for, but the trigonometric interpolant of the periodic coefficients
+    did not reach its tolerance (non-smooth coefficients, or more harmonics than ``max_samples`` resolves).
+
+    Attributes
+    ----------
+    samples : int
+        Coefficient evaluations made.
+    history : tuple of float
+        The measured relative interpolation error after each doubling of the samples.
+    tolerance : float
+        The relative error asked for.
+    """
+
+    def __init__(self, message: str, samples: int, history, tolerance: float):
+        super().__init__(message)
+        self.samples, self.history, self.tolerance = int(samples), tuple(history), float(tolerance)

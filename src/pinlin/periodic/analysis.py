@@ -10,20 +10,22 @@ lifted block-cyclic matrix (:mod:`.cyclic`); error bounds (:mod:`.bounds`); freq
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError, SingularMassError
+from ..errors import ParameterError
 from ..numerics.arrays import readonly
 from .bounds import multiplier_bounds, relative_condition
-from .collocation import integrate_transitions
 from .cyclic import cyclic_eigen
 from .floquet_verdict import floquet_verdict
 from .harmonics import harmonic_content
 from .inputs import check_period, coefficient
 from .result import FloquetAnalysis
+from .sampled import Integrated, check_sampling, first_order_transitions, second_order_transitions
 
-__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "STRUCTURE_TOLERANCE", "SYMPLECTIC_TOLERANCE"]
+__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "floquet_second_order", "STRUCTURE_TOLERANCE",
+           "SYMPLECTIC_TOLERANCE"]
 
 #: Relative size [units of eps] below which an asymmetric part of K, a symmetric part of C or a change of
 #: M or C over time counts as rounding in the conservative-structure test.
@@ -34,10 +36,10 @@ STRUCTURE_TOLERANCE = 100.0
 SYMPLECTIC_TOLERANCE = 1e-9
 
 _EPS = float(np.finfo(float).eps)
-_TINY = float(np.finfo(float).tiny)
 
 
-def _check_options(rtol, stages, growth, harmonics, safety):
+def _check_options(rtol, stages, growth, harmonics, safety, sampling="auto", max_samples=256):
+    check_sampling(sampling, max_samples)
     checks = (("rtol", rtol, 1e-16 <= rtol < 1e-2, "in [1e-16, 1e-2)"),
               ("stages", stages, isinstance(stages, (int, np.integer)) and 2 <= stages <= 12, "an int in 2..12"),
               ("growth", growth, 10.0 <= growth <= 1e8, "in [10, 1e8]"),
@@ -61,8 +63,8 @@ def _trivial_mask(mu: np.ndarray, autonomous: bool, conservative: bool) -> tuple
 
 def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
                              harmonics: int = 16, autonomous: bool = False, symplectic_form=None, rows=None,
-                             safety: float = 10.0, max_steps: int = 20000,
-                             max_time: float = 600.0) -> FloquetAnalysis:
+                             safety: float = 10.0, max_steps: int = 20000, max_time: float = 600.0,
+                             sampling: str = "auto", max_samples: int = 256) -> FloquetAnalysis:
     """Floquet multipliers, exponents, frequencies and verdict of y' = A(t) y with A T-periodic.
 
     .. math::  \\Phi' = A(t)\\,\\Phi,\\quad \\Phi(0) = I, \\qquad \\mu_k \\in \\mathrm{eig}\\,\\Phi(T),
@@ -92,6 +94,12 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         Factor on the bounds before they decide the verdict.
     max_steps, max_time : int, float
         Integration budget (steps, wall time [s]).
+    sampling : {"auto", "spectral", "nodes"}
+        "spectral": A sampled at equispaced times and replaced by its trigonometric interpolant, whose
+        measured error enters the bounds (:mod:`pinlin.periodic.sampling`); "nodes": A evaluated at every
+        collocation node; "auto": spectral where the interpolant converges, else nodes.
+    max_samples : int
+        Most samples per period the interpolant may use (16..65536).
 
     Raises
     ------
@@ -99,10 +107,12 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         A not callable nor a square matrix, values of the wrong shape or non-finite, bad period or option.
     IntegrationBudgetError, IntegrationError
         The integration could not meet ``rtol`` within the budget.
+    SamplingError
+        ``sampling="spectral"`` and the interpolant did not converge within ``max_samples``.
     """
     start = time.perf_counter()
     T = check_period(period)
-    _check_options(rtol, stages, growth, harmonics, safety)
+    _check_options(rtol, stages, growth, harmonics, safety, sampling, max_samples)
     func, shape = coefficient("A", A)
     m = shape[0]
     form = None
@@ -115,17 +125,17 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         if rows.ndim != 1 or rows.size == 0 or rows.dtype.kind not in "iu" or rows.min() < 0 or rows.max() >= m:
             raise ParameterError("rows", f"expected a non-empty 1-d array of indices in 0..{m - 1}, got {rows!r}")
     options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
-    return _analyse(func, T, m, lambda monodromy: form, options, harmonics=int(harmonics), rows=rows,
+    integrated = first_order_transitions(func, T, m, options, sampling, max_samples)
+    return _analyse(integrated, T, m, lambda monodromy: form, options, harmonics=int(harmonics), rows=rows,
                     autonomous=autonomous, safety=safety, start=start, what="first-order A(t)")
 
 
-def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, safety, start, what):
-    """The pipeline on a checked A(t); ``form_after(monodromy)`` gives Omega (or None) once the integration
-    sampled A."""
-    tr = integrate_transitions(func, T, m, **options)
+def _analyse(integrated: Integrated, T, m, form_after, options, *, harmonics, rows, autonomous, safety, start,
+             what):
+    """The pipeline on the integrated transitions; ``form_after(monodromy)`` gives Omega (or None)."""
+    tr = integrated.transitions
     eig = cyclic_eigen(tr.factors)
     bound, b_int, b_eig = multiplier_bounds(tr, eig)
-    freq, content, dominant = harmonic_content(tr, eig, T, harmonics=harmonics, rows=rows)
     monodromy = np.eye(m)
     for factor in tr.factors:
         monodromy = factor @ monodromy
@@ -134,18 +144,35 @@ def _analyse(func, T, m, form_after, options, *, harmonics, rows, autonomous, sa
     stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
                                 condition=relative_condition(tr, eig), safety=safety, trivial_note=note)
     step_errors = np.array([s.error for s in tr.steps])
-    rel = step_errors / np.array([np.linalg.norm(s.P, 2) for s in tr.steps])
+    rel = step_errors / np.array([s.norm for s in tr.steps])
     times = np.array([s.t0 for s in tr.steps] + [T])
     stages = options["stages"]
-    method = (f"Floquet ({what}): Gauss-Legendre collocation s = {stages} (order {2 * stages}) with step "
-              f"doubling, rtol = {options['rtol']:g}; multipliers of the {len(tr.factors)}-segment product from "
-              f"the lifted block-cyclic eigenproblem")
+    method = (f"Floquet ({what}): {integrated.description}; Gauss-Legendre collocation s = {stages} (order "
+              f"{2 * stages}) with step doubling, rtol = {options['rtol']:g}; multipliers of the "
+              f"{len(tr.factors)}-segment product from the lifted block-cyclic eigenproblem")
     return FloquetAnalysis(
         readonly(eig.multipliers), readonly(bound), readonly(b_int), readonly(b_eig),
-        readonly(np.log(eig.multipliers.astype(complex)) / T), readonly(freq), readonly(content),
-        readonly(dominant), readonly(trivial), form is not None, stability, readonly(monodromy), T,
-        len(tr.factors), len(tr.steps), tr.evaluations, readonly(times), readonly(step_errors),
-        float(rel.max()), time.perf_counter() - start, method)
+        readonly(np.log(eig.multipliers.astype(complex)) / T), readonly(trivial), form is not None, stability,
+        readonly(monodromy), T,
+        len(tr.factors), len(tr.steps), integrated.evaluations, readonly(times), readonly(step_errors),
+        float(rel.max()), time.perf_counter() - start, method, _DeferredHarmonics(tr, eig, T, harmonics, rows))
+
+
+@dataclass(frozen=True, eq=False)
+class _DeferredHarmonics:
+    """What a :class:`FloquetAnalysis` keeps to form its frequencies and harmonic content on first access
+    (immutable: threads that form them at once compute the same values)."""
+
+    transitions: object
+    eig: object
+    period: float
+    harmonics: int
+    rows: np.ndarray | None
+
+    def __call__(self) -> tuple:
+        freq, content, dominant = harmonic_content(self.transitions, self.eig, self.period,
+                                                   harmonics=self.harmonics, rows=self.rows)
+        return readonly(freq), readonly(content), readonly(dominant)
 
 
 def _check_symplectic(monodromy: np.ndarray, form: np.ndarray) -> None:
@@ -158,45 +185,16 @@ def _check_symplectic(monodromy: np.ndarray, form: np.ndarray) -> None:
                                              f" the system is not conservative")
 
 
-class _SecondOrder:
-    """A(t) = [[0, I], [-M^-1 K, -M^-1 C]] from checked M, C, K, recording the largest conservative-structure
-    defect seen: asym(M), sym(C), asym(K) and the change of M and C since t = 0, each relative (max-norms);
-    it stops measuring once the defect passes ``give_up`` (the structure test's tolerance)."""
-
-    def __init__(self, fM, fC, fK, n, give_up: float):
-        self.fM, self.fC, self.fK, self.n = fM, fC, fK, n
-        self.M0, self.C0 = fM(0.0), fC(0.0)
-        self.defect = 0.0
-        self.give_up = give_up
-        self.template = np.zeros((2 * n, 2 * n))
-        self.template[:n, n:] = np.eye(n)
-
-    def __call__(self, t: float) -> np.ndarray:
-        M, C, K = self.fM(t), self.fC(t), self.fK(t)
-        n = self.n
-        try:
-            X = np.linalg.solve(M, np.hstack([K, C]))
-        except np.linalg.LinAlgError:
-            raise SingularMassError(f"M is singular at t = {t:.6g} s", ()) from None
-        if self.defect <= self.give_up:    # once clearly not conservative, stop measuring
-            size = lambda X: float(np.abs(X).max())  # noqa: E731
-            sM, sK = size(M) + _TINY, size(K) + _TINY
-            big = sM + size(C) + sK
-            self.defect = max(self.defect, size(M - M.T) / sM, size(K - K.T) / sK,
-                              max(size(C + C.T), size(M - self.M0), size(C - self.C0)) / big)
-        A = self.template.copy()
-        A[n:, :n], A[n:, n:] = -X[:, :n], -X[:, n:]
-        return A
-
-
 def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
                               harmonics: int = 16, autonomous: bool = False, conservative: bool | None = None,
                               safety: float = 10.0, structure_tolerance: float = STRUCTURE_TOLERANCE,
-                              max_steps: int = 20000, max_time: float = 600.0) -> FloquetAnalysis:
+                              max_steps: int = 20000, max_time: float = 600.0, sampling: str = "auto",
+                              max_samples: int = 256) -> FloquetAnalysis:
     """Floquet analysis of M(t) x'' + C(t) x' + K(t) x = 0 with T-periodic M, C, K.
 
     In first-order form y = (x, x'), A = [[0, I], [-M^-1 K, -M^-1 C]] (solves with M, no inverse).  The
-    system counts as conservative when, at every time the integrator sampled, M is symmetric and constant,
+    system counts as conservative when, at every time sampled (the samples of the interpolant, or the
+    integrator's nodes), M is symmetric and constant,
     C = G is skew and constant and K symmetric, each within ``structure_tolerance`` eps (relative): then
     Phi(T) is symplectic for Omega = [[G, M], [-M, 0]] (y1^T Omega y2 = x1^T M v2 - v1^T M x2 + x1^T G x2,
     the canonical form with p = M v + G x / 2) and the verdict uses it.  A time-varying M or G with the
@@ -215,8 +213,8 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
     conservative : bool or None
         None: detect the constant-M structure above; True: the caller asserts a Lagrangian (conservative)
         system; False: never use structure in the verdict.
-    rtol, stages, growth, harmonics, autonomous, safety, max_steps, max_time
-        As :func:`floquet_from_first_order`.
+    rtol, stages, growth, harmonics, autonomous, safety, max_steps, max_time, sampling, max_samples
+        As :func:`floquet_from_first_order` (M, C and K are sampled together: one evaluation is one triple).
     structure_tolerance : float
         Relative tolerance, in units of eps, of the tests of the conservative structure.
 
@@ -227,31 +225,48 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
         monodromy that is not symplectic for Omega.
     SingularMassError
         M(t) singular at a sampled time.
-    IntegrationBudgetError, IntegrationError
+    IntegrationBudgetError, IntegrationError, SamplingError
         As :func:`floquet_from_first_order`.
     """
     start = time.perf_counter()
-    T = check_period(period)
-    _check_options(rtol, stages, growth, harmonics, safety)
     fM, shape = coefficient("M", M)
     n = shape[0]
     zero = np.zeros((n, n))
     fC, _ = coefficient("C", zero if C is None else C, shape)
     fK, _ = coefficient("K", zero if K is None else K, shape)
+    return floquet_second_order(lambda t: np.stack([fM(t), fC(t), fK(t)]), lambda: (fM, fC, fK), n, period,
+                                start=start, rtol=rtol, stages=stages, growth=growth, harmonics=harmonics,
+                                autonomous=autonomous, conservative=conservative, safety=safety,
+                                structure_tolerance=structure_tolerance, max_steps=max_steps, max_time=max_time,
+                                sampling=sampling, max_samples=max_samples)
+
+
+def floquet_second_order(triple, fallback, n: int, period, *, start: float, rtol: float = 1e-13, stages: int = 6,
+                         growth: float = 1e3, harmonics: int = 16, autonomous: bool = False,
+                         conservative: bool | None = None, safety: float = 10.0,
+                         structure_tolerance: float = STRUCTURE_TOLERANCE, max_steps: int = 20000,
+                         max_time: float = 600.0, sampling: str = "auto", max_samples: int = 256,
+                         what: str = "M, C, K") -> FloquetAnalysis:
+    """:func:`floquet_analysis_matrices` on validated coefficients: ``triple(t)`` -> (3, n, n) stacked M, C, K
+    (one evaluation), ``fallback()`` -> (M, C, K) checked callables for the integrator's nodes; ``start`` the
+    ``time.perf_counter()`` the run's elapsed time counts from."""
+    T = check_period(period)
+    _check_options(rtol, stages, growth, harmonics, safety, sampling, max_samples)
     if conservative not in (None, True, False):
         raise ParameterError("conservative", f"expected None, True or False, got {conservative!r}")
-    A = _SecondOrder(fM, fC, fK, n, structure_tolerance * _EPS)
-    form = np.block([[(A.C0 - A.C0.T) / 2, A.M0], [-A.M0, zero]])
+    M0, C0, _ = triple(0.0)
+    form = np.block([[(C0 - C0.T) / 2, M0], [-M0, np.zeros((n, n))]])
+    options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
+    integrated = second_order_transitions(triple, fallback, T, n, options, sampling, max_samples,
+                                          structure_tolerance * _EPS)
 
     def form_after(monodromy):
         if conservative is None:
-            return form if A.defect <= structure_tolerance * _EPS else None
+            return form if integrated.defect <= structure_tolerance * _EPS else None
         if conservative:
             _check_symplectic(monodromy, form)
             return form
         return None
 
-    options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
-    return _analyse(A, T, 2 * n, form_after, options,
-                    harmonics=int(harmonics), rows=np.arange(n), autonomous=autonomous, safety=safety,
-                    start=start, what="M, C, K")
+    return _analyse(integrated, T, 2 * n, form_after, options, harmonics=int(harmonics), rows=np.arange(n),
+                    autonomous=autonomous, safety=safety, start=start, what=what)

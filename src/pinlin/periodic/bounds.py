@@ -20,7 +20,9 @@ so that, with \\hat E_s the step's Richardson estimate of its error matrix and r
 (eta the eigensolver's backward error, at least eps).  The projection of the estimate (times rho =
 :data:`PROJECTION_FACTOR`) is what the error does to this multiplier; theta = :data:`ESTIMATE_SLACK` of its norm covers the estimate's own
 inaccuracy (Richardson is exact only as h -> 0) in any direction, and the rounding floor is directionless.
-Without the projection a stiff, heavily damped mode's local error (large in norm, invisible to the other
+Where the coefficients integrated are an interpolant of the true ones (:mod:`.sampling`), each step adds the
+first-order effect of their error bound (:func:`coefficient_terms`).  Without the projection a stiff,
+heavily damped mode's local error (large in norm, invisible to the other
 modes) would inflate every other multiplier's bound by decades.  Both are first order: for a multiplier in (or near)
 a Jordan block the condition 1 / |w^H z| is large and the bound says so, but it is not a proof there.
 """
@@ -32,7 +34,7 @@ import numpy as np
 from .collocation import Transitions
 from .cyclic import CyclicEigen
 
-__all__ = ["multiplier_bounds", "relative_condition", "ESTIMATE_SLACK", "PROJECTION_FACTOR"]
+__all__ = ["multiplier_bounds", "relative_condition", "coefficient_terms", "ESTIMATE_SLACK", "PROJECTION_FACTOR"]
 
 #: theta: share of a step's estimated error norm allowed in any direction, beyond its projection.
 ESTIMATE_SLACK = 1e-2
@@ -48,7 +50,7 @@ _EPS = float(np.finfo(float).eps)
 
 def _integration_sums(tr: Transitions, eig: CyclicEigen) -> np.ndarray:
     """sum_s rho |v_s^H E_s u_{s-1}| + (theta ||E_s|| + r_s) ||v_s|| ||u_{s-1}|| per multiplier (unit stacked
-    eigenvectors)."""
+    eigenvectors), each segment's steps on stacks."""
     m, K = eig.right.shape[0], len(tr.factors)
     sums = np.zeros(m)
     for j, (begin, end) in enumerate(tr.segments):
@@ -62,12 +64,49 @@ def _integration_sums(tr: Transitions, eig: CyclicEigen) -> np.ndarray:
         for i in range(len(steps) - 1, -1, -1):
             lefts[i] = V
             V = steps[i].P.conj().T @ V
-        for step, U, V in zip(steps, rights, lefts):
-            projected = np.abs(np.sum(V.conj() * (step.estimate @ U), axis=0))
-            norms = np.linalg.norm(V, axis=0) * np.linalg.norm(U, axis=0)
-            slack = ESTIMATE_SLACK * float(np.linalg.norm(step.estimate, 2)) + step.rounding
-            sums += PROJECTION_FACTOR * projected + slack * norms
+        R, L = np.stack(rights), np.stack(lefts)                          # (S, m, modes)
+        E = np.stack([step.estimate for step in steps])
+        projected = np.abs(np.sum(L.conj() * (E @ R), axis=1)).sum(axis=0)
+        norms = np.linalg.norm(L, axis=1) * np.linalg.norm(R, axis=1)     # (S, modes)
+        slack = np.array([ESTIMATE_SLACK * s.estimate_norm + s.rounding for s in steps])
+        sums += PROJECTION_FACTOR * projected + slack @ norms
+        with_error = [i for i, step in enumerate(steps) if step.coefficient_error is not None]
+        if with_error:
+            sums += coefficient_terms([steps[i] for i in with_error], R[with_error], L[with_error])
     return sums
+
+
+def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray) -> np.ndarray:
+    """First-order effect of an error dA of the integrated coefficients on each mode, summed over steps,
+
+    .. math::  |v^H \\delta P u| \\le \\sum_i w_i \\sum_{ab} E_{ab}\\, \\|(\\Phi(t_1, t_i)^H v)_a\\|\\,
+               \\|(\\Phi(t_i, t_0) u)_b\\|,
+
+    with Phi(t_i, t_0) = Z_i the stage transitions, Phi(t_1, t_i) = P Z_i^-1, w_i the quadrature weights and
+    E the step's block bound on dA (rows split into E's blocks).  ``R``, ``L``: (S, m, modes) the modes at
+    each step's start and the left vectors at its end."""
+    Z = np.stack([step.stage for step in steps])                              # (S, nodes, m, m), real
+    P = np.stack([step.P for step in steps])
+    S, nodes, m = Z.shape[:3]
+    modes, g = R.shape[2], steps[0].coefficient_error.shape[0]
+
+    def block_norms(X):
+        """Per-block 2-norms of the complex columns X = [Re | Im] (real products, |x|^2 = |Re|^2 + |Im|^2)."""
+        sq = np.sum((X * X).reshape(S, nodes, g, m // g, 2, modes), axis=3)
+        return np.sqrt(sq[..., 0, :] + sq[..., 1, :])                         # (S, nodes, g, modes)
+
+    def at_nodes(F, X):
+        """F_i X for every node i of a step: one product per step, (S, nodes m, m) x (S, m, 2 modes)."""
+        return (F.reshape(S, nodes * m, m) @ X).reshape(S, nodes, m, 2 * modes)
+
+    rn = block_norms(at_nodes(Z, np.concatenate([R.real, R.imag], axis=2)))
+    # Z_i^-H P^H v through the real inverses (one factorization per node, not one complex solve per mode)
+    PL = P.transpose(0, 2, 1) @ np.concatenate([L.real, L.imag], axis=2)
+    ln = block_norms(at_nodes(np.ascontiguousarray(np.linalg.inv(Z).transpose(0, 1, 3, 2)), PL))
+    E = np.stack([step.coefficient_error for step in steps])
+    W = np.stack([step.weights for step in steps])
+    Er = np.matmul(E[:, None], rn)                                            # (S, nodes, g, modes)
+    return np.einsum("si,sik->k", W, np.sum(ln * Er, axis=2))
 
 
 def multiplier_bounds(tr: Transitions, eig: CyclicEigen) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -105,7 +105,8 @@ class VariationalCoefficients:
         hit = self._cache.get(t)
         if hit is not None:
             return hit
-        p = evaluate_point(self.scene, self.dyn, self.orbit.q(t), self.orbit.v(t), t,
+        q, v = self.orbit.state(t) if hasattr(self.orbit, "state") else (self.orbit.q(t), self.orbit.v(t))
+        p = evaluate_point(self.scene, self.dyn, q, v, t,
                            at_rest=bool(getattr(self.orbit, "constant", False)))
         self.evaluations += 1
         self._cache[t] = p

@@ -23,6 +23,7 @@ step costs 3 s evaluations of A (none reused: the half steps' nodes differ from 
 
 from __future__ import annotations
 
+import functools
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -32,7 +33,8 @@ import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
 
-__all__ = ["gauss_legendre", "Step", "Transitions", "integrate_transitions", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
+__all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "integrate_transitions", "group_segments",
+           "ROUNDING_FACTOR", "MAX_STEP_NORM"]
 
 #: Rounding error of one step's transition, in units of eps ||P||_2 times sqrt(s m): the stage solve and the
 #: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15,
@@ -47,6 +49,7 @@ MAX_STEP_NORM = 2.0
 _EPS = float(np.finfo(float).eps)
 
 
+@functools.lru_cache(maxsize=16)
 def gauss_legendre(stages: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Butcher tableau (c, a, b) of the ``stages``-stage Gauss-Legendre method on [0, 1].
 
@@ -60,6 +63,8 @@ def gauss_legendre(stages: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     V = c[None, :] ** (powers[:, None] - 1)
     R = c[:, None] ** powers[None, :] / powers[None, :]
     a = np.linalg.solve(V, R.T).T
+    for x in (c, a, b):
+        x.flags.writeable = False      # cached and shared: read-only
     return c, a, b
 
 
@@ -68,7 +73,11 @@ class Step:
     """One accepted step: [t0, t0 + h] [s], its transition P (m x m), the estimated error matrix
     ``estimate`` (Richardson, m x m), the ``rounding`` floor [2-norm] and their sum ``error`` = ||estimate||_2 +
     rounding, and the node data for dense output (``nodes`` [s], ``stage``:
-    the transitions from t0 to each node, s x m x m, order-s accurate, and the quadrature ``weights`` [s])."""
+    the transitions from t0 to each node, s x m x m, order-s accurate, and the quadrature ``weights`` [s]);
+    ``norm`` = ||P||_2 and ``estimate_norm`` = ||estimate||_2 as the integrator measured them;
+    ``coefficient_error``: None when A was evaluated exactly at the nodes, else a (g, g) block bound on the
+    error of the coefficients integrated (an interpolant of A): |v^H dA u| <= sum_ab E_ab ||v_a|| ||u_b|| with
+    the rows split into g equal blocks (:mod:`.bounds` adds its effect)."""
 
     t0: float
     h: float
@@ -79,6 +88,9 @@ class Step:
     nodes: np.ndarray
     stage: np.ndarray
     weights: np.ndarray
+    coefficient_error: np.ndarray | None = None
+    norm: float = float("nan")
+    estimate_norm: float = float("nan")
 
 
 @dataclass(frozen=True)
@@ -106,18 +118,62 @@ class Transitions:
     rejected: int = 0
 
 
+def stage_solve(An: np.ndarray, h: np.ndarray, a: np.ndarray, b: np.ndarray,
+                second_order: bool) -> tuple[np.ndarray, np.ndarray]:
+    """(P, Z) of a batch of Gauss steps: ``An`` (B, s, m, m) the coefficients at each step's nodes, ``h`` (B,)
+    the step lengths, (a, b) the tableau.  P (B, m, m) are the step transitions, Z (B, s, m, m) the stage
+    transitions from each step's start to its nodes.
+
+    ``second_order``: every A has the first-order form [[0, I], [X, Y]] of a second-order system; with
+    Z_i = (Zx_i, Zv_i), Zx_i = E_x + h sum_j a_ij Zv_j eliminates the positions, leaving the (s n)-square
+
+    .. math::  Zv_i - h \\sum_k (a_{ik} Y_k + h \\sum_j a_{ij} a_{jk} X_j) Zv_k
+               = E_v + h \\sum_j a_{ij} X_j E_x,
+
+    eight times cheaper to factor than the (2 s n)-square system."""
+    B, s, m = An.shape[0], An.shape[1], An.shape[2]
+    hh = np.asarray(h, dtype=float).reshape(B)
+    if not second_order:
+        # L = I - h [a_ij A_j]: block (i, j) is -h a_ij A_j
+        blocks = a[None, :, None, :, None] * An.transpose(0, 2, 1, 3)[:, None]
+        L = np.eye(s * m) - hh[:, None, None] * blocks.reshape(B, s * m, s * m)
+        rhs = np.broadcast_to(np.tile(np.eye(m), (s, 1)), (B, s * m, m))
+        Z = np.linalg.solve(L, rhs).reshape(B, s, m, m)
+        P = np.eye(m) + hh[:, None, None] * np.sum((An * b[None, :, None, None]) @ Z, axis=1)
+    else:
+        n = m // 2
+        X, Y = np.ascontiguousarray(An[:, :, n:, :n]), An[:, :, n:, n:]
+        aa = (a[:, None, :] * a.T[None, :, :]).reshape(s * s, s)      # aa[i k, j] = a_ij a_jk
+        XX = (aa @ X.reshape(B, s, n * n)).reshape(B, s, s, n, n)
+        block = (hh[:, None, None, None, None] * a[None, :, None, :, None] * Y.transpose(0, 2, 1, 3)[:, None]
+                 + (hh * hh)[:, None, None, None, None] * XX.transpose(0, 1, 3, 2, 4))
+        L = np.eye(s * n) - block.reshape(B, s * n, s * n)
+        rhs = np.zeros((B, s, n, 2 * n))
+        rhs[..., :n] = hh[:, None, None, None] * (a @ X.reshape(B, s, n * n)).reshape(B, s, n, n)
+        rhs[..., n:] = np.eye(n)
+        Zv = np.linalg.solve(L, rhs.reshape(B, s * n, 2 * n)).reshape(B, s, n, 2 * n)
+        Zx = np.eye(n, 2 * n)[None, None] + hh[:, None, None, None] * (
+            a @ Zv.reshape(B, s, 2 * n * n)).reshape(B, s, n, 2 * n)
+        Z = np.concatenate([Zx, Zv], axis=2)
+        # A_i Z_i = [[Zv_i], [X_i Zx_i + Y_i Zv_i]]: only the lower half needs a product
+        P = np.empty((B, m, m))
+        P[:, :n] = np.eye(n, m) + hh[:, None, None] * (b @ Zv.reshape(B, s, 2 * n * n)).reshape(B, n, m)
+        # sum_i b_i A_i[n:] Z_i as one product per step: [b_1 A_1[n:], ..., b_s A_s[n:]] [Z_1; ...; Z_s]
+        weighted = (b[None, :, None, None] * An[:, :, n:, :]).transpose(0, 2, 1, 3).reshape(B, n, s * m)
+        P[:, n:] = np.eye(n, m, n) + hh[:, None, None] * (weighted @ Z.reshape(B, s * m, m))
+    return P, Z
+
+
 class _Stepper:
     """The collocation step for one problem size: tableau, block pattern and the evaluation counter."""
 
     def __init__(self, A: Callable[[float], np.ndarray], m: int, stages: int):
         self.A, self.m, self.s = A, m, stages
         self.c, self.a, self.b = gauss_legendre(stages)
-        self.aa = self.a[:, None, :] * self.a.T[None, :, :]       # aa[i, k, j] = a_ij a_jk
         self.evaluations = 0
         self.n = m // 2 if m % 2 == 0 else 0
-        # E_v = [0, I] is the top block row of A in first-order form of a second-order system, E_x = [I, 0]
+        # E_v = [0, I] is the top block row of A in first-order form of a second-order system
         self.top = np.hstack([np.zeros((self.n, self.n)), np.eye(self.n)]) if self.n else None
-        self.ex = np.hstack([np.eye(self.n), np.zeros((self.n, self.n))]) if self.n else None
 
     def evaluate(self, times: np.ndarray) -> np.ndarray:
         self.evaluations += len(times)
@@ -125,39 +181,10 @@ class _Stepper:
 
     def step(self, t0: float, h: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(P, stage transitions, A at the nodes) of one Gauss step from t0 of length h."""
-        m, s = self.m, self.s
         An = self.evaluate(t0 + self.c * h)
-        if self.n and all(np.array_equal(A[:self.n], self.top) for A in An):
-            return (*self._second_order(An, h), An)
-        # L = I - h [a_ij A_j]: block (i, j) is -h a_ij A_j
-        L = np.eye(s * m) - h * (self.a[:, None, :, None] * An.transpose(1, 0, 2)[None]).reshape(s * m, s * m)
-        rhs = np.tile(np.eye(m), (s, 1))
-        Z = scipy.linalg.solve(L, rhs, check_finite=False).reshape(s, m, m)
-        P = np.eye(m) + h * np.sum((An * self.b[:, None, None]) @ Z, axis=0)
-        return P, Z, An
-
-    def _second_order(self, An: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
-        """The same step when A = [[0, I], [X, Y]] (first-order form of a second-order system): with
-        Z_i = (Zx_i, Zv_i), Zx_i = E_x + h sum_j a_ij Zv_j eliminates the positions, leaving the (s n)-square
-
-        .. math::  Zv_i - h \\sum_k (a_{ik} Y_k + h \\sum_j a_{ij} a_{jk} X_j) Zv_k
-                   = E_v + h \\sum_j a_{ij} X_j E_x,
-
-        eight times cheaper to factor than the (2 s n)-square system."""
-        n, s, a = self.n, self.s, self.a
-        X, Y = An[:, n:, :n], An[:, n:, n:]
-        # sum_j a_ij a_jk X_j as one matrix product: (i k, j) x (j, p q)
-        XX = (self.aa.reshape(s * s, s) @ X.reshape(s, n * n)).reshape(s, s, n, n)
-        block = h * a[:, None, :, None] * Y.transpose(1, 0, 2)[None] + h * h * XX.transpose(0, 2, 1, 3)
-        L = np.eye(s * n) - block.reshape(s * n, s * n)
-        rhs = np.zeros((s, n, 2 * n))
-        rhs[:, :, :n] = h * (a @ X.reshape(s, n * n)).reshape(s, n, n)
-        rhs[:, :, n:] = np.eye(n)
-        Zv = scipy.linalg.solve(L, rhs.reshape(s * n, 2 * n), check_finite=False).reshape(s, n, 2 * n)
-        Zx = self.ex[None] + h * (a @ Zv.reshape(s, 2 * n * n)).reshape(s, n, 2 * n)
-        Z = np.concatenate([Zx, Zv], axis=1)
-        P = np.eye(2 * n) + h * np.sum((An * self.b[:, None, None]) @ Z, axis=0)
-        return P, Z
+        second = bool(self.n) and all(np.array_equal(A[:self.n], self.top) for A in An)
+        P, Z = stage_solve(An[None], np.array([h]), self.a, self.b, second)
+        return P[0], Z[0], An
 
 
 def _initial_step(A0: np.ndarray, period: float, stages: int, rtol: float) -> float:
@@ -251,30 +278,41 @@ def integrate_transitions(
             nodes = np.concatenate([t + st.c * h / 2, t + h / 2 + st.c * h / 2])
             stage = np.concatenate([Z1, Z2 @ P1])
             weights = np.concatenate([st.b, st.b]) * h / 2
-            steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, weights))
+            steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, weights,
+                              None, norm, estimate))
             t += h
         else:
             rejected += 1
         h *= min(2.0, max(0.2, 0.9 * max(ratio, 1e-30) ** (-1.0 / (2 * stages + 1))))
-    segments, factors = _group(steps, growth, d)
+    segments, factors = group_segments(steps, growth, d)
     return Transitions(steps, segments, factors, st.evaluations, rejected)
 
 
-def _group(steps: list, growth: float, d: np.ndarray) -> tuple[list, list]:
+def group_segments(steps: list, growth: float, d: np.ndarray, lookahead: int = 16) -> tuple[list, list]:
     """Consecutive steps grouped so that each segment's transition has condition number <= growth
     (a single step above it makes a segment of its own), measured in the coordinates that balance A(0)
     (``d``: D^-1 P D): the condition of a transition in raw units counts the coordinates' units (a stiff
-    support in m beside a velocity in m/s), not how far the multipliers' scales drift apart."""
+    support in m beside a velocity in m/s), not how far the multipliers' scales drift apart.  The running
+    products are formed ``lookahead`` steps at a time and their conditions taken on the stack."""
     segments, factors = [], []
     scaling = d[None, :] / d[:, None]
-    begin, product = 0, None
-    for k, step in enumerate(steps):
-        trial = step.P if product is None else step.P @ product
-        if product is not None and np.linalg.cond(trial * scaling) > growth:
-            segments.append((begin, k))
-            factors.append(product)
-            begin, trial = k, step.P
-        product = trial
-    segments.append((begin, len(steps)))
-    factors.append(product)
+    begin = 0
+    while begin < len(steps):
+        products, end = [steps[begin].P], None
+        k = begin + 1
+        while end is None and k < len(steps):
+            chunk = []
+            for step in steps[k:k + lookahead]:
+                chunk.append(step.P @ (chunk[-1] if chunk else products[-1]))
+            over = np.flatnonzero(np.linalg.cond(np.stack(chunk) * scaling) > growth)
+            if over.size:
+                end = k + int(over[0])
+                products.extend(chunk[:over[0]])
+            else:
+                products.extend(chunk)
+                k += len(chunk)
+        end = len(steps) if end is None else end
+        segments.append((begin, end))
+        factors.append(products[end - begin - 1])
+        begin = end
     return segments, factors

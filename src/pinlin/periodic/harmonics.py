@@ -27,25 +27,38 @@ __all__ = ["harmonic_content"]
 
 
 def _periodic_part_coefficients(tr, eig, period, harmonics, rows):
-    """(Fourier coefficients (modes, 2J+1, len(rows)), mean energies (modes,)) of every p_k at once."""
+    """(Fourier coefficients (modes, 2J+1, len(rows)), mean energies (modes,)) of every p_k at once, each
+    segment's steps on stacks."""
     lam_T = np.log(eig.multipliers.astype(complex)) / period          # (modes,)
     log_root = np.log(eig.roots.astype(complex))
     js = np.arange(-harmonics, harmonics + 1)
     modes = lam_T.size
-    coeff = np.zeros((modes, js.size, len(rows)), dtype=complex)
+    coeff = np.zeros((js.size, len(rows), modes), dtype=complex)
     energy = np.zeros(modes)
     for j, (begin, end) in enumerate(tr.segments):
-        t_seg = tr.steps[begin].t0
+        steps = tr.steps[begin:end]
+        t_seg = steps[0].t0
         # x_j = lambda^j z_j is the mode at t_j; p(t_j) = exp(-Lambda t_j) x_j; columns are modes
         U = eig.right[:, j, :].T * np.exp(j * log_root - lam_T * t_seg)[None, :]
-        for step in tr.steps[begin:end]:
-            decay = np.exp(-np.outer(step.nodes - step.t0, lam_T))      # (nodes, modes)
-            values = (step.stage @ U)[:, rows, :] * decay[:, None, :]   # (nodes, rows, modes)
-            phase = np.exp(-1j * np.outer(js, step.nodes) * 2 * np.pi / period) * step.weights[None, :]
-            coeff += np.tensordot(phase, values, axes=(1, 0)).transpose(2, 0, 1)
-            energy += np.tensordot(step.weights, np.abs(values) ** 2, axes=(0, 0)).sum(axis=0)
+        starts = []
+        for step in steps:
+            starts.append(U)
             U = (step.P @ U) * np.exp(-lam_T * step.h)[None, :]
-    return coeff / period, energy / period
+        stage = np.stack([step.stage for step in steps])                   # (S, nodes, m, m)
+        offsets = np.stack([step.nodes - step.t0 for step in steps])        # (S, nodes)
+        nodes = np.concatenate([step.nodes for step in steps])
+        weights = np.concatenate([step.weights for step in steps])
+        decay = np.exp(-offsets[..., None] * lam_T)                         # (S, nodes, modes)
+        S, count, r = stage.shape[0], stage.shape[1], len(rows)
+        U0 = np.stack(starts)
+        # the real stage transitions on [Re | Im] of the complex starts: one product per step
+        product = stage[:, :, rows, :].reshape(S, count * r, -1) @ np.concatenate([U0.real, U0.imag], axis=2)
+        values = (product[..., :modes] + 1j * product[..., modes:]).reshape(S, count, r, modes)
+        values = (values * decay[:, :, None, :]).reshape(-1, r, modes)      # (S nodes, rows, modes)
+        phase = np.exp(-1j * np.outer(js, nodes) * 2 * np.pi / period) * weights[None, :]
+        coeff += np.tensordot(phase, values, axes=(1, 0))
+        energy += np.tensordot(weights, np.abs(values) ** 2, axes=(0, 0)).sum(axis=0)
+    return coeff.transpose(2, 0, 1) / period, energy / period
 
 
 def harmonic_content(tr: Transitions, eig: CyclicEigen, period: float, *, harmonics: int = 16, rows=None):

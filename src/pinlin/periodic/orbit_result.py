@@ -83,6 +83,10 @@ class PeriodicOrbit(Result):
         for name in ("q0", "v0", "monodromy", "base"):
             object.__setattr__(self, name, readonly(getattr(self, name)))
 
+    def state(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """(q*(t), v*(t)) at once (full, nq and nv)."""
+        return self._state(t)
+
     def _state(self, t: float) -> tuple[np.ndarray, np.ndarray]:
         scene = self.scene
         model = scene.model

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -35,7 +36,8 @@ class FloquetAnalysis(Result):
     harmonic_content : ndarray (m, 2 J + 1)
         Energy fraction of harmonic j = -J..J (column j + J) in the periodic part of each mode.
     dominant_harmonic : ndarray of int (m,)
-        j* per mode.
+        j* per mode.  These three are formed on first access (from the step data the result keeps, by
+        :func:`~pinlin.periodic.harmonics.harmonic_content`): read them, or the table, when you need them.
     trivial : ndarray of bool (m,)
         Multipliers set apart as an autonomous orbit's 1 (and its Jordan partner); excluded from the verdict
         and from ``error``.
@@ -74,9 +76,6 @@ class FloquetAnalysis(Result):
     integration_bound: np.ndarray
     eigensolver_bound: np.ndarray
     exponents: np.ndarray
-    frequencies: np.ndarray
-    harmonic_content: np.ndarray
-    dominant_harmonic: np.ndarray
     trivial: np.ndarray
     conservative: bool
     stability: Stability
@@ -90,6 +89,29 @@ class FloquetAnalysis(Result):
     integration_error: float
     elapsed: float
     method: str
+    deferred: object = field(default=None, repr=False)
+
+    _dict_exclude = ("deferred",)
+    _dict_fields = ("multipliers", "error_bound", "integration_bound", "eigensolver_bound", "exponents",
+                    "frequencies", "harmonic_content", "dominant_harmonic", "trivial", "conservative", "stability",
+                    "monodromy", "period", "segments", "steps", "evaluations", "step_times", "step_errors",
+                    "integration_error", "elapsed", "method")
+
+    @functools.cached_property
+    def _harmonics(self) -> tuple:
+        return self.deferred()
+
+    @functools.cached_property
+    def frequencies(self) -> np.ndarray:
+        return self._harmonics[0]
+
+    @functools.cached_property
+    def harmonic_content(self) -> np.ndarray:
+        return self._harmonics[1]
+
+    @functools.cached_property
+    def dominant_harmonic(self) -> np.ndarray:
+        return self._harmonics[2]
 
     @property
     def error(self) -> float:

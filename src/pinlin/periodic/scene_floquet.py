@@ -2,10 +2,15 @@
 
 from __future__ import annotations
 
+import time
+
+import numpy as np
+
 from ..errors import ParameterError
 from ..model.scene import Scene
-from .analysis import floquet_analysis_matrices
+from .analysis import floquet_second_order
 from .coefficients import variational_coefficients
+from .inputs import coefficient
 from .orbit_result import PeriodicOrbit
 from .result import FloquetAnalysis
 
@@ -30,8 +35,10 @@ def floquet_analysis(scene: Scene, orbit: PeriodicOrbit, **options) -> FloquetAn
     orbit : PeriodicOrbit
         From :func:`pinlin.periodic_orbit` for this scene.
     **options
-        Passed to :func:`~pinlin.periodic.analysis.floquet_analysis_matrices` (``rtol``, ``stages``,
-        ``growth``, ``harmonics``, ``safety``, ``max_steps``, ``max_time``, ...).
+        As :func:`~pinlin.periodic.analysis.floquet_analysis_matrices` (``rtol``, ``stages``, ``growth``,
+        ``harmonics``, ``safety``, ``max_steps``, ``max_time``, ``sampling``, ``max_samples``, ...): M, C and K
+        come from one Pinocchio pass per time, sampled once per period (``sampling="auto"``) where their
+        trigonometric interpolant converges.
 
     Returns
     -------
@@ -48,6 +55,16 @@ def floquet_analysis(scene: Scene, orbit: PeriodicOrbit, **options) -> FloquetAn
         raise ParameterError("orbit", "belongs to another scene: compute it with periodic_orbit(scene, ...)")
     if "autonomous" in options:
         raise ParameterError("autonomous", "is decided by the orbit (orbit.autonomous); do not pass it")
-    coefficients = variational_coefficients(scene, orbit)
-    return floquet_analysis_matrices(coefficients.M, coefficients.C, coefficients.K, orbit.period,
-                                     autonomous=orbit.autonomous, **options)
+    start = time.perf_counter()
+    co = variational_coefficients(scene, orbit)
+
+    def checked():
+        return tuple(coefficient(name, f)[0] for name, f in (("M", co.M), ("C", co.C), ("K", co.K)))
+
+    def triple(t):
+        p = co.point(t)
+        return np.stack([p.M, p.C, p.K])
+
+    return floquet_second_order(triple, checked, scene.n, orbit.period, start=start,
+                                autonomous=orbit.autonomous, what=f"scene {scene.robot.name!r}, n = {scene.n}",
+                                **options)

@@ -1,0 +1,160 @@
+"""The step transitions of a Floquet analysis, from coefficients sampled once per period or evaluated at every
+collocation node (theory: Floquet).
+
+``sampling="spectral"``: the coefficients (A, or M, C and K together) are sampled at equispaced times and
+replaced by their trigonometric interpolant (:mod:`.sampling`), whose measured error enters every step's
+error bound (:mod:`.bounds`); the interpolant is integrated on a grid refined in rounds
+(:mod:`.collocation_grid`).  ``"nodes"``: the coefficients are evaluated at every node of the step-doubling
+integrator (:mod:`.collocation`), three per stage and step.  ``"auto"`` (the default) samples first and
+evaluates at the nodes when the interpolant does not converge.  Exact trigonometric polynomials (a turning
+inertia, an effective gravity g + z''(t)) take 16 samples where the nodes take hundreds.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ParameterError, SamplingError
+from .collocation import Transitions, integrate_transitions
+from .collocation_grid import integrate_on_grid
+from .sampling import PeriodicSamples, group_norms, sample_periodic
+from .second_order import SecondOrderA, first_order_stack, structure_defect
+
+__all__ = ["SAMPLING", "Integrated", "first_order_transitions", "second_order_transitions", "check_sampling",
+           "second_order_scales", "SAMPLING_FLOOR"]
+
+#: The accepted modes of ``sampling``.
+SAMPLING = ("auto", "spectral", "nodes")
+
+#: Smallest relative interpolation tolerance, in units of eps: the samples' own rounding (a Pinocchio pass
+#: is accurate to a few eps of its norms) must not decide whether the interpolant converged.
+SAMPLING_FLOOR = 64.0
+
+_EPS = float(np.finfo(float).eps)
+
+
+@dataclass(frozen=True)
+class Integrated:
+    """Transitions with how they were made: ``evaluations`` (coefficient calls), ``samples`` (the
+    interpolant's, or None when the nodes were used), ``defect`` (the conservative-structure defect seen, for
+    second-order systems), ``description`` (for the result's ``method``)."""
+
+    transitions: Transitions
+    evaluations: int
+    samples: PeriodicSamples | None
+    defect: float
+    description: str
+
+
+def check_sampling(sampling, max_samples) -> None:
+    if sampling not in SAMPLING:
+        raise ParameterError("sampling", f"expected one of {', '.join(map(repr, SAMPLING))}, got {sampling!r}")
+    if not (isinstance(max_samples, (int, np.integer)) and not isinstance(max_samples, bool)
+            and 16 <= max_samples <= 65536):
+        raise ParameterError("max_samples", f"expected an int in 16..65536, got {max_samples!r}")
+
+
+def second_order_scales(samples: np.ndarray) -> np.ndarray:
+    """Scales of the M, C, K groups: ||M||, max(||C||, sqrt(||M|| ||K||)), ||K|| (largest Frobenius norms
+    over the samples).  sqrt(||M|| ||K||) has the units of C: a light damping is computed from terms of that
+    size (the gyroscopic and Coriolis parts of a moving support), whose rounding is not an error of the
+    interpolant."""
+    M, C, K = group_norms(samples)
+    return np.array([M, max(C, np.sqrt(M * K)), K])
+
+
+def _sample(F, T, rtol, sampling, max_samples, scales=group_norms) -> PeriodicSamples | None:
+    if sampling == "nodes":
+        return None
+    samples = sample_periodic(F, T, tol=max(rtol, SAMPLING_FLOOR * _EPS), max_samples=int(max_samples),
+                              scales=scales)
+    if not samples.converged and sampling == "spectral":
+        raise SamplingError(
+            f"sampling='spectral': the trigonometric interpolant of the coefficients did not reach the relative "
+            f"error {max(rtol, SAMPLING_FLOOR * _EPS):.2g} with {samples.evaluations} samples (measured errors "
+            f"after each doubling: {', '.join(f'{e:.1e}' for e in samples.history)}); the coefficients are not "
+            f"smooth enough: use sampling='nodes'", samples.evaluations, samples.history,
+            max(rtol, SAMPLING_FLOOR * _EPS))
+    return samples
+
+
+def _described(samples: PeriodicSamples, tr: Transitions) -> str:
+    return (f"coefficients from {samples.evaluations} equispaced samples per period (trigonometric interpolant, "
+            f"measured relative error {float(samples.error.max()):.1e}), integrated on a grid of "
+            f"{len(tr.steps)} steps")
+
+
+def first_order_transitions(func, T: float, m: int, options: dict, sampling: str, max_samples: int) -> Integrated:
+    """The transitions of y' = A(t) y, A = ``func`` (checked callable)."""
+    samples = _sample(lambda t: func(t)[None], T, options["rtol"], sampling, max_samples)
+    if samples is None or not samples.converged:
+        tr = integrate_transitions(func, T, m, **options)
+        spent = 0 if samples is None else samples.evaluations
+        note = "" if samples is None else f" (sampling did not converge: {spent} samples spent first)"
+        return Integrated(tr, tr.evaluations + spent, None, float("nan"), "coefficients at every node" + note)
+    n = m // 2
+    top = np.hstack([np.zeros((n, n)), np.eye(n)]) if m % 2 == 0 else None
+    second = top is not None and bool(np.all(samples.samples[:, 0, :n] == top))
+
+    def A(times):
+        values = samples(times)[:, 0]
+        if second:
+            values[:, :n] = top
+        return values
+
+    counted = float(_counted(samples.error)[0])
+    error = np.array([[counted * float(samples.scale[0])]]) if counted else None
+    tr = integrate_on_grid(A, T, m, second_order=second, coefficient_error=error, probe=samples.samples[:, 0],
+                           A0=samples.samples[0, 0], **options)
+    return Integrated(tr, samples.evaluations, samples, float("nan"), _described(samples, tr))
+
+
+def _mass_inverse_norms(M: np.ndarray) -> np.ndarray:
+    return 1.0 / np.linalg.svd(M, compute_uv=False)[:, -1]
+
+
+def _counted(error: np.ndarray) -> np.ndarray:
+    """The measured relative errors that count: at most :data:`SAMPLING_FLOOR` eps is the samples' own
+    rounding (a Pinocchio pass or a user's function is accurate to a few eps of its norms), which neither
+    path counts (the nodes path does not bound the rounding of its evaluations either)."""
+    return np.where(error <= SAMPLING_FLOOR * _EPS, 0.0, error)
+
+
+def _block_errors(samples: PeriodicSamples, A: np.ndarray, n: int) -> np.ndarray | None:
+    """Block bound [[0, 0], [e_X, e_Y]] on the interpolant's error in -M^-1 K and -M^-1 C:
+    d(M^-1 K) = M^-1 (dK - dM M^-1 K), each d from the measured relative error of its group times the group's
+    largest Frobenius norm, the largest over the samples; None when every error is at rounding level."""
+    S = samples.samples
+    counted = _counted(samples.error)
+    if not counted.any():
+        return None
+    eM, eC, eK = counted * samples.scale
+    inv = _mass_inverse_norms(S[:, 0])
+    X, Y = np.linalg.norm(A[:, n:, :n], 2, axis=(1, 2)), np.linalg.norm(A[:, n:, n:], 2, axis=(1, 2))
+    return np.array([[0.0, 0.0], [float(np.max(inv * (eK + eM * X))), float(np.max(inv * (eC + eM * Y)))]])
+
+
+def second_order_transitions(triple, fallback, T: float, n: int, options: dict, sampling: str,
+                             max_samples: int, give_up: float) -> Integrated:
+    """The transitions of M x'' + C x' + K x = 0: ``triple(t)`` -> (3, n, n) stacked M, C, K (one evaluation);
+    ``fallback()`` -> (fM, fC, fK) checked callables for the nodes (made only when they are needed)."""
+    samples = _sample(triple, T, options["rtol"], sampling, max_samples, second_order_scales)
+    if samples is None or not samples.converged:
+        A = SecondOrderA(*fallback(), n, give_up)
+        tr = integrate_transitions(A, T, 2 * n, **options)
+        spent = 0 if samples is None else samples.evaluations
+        note = "" if samples is None else f" (sampling did not converge: {spent} samples spent first)"
+        return Integrated(tr, tr.evaluations + spent, None, A.defect, "coefficients at every node" + note)
+    S = samples.samples
+    A_samples = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * T / S.shape[0])
+    defect = structure_defect(S[:, 0], S[:, 1], S[:, 2], S[0, 0], S[0, 1])
+
+    def A(times):
+        F = samples(times)
+        return first_order_stack(F[:, 0], F[:, 1], F[:, 2], times)
+
+    tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=_block_errors(samples, A_samples, n),
+                           probe=A_samples, A0=A_samples[0], **options)
+    return Integrated(tr, samples.evaluations, samples, defect, _described(samples, tr))

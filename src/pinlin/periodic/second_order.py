@@ -1,0 +1,66 @@
+"""M(t) x'' + C(t) x' + K(t) x = 0 in first-order form, and the test of its conservative structure
+(theory: Floquet).
+
+.. math::  A = \\begin{bmatrix} 0 & I \\\\ -M^{-1} K & -M^{-1} C \\end{bmatrix}
+
+by solves with M (no inverse).  The system counts as conservative when M is symmetric and constant, C is
+skew and constant and K symmetric: :func:`structure_defect` measures how far sampled coefficients are from
+that, each part relative (max-norms).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import SingularMassError
+
+__all__ = ["SecondOrderA", "first_order_stack", "structure_defect"]
+
+_TINY = float(np.finfo(float).tiny)
+
+
+def structure_defect(M: np.ndarray, C: np.ndarray, K: np.ndarray, M0: np.ndarray, C0: np.ndarray) -> float:
+    """max of asym(M), asym(K) (relative to M, K) and sym(C), M - M0, C - C0 (relative to |M| + |C| + |K|)
+    over stacks (B, n, n) of coefficients: 0 for a conservative system with constant M and G."""
+    def size(X):
+        return np.abs(X).max(axis=(-2, -1))
+    sM, sK = size(M) + _TINY, size(K) + _TINY
+    big = sM + size(C) + sK
+    swap = (0, 2, 1)
+    parts = (size(M - M.transpose(swap)) / sM, size(K - K.transpose(swap)) / sK,
+             np.maximum(np.maximum(size(C + C.transpose(swap)), size(M - M0)), size(C - C0)) / big)
+    return float(max(p.max() for p in parts))
+
+
+def first_order_stack(M: np.ndarray, C: np.ndarray, K: np.ndarray, times) -> np.ndarray:
+    """A (B, 2n, 2n) from stacks M, C, K (B, n, n); SingularMassError naming the first time where M is
+    singular."""
+    B, n = M.shape[0], M.shape[1]
+    try:
+        X = np.linalg.solve(M, np.concatenate([K, C], axis=2))
+    except np.linalg.LinAlgError:
+        bad = next(k for k in range(B) if np.linalg.matrix_rank(M[k]) < n)
+        raise SingularMassError(f"M is singular at t = {float(times[bad]):.6g} s", ()) from None
+    A = np.zeros((B, 2 * n, 2 * n))
+    A[:, :n, n:] = np.eye(n)
+    A[:, n:, :] = -X
+    return A
+
+
+class SecondOrderA:
+    """t -> A(t) from checked callables M, C, K, recording the largest conservative-structure defect seen
+    (:func:`structure_defect` against M(0), C(0)); it stops measuring once the defect passes ``give_up``
+    (the structure test's tolerance)."""
+
+    def __init__(self, fM, fC, fK, n, give_up: float):
+        self.fM, self.fC, self.fK, self.n = fM, fC, fK, n
+        self.M0, self.C0 = fM(0.0), fC(0.0)
+        self.defect = 0.0
+        self.give_up = give_up
+
+    def __call__(self, t: float) -> np.ndarray:
+        M, C, K = self.fM(t), self.fC(t), self.fK(t)
+        A = first_order_stack(M[None], C[None], K[None], [t])[0]
+        if self.defect <= self.give_up:    # once clearly not conservative, stop measuring
+            self.defect = max(self.defect, structure_defect(M[None], C[None], K[None], self.M0, self.C0))
+        return A
