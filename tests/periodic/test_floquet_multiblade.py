@@ -81,9 +81,10 @@ def test_bad_arguments():
 
 
 def test_undamped_rotor_is_lagrangian_with_time_varying_mass():
-    """The blade-coordinate rotor has M(t) varying and D = M' (a Lagrangian variational equation): not detected
-    as conservative, so a stable undamped rotor is "undecided" by default and "marginally_stable" when the
-    caller asserts conservative=True (checked against the symplecticity of the monodromy)."""
+    """The blade-coordinate rotor has M(t) varying and D = M' (a Lagrangian variational equation): detected as
+    conservative from the sampled coefficients' derivatives, so a stable undamped rotor is "marginally_stable";
+    evaluated at the nodes (no derivatives) it is "undecided" unless the caller asserts conservative=True
+    (checked against the symplecticity of the monodromy)."""
     Omega = 3.0
     (M, C, K), T = lag_rotor(3, Omega=Omega, hub=(10.0, 40.0, 60.0, 0.0, 0.0), lag=(2.0, 0.0))
     t, h = 0.37, 1e-6
@@ -91,9 +92,11 @@ def test_undamped_rotor_is_lagrangian_with_time_varying_mass():
     assert_allclose((C(t) + C(t).T) / 2, Mdot, rtol=0, atol=1e-8)
     lam = _eigenvalues(multiblade_transform_matrices(M, C, K, [2, 3, 4], Omega))
     assert np.max(np.abs(lam.real)) < 1e-12               # the transformed system: every root on the axis
-    plain = floquet_analysis_matrices(M, C, K, T)
+    sampled = floquet_analysis_matrices(M, C, K, T)
+    assert sampled.conservative and sampled.stability.kind == "marginally_stable", sampled.stability
+    plain = floquet_analysis_matrices(M, C, K, T, sampling="nodes")
     assert not plain.conservative and plain.stability.kind == "undecided"
-    asserted = floquet_analysis_matrices(M, C, K, T, conservative=True)
+    asserted = floquet_analysis_matrices(M, C, K, T, conservative=True, sampling="nodes")
     assert asserted.conservative and asserted.stability.kind == "marginally_stable", asserted.stability
     damped, _ = lag_rotor(3, Omega=Omega)
     with pytest.raises(ParameterError, match="conservative: the monodromy is not symplectic"):

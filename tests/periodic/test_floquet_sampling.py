@@ -13,6 +13,7 @@ import pytest
 from floquet_cases import mathieu
 from numpy.testing import assert_allclose
 
+import pinlin
 from pinlin import ParameterError, PinlinError, SamplingError
 from pinlin.periodic import floquet_analysis_matrices, floquet_from_first_order
 from pinlin.periodic.bounds import coefficient_terms
@@ -181,3 +182,74 @@ def test_bad_sampling_options_are_named():
     for max_samples in (8, 10**6, 64.0, True):
         with pytest.raises(ParameterError, match="max_samples: expected an int in 16..65536"):
             floquet_from_first_order(np.eye(2), 1.0, max_samples=max_samples)
+
+
+def _lagrangian(t, damping=0.0, circulatory=0.0):
+    """M x'' + (M' + F - F^T) x' + (S + F') x = 0 from L = x'^T M x' / 2 + x'^T F x - x^T S x / 2 (period
+    2 pi), plus a damping d I and a circulatory c J that break it."""
+    M = np.array([[2.0 + 0.5 * np.cos(t), 0.3 * np.sin(t)], [0.3 * np.sin(t), 1.5]])
+    dM = np.array([[-0.5 * np.sin(t), 0.3 * np.cos(t)], [0.3 * np.cos(t), 0.0]])
+    F = np.array([[0.0, 0.4 * np.cos(t)], [0.2, 0.1 * np.sin(t)]])
+    dF = np.array([[0.0, -0.4 * np.sin(t)], [0.0, 0.1 * np.cos(t)]])
+    S = np.diag([3.0, 5.0]) + 0.2 * np.cos(2 * t) * np.array([[1.0, 0.5], [0.5, 0.0]])
+    J = np.array([[0.0, 1.0], [-1.0, 0.0]])
+    return M, dM + F - F.T + damping * np.eye(2), S + dF + circulatory * J
+
+
+def _lagrangian_analysis(**options):
+    damping, circulatory = options.pop("damping", 0.0), options.pop("circulatory", 0.0)
+    parts = [lambda t, i=i: _lagrangian(t, damping, circulatory)[i] for i in range(3)]
+    return floquet_analysis_matrices(*parts, TWO_PI, **options)
+
+
+def test_a_time_varying_lagrangian_system_is_recognized_as_conservative():
+    # M and G = skew(C) change with time: the constant-structure test cannot see that the monodromy is
+    # symplectic; the identities sym(C) = M' and skew(K) = skew(C)' / 2 on the interpolant's derivatives can
+    sampled = _lagrangian_analysis()
+    asserted = _lagrangian_analysis(conservative=True, sampling="nodes")
+    assert sampled.conservative and asserted.conservative
+    assert sampled.stability.kind == asserted.stability.kind == "marginally_stable"
+    assert_allclose(np.abs(sampled.multipliers), 1.0, rtol=0, atol=1e-12)
+    # evaluated at the nodes there are no derivatives: the multipliers on the circle stay undecided
+    nodes = _lagrangian_analysis(sampling="nodes")
+    assert not nodes.conservative and nodes.stability.kind == "undecided"
+
+
+@pytest.mark.parametrize("breaking", [{"damping": 1e-9}, {"circulatory": 1e-9}])
+def test_a_broken_lagrangian_structure_is_not_taken_for_conservative(breaking):
+    result = _lagrangian_analysis(**breaking)
+    assert not result.conservative
+    assert result.stability.kind in ("undecided", "asymptotically_stable", "flutter")
+
+
+def _spinning_disk(damping: float = 0.0) -> pinlin.Scene:
+    """A disk with Ixx != Iyy spun at 23 rad/s on two tilts held by springs: its inertia in the tilt
+    coordinates turns with it (M(t) periodic), the variational equation of a Lagrangian system."""
+    tiny = '<inertial><mass value="0.01"/><inertia ixx="1e-6" iyy="1e-6" izz="1e-6" ixy="0" ixz="0" iyz="0"/></inertial>'
+    disk = '<inertial><mass value="2.0"/><inertia ixx="0.02" iyy="0.05" izz="0.06" ixy="0" ixz="0" iyz="0"/></inertial>'
+    lim = '<limit lower="-1" upper="1" effort="1e3" velocity="1e3"/>'
+    urdf = ('<robot name="spinning_disk"><link name="world"/>'
+            f'<link name="l_tx">{tiny}</link><link name="l_ty">{tiny}</link><link name="disk">{disk}</link>'
+            f'<joint name="tx" type="revolute"><parent link="world"/><child link="l_tx"/><axis xyz="1 0 0"/>{lim}</joint>'
+            f'<joint name="ty" type="revolute"><parent link="l_tx"/><child link="l_ty"/><axis xyz="0 1 0"/>{lim}</joint>'
+            '<joint name="spin" type="continuous"><parent link="l_ty"/><child link="disk"/><axis xyz="0 0 1"/></joint>'
+            '</robot>')
+    robot = pinlin.load_urdf_string(urdf)
+    elements = [pinlin.JointSpring("tx", 60.0), pinlin.JointSpring("ty", 35.0)]
+    if damping:
+        elements.append(pinlin.JointDamper("tx", damping))
+    return pinlin.Scene(robot, elements, gravity=(0.0, 0.0, 0.0), prescribed={"spin": 23.0})
+
+
+def test_a_spinning_asymmetric_disk_is_decided_from_its_lagrangian_structure():
+    scene = _spinning_disk()
+    orbit = pinlin.periodic_orbit(scene, scene.neutral())
+    co = pinlin.variational_coefficients(scene, orbit)
+    assert np.abs(co.M(0.0) - co.M(0.25 * orbit.period)).max() > 1e-3       # M turns with the disk
+    flo = pinlin.floquet_analysis(scene, orbit)
+    asserted = pinlin.floquet_analysis(scene, orbit, conservative=True, sampling="nodes")
+    assert flo.conservative and flo.stability.kind == asserted.stability.kind
+    assert flo.stability.kind == "marginally_stable" and "conservative" in flo.stability.reason
+    damped = _spinning_disk(1e-9)
+    flo_damped = pinlin.floquet_analysis(damped, pinlin.periodic_orbit(damped, damped.neutral()))
+    assert not flo_damped.conservative

@@ -175,13 +175,18 @@ class _DeferredHarmonics:
         return readonly(freq), readonly(content), readonly(dominant)
 
 
+def _symplectic_defect(monodromy: np.ndarray, form: np.ndarray) -> float:
+    """||Phi^T Omega Phi - Omega|| / (||Phi||^2 ||Omega||) (2-norms)."""
+    defect = np.linalg.norm(monodromy.T @ form @ monodromy - form, 2)
+    return float(defect / (np.linalg.norm(monodromy, 2) ** 2 * np.linalg.norm(form, 2)))
+
+
 def _check_symplectic(monodromy: np.ndarray, form: np.ndarray) -> None:
     """ParameterError unless ||Phi^T Omega Phi - Omega|| <= SYMPLECTIC_TOLERANCE ||Phi||^2 ||Omega||."""
-    defect = np.linalg.norm(monodromy.T @ form @ monodromy - form, 2)
-    scale = np.linalg.norm(monodromy, 2) ** 2 * np.linalg.norm(form, 2)
-    if not defect <= SYMPLECTIC_TOLERANCE * scale:
+    defect = _symplectic_defect(monodromy, form)
+    if not defect <= SYMPLECTIC_TOLERANCE:
         raise ParameterError("conservative", f"the monodromy is not symplectic for Omega = [[G, M], [-M, 0]] at "
-                                             f"t = 0 (relative defect {defect / scale:.2e} > {SYMPLECTIC_TOLERANCE:g}):"
+                                             f"t = 0 (relative defect {defect:.2e} > {SYMPLECTIC_TOLERANCE:g}):"
                                              f" the system is not conservative")
 
 
@@ -198,9 +203,12 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
     C = G is skew and constant and K symmetric, each within ``structure_tolerance`` eps (relative): then
     Phi(T) is symplectic for Omega = [[G, M], [-M, 0]] (y1^T Omega y2 = x1^T M v2 - v1^T M x2 + x1^T G x2,
     the canonical form with p = M v + G x / 2) and the verdict uses it.  A time-varying M or G with the
-    matching D = M', N = G' / 2 (the variational equation of a Lagrangian system: C = M' + F^T - F,
-    K = S + F'^T) is conservative too, with the same Omega at t = 0, but is not detected: pass
-    ``conservative=True`` (checked: Phi^T Omega Phi = Omega to :data:`SYMPLECTIC_TOLERANCE`).
+    matching D = M', N = G' / 2 (the variational equation of a Lagrangian system: C = M' + F - F^T,
+    K = S + F') is conservative too, with the same Omega at t = 0: where the coefficients were sampled
+    (their interpolant exact to rounding) the identities sym(C) = M' and skew(K) = skew(C)' / 2 are tested
+    on the interpolant's derivatives at every sample (a trigonometric polynomial of degree below N that
+    vanishes at 2 N points vanishes), confirmed by Phi^T Omega Phi = Omega to :data:`SYMPLECTIC_TOLERANCE`;
+    evaluated at the nodes there are no derivatives: pass ``conservative=True`` (checked the same way).
     Harmonic content counts the position components.  Other parameters as :func:`floquet_from_first_order`.
 
     Parameters
@@ -262,7 +270,13 @@ def floquet_second_order(triple, fallback, n: int, period, *, start: float, rtol
 
     def form_after(monodromy):
         if conservative is None:
-            return form if integrated.defect <= structure_tolerance * _EPS else None
+            if integrated.defect <= structure_tolerance * _EPS:
+                return form
+            # a time-varying Lagrangian system (from the interpolant's derivatives), confirmed on Phi(T)
+            if integrated.lagrangian <= structure_tolerance * _EPS and _symplectic_defect(monodromy, form) <= \
+                    SYMPLECTIC_TOLERANCE:
+                return form
+            return None
         if conservative:
             _check_symplectic(monodromy, form)
             return form

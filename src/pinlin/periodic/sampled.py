@@ -20,7 +20,7 @@ from ..errors import ParameterError, SamplingError
 from .collocation import Transitions, integrate_transitions
 from .collocation_grid import integrate_on_grid
 from .sampling import PeriodicSamples, group_norms, sample_periodic
-from .second_order import SecondOrderA, first_order_stack, structure_defect
+from .second_order import SecondOrderA, first_order_stack, lagrangian_defect, structure_defect
 
 __all__ = ["SAMPLING", "Integrated", "first_order_transitions", "second_order_transitions", "check_sampling",
            "second_order_scales", "SAMPLING_FLOOR"]
@@ -39,13 +39,16 @@ _EPS = float(np.finfo(float).eps)
 class Integrated:
     """Transitions with how they were made: ``evaluations`` (coefficient calls), ``samples`` (the
     interpolant's, or None when the nodes were used), ``defect`` (the conservative-structure defect seen, for
-    second-order systems), ``description`` (for the result's ``method``)."""
+    second-order systems: constant M and G), ``lagrangian`` (the defect of the identities of a time-varying
+    Lagrangian system, from the interpolant's derivatives; nan where not measured), ``description`` (for the
+    result's ``method``)."""
 
     transitions: Transitions
     evaluations: int
     samples: PeriodicSamples | None
     defect: float
     description: str
+    lagrangian: float = float("nan")
 
 
 def check_sampling(sampling, max_samples) -> None:
@@ -150,6 +153,11 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
     S = samples.samples
     A_samples = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * T / S.shape[0])
     defect = structure_defect(S[:, 0], S[:, 1], S[:, 2], S[0, 0], S[0, 1])
+    lagrangian = float("nan")
+    if defect > give_up and not _counted(samples.error).any():     # the derivatives are exact to rounding
+        dS = samples.derivative_at_samples()
+        rate = S.shape[0] / 2 * 2 * np.pi / T
+        lagrangian = lagrangian_defect(S[:, 0], S[:, 1], S[:, 2], dS[:, 0], dS[:, 1], rate)
 
     def A(times):
         F = samples(times)
@@ -157,4 +165,4 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
 
     tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=_block_errors(samples, A_samples, n),
                            probe=A_samples, A0=A_samples[0], **options)
-    return Integrated(tr, samples.evaluations, samples, defect, _described(samples, tr))
+    return Integrated(tr, samples.evaluations, samples, defect, _described(samples, tr), lagrangian)

@@ -88,6 +88,17 @@ class PeriodicSamples:
         return flat.reshape((times.size, *self.samples.shape[1:]))
 
 
+    def derivative_at_samples(self) -> np.ndarray:
+        """dF_N/dt at the N sample times [unit of F / s]: (N, g, k, k) (the Nyquist cosine's derivative
+        vanishes there)."""
+        N = self.samples.shape[0]
+        k = np.arange(self.spectrum.shape[0])
+        scaled = self.spectrum * (1j * k * 2 * np.pi / self.period)[:, None]
+        if N % 2 == 0:
+            scaled[-1] = 0.0
+        return np.fft.irfft(scaled, n=N, axis=0).reshape(self.samples.shape)
+
+
 def _spectrum(samples: np.ndarray) -> np.ndarray:
     return np.fft.rfft(samples.reshape(samples.shape[0], -1), axis=0)
 

@@ -5,7 +5,15 @@
 
 by solves with M (no inverse).  The system counts as conservative when M is symmetric and constant, C is
 skew and constant and K symmetric: :func:`structure_defect` measures how far sampled coefficients are from
-that, each part relative (max-norms).
+that, each part relative (max-norms).  A time-varying M or G is conservative too when the equations are the
+variational equations of a Lagrangian L = x'^T M x' / 2 + x'^T F x - x^T S x / 2 (M, S symmetric, F any):
+Euler-Lagrange gives
+
+.. math::  M \\ddot x + (\\dot M + F - F^T)\\, \\dot x + (S + \\dot F)\\, x = 0,
+
+so sym(C) = M' and skew(K) = skew(C)' / 2, and Phi(T) is symplectic for the same
+Omega = [[skew(C), M], [-M, 0]] at t = 0; :func:`lagrangian_defect` measures those two identities from the
+samples and the derivatives of their trigonometric interpolant.
 """
 
 from __future__ import annotations
@@ -14,7 +22,7 @@ import numpy as np
 
 from ..errors import SingularMassError
 
-__all__ = ["SecondOrderA", "first_order_stack", "structure_defect"]
+__all__ = ["SecondOrderA", "first_order_stack", "structure_defect", "lagrangian_defect"]
 
 _TINY = float(np.finfo(float).tiny)
 
@@ -64,3 +72,19 @@ class SecondOrderA:
         if self.defect <= self.give_up:    # once clearly not conservative, stop measuring
             self.defect = max(self.defect, structure_defect(M[None], C[None], K[None], self.M0, self.C0))
         return A
+
+
+def lagrangian_defect(M: np.ndarray, C: np.ndarray, K: np.ndarray, dM: np.ndarray, dC: np.ndarray,
+                      rate: float) -> float:
+    """max of ||sym(C) - M'|| and ||skew(K) - skew(C)' / 2|| over stacks (B, n, n) of samples and their time
+    derivatives, relative to |C| + rate |M| and |K| + rate |C| (max-norms; ``rate`` [1/s] the highest
+    frequency of the interpolant, N / 2 times 2 pi / T, by which differentiation amplifies rounding): 0 for the
+    variational equation of a Lagrangian system."""
+    def size(X):
+        return float(np.abs(X).max())
+    swap = (0, 2, 1)
+    symC = (C + C.transpose(swap)) / 2
+    skewK, skew_dC = (K - K.transpose(swap)) / 2, (dC - dC.transpose(swap)) / 2
+    first = size(symC - dM) / (size(C) + rate * size(M) + _TINY)
+    second = size(skewK - skew_dC / 2) / (size(K) + rate * size(C) + _TINY)
+    return max(first, second)
