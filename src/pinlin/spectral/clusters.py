@@ -18,7 +18,7 @@ with conjugation (IEEE rounding is symmetric under negation).
 
 from __future__ import annotations
 
-from dataclasses import replace
+import time
 
 import numpy as np
 
@@ -52,8 +52,13 @@ def conjugate_cluster(partner: Cluster, lam: np.ndarray, indices: tuple[int, ...
         return None
     if not np.array_equal(lam[list(indices)], lam[list(partner.indices)].conj()):
         return None
+    t0 = time.perf_counter()
     method = partner.method if partner.method.endswith(_CONJUGATE_METHOD) else partner.method + _CONJUGATE_METHOD
-    return replace(partner, indices=tuple(indices), center=partner.center.conjugate(), method=method, elapsed=0.0)
+    p = partner
+    return Cluster(
+        tuple(indices), p.center.conjugate(), p.algebraic, p.geometric, p.partial, p.consistent, p.kernel_dims,
+        p.note, error=p.error, method=method, elapsed=time.perf_counter() - t0,
+    )
 
 
 def cluster_structure(

@@ -351,7 +351,7 @@ def analyse_cluster(
     """
     t0 = time.perf_counter()
     members = lam[list(indices)]
-    center = complex(np.mean(members))
+    center = complex(np.add.reduce(members) / len(indices))  # np.mean's sum and division, without its wrapper
     # a cluster closed under conjugation (members in exact conjugate pairs) has a real mean
     if abs(np.sum(members.imag)) <= CONJUGATE_SUM_ULPS * EPS * np.sum(np.abs(members.imag)):
         center = complex(center.real, 0.0)
