@@ -108,7 +108,8 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
     left vectors, kappa = inf and the bound spread + scale eta^(1/p)
     (:class:`~pinlin.spectral.accuracy.DefectiveBound`, :func:`defective_scale`).
     A semisimple cluster whose members and vectors are exactly the conjugates of
-    the previous cluster's takes the conjugates of its biorthogonalized vectors.
+    the previous cluster's takes the conjugates of its biorthogonalized vectors
+    (:func:`_conjugate_mates`).
     """
     eta = np.maximum(fig.backward_error, ETA_FLOOR)
     if not clusters:  # the figures' own arrays (fresh from pair_figures, owned by this analysis)
@@ -118,27 +119,14 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
     sens = fig.sensitivity.copy()
     defective = []
     notes: list[str] = []
-    prev: list[int] = []
-    for c in clusters:
+    mates = _conjugate_mates(fig, lam, clusters)
+    for k, c in enumerate(clusters):
         ii = list(c.indices)
-        if (c.semisimple or c.index == 1) and _conjugate_vectors(fig, lam, ii, prev) and left_ok[prev].all():
-            left[:, ii] = left[:, prev].conj()
-            left_ok[ii] = True
-            sens[ii] = sens[prev]
-        elif c.semisimple or c.index == 1:
-            Y = fig.left_unit[:, ii]
-            P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
-            try:
-                sv = np.linalg.svd(P, compute_uv=False)
-                if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
-                    raise np.linalg.LinAlgError("Y^T L' X is numerically singular")
-                Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
-            except np.linalg.LinAlgError:
+        if k in mates:
+            continue
+        if c.index == 1:  # semisimple, or chains of length one that do not add up (inconsistent ranks)
+            if not _biorthogonalize(problem, lam, fig, c, ii, left, left_ok, sens):
                 notes.append(f"cluster at {c.center:.6g}: left vectors could not be biorthogonalized")
-                continue
-            left[:, ii] = Yn
-            left_ok[ii] = True
-            sens[ii] = problem.weight(lam[ii]) * column_norms(Yn)
         else:
             left[:, ii] = fig.left_unit[:, ii]
             left_ok[ii] = False
@@ -148,18 +136,61 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
                 DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
                                c.index)
             )
-        prev = ii
+    for k, partner in mates.items():
+        ii, pp = list(clusters[k].indices), list(clusters[partner].indices)
+        if left_ok[pp].all():
+            left[:, ii] = left[:, pp].conj()
+            left_ok[ii] = True
+            sens[ii] = sens[pp]
+        elif not _biorthogonalize(problem, lam, fig, clusters[k], ii, left, left_ok, sens):
+            notes.append(f"cluster at {clusters[k].center:.6g}: left vectors could not be biorthogonalized")
     return left, left_ok, _model(eta, sens, tuple(defective)), notes
 
 
-def _conjugate_vectors(fig: PairFigures, lam: np.ndarray, ii: list[int], prev: list[int]) -> bool:
-    """The eigenvalues, right and unit left vectors at ``ii`` are exactly the conjugates of those at ``prev``."""
-    return (
-        len(ii) == len(prev)
-        and np.array_equal(lam[ii], lam[prev].conj())
-        and np.array_equal(fig.right[:, ii], fig.right[:, prev].conj())
-        and np.array_equal(fig.left_unit[:, ii], fig.left_unit[:, prev].conj())
-    )
+def _biorthogonalize(problem: QuadraticProblem, lam, fig: PairFigures, c: Cluster, ii, left, left_ok, sens) -> bool:
+    """Left vectors of a semisimple cluster scaled so that Y^T L'(center) X = I, written into the arrays given.
+
+    False (nothing written) when Y^T L' X is numerically singular (:data:`BIORTHOGONAL_RCOND`).
+    """
+    Y = fig.left_unit[:, ii]
+    P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
+    try:
+        sv = np.linalg.svd(P, compute_uv=False)
+        if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
+            return False
+        Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
+    except np.linalg.LinAlgError:
+        return False
+    left[:, ii] = Yn
+    left_ok[ii] = True
+    sens[ii] = problem.weight(lam[ii]) * column_norms(Yn)
+    return True
+
+
+def _conjugate_mates(fig: PairFigures, lam: np.ndarray, clusters) -> dict[int, int]:
+    """{k: k - 1} for the clusters k (chains of length one) whose eigenvalues, right and unit left vectors are
+    exactly the conjugates of those of cluster k - 1 (also of length one), member by member.
+
+    One comparison of each array for all candidates together (a clustered spectrum of a real problem has its
+    clusters in conjugate pairs next to each other).
+    """
+    cand = [
+        k for k in range(1, len(clusters))
+        if clusters[k].algebraic == clusters[k - 1].algebraic and clusters[k].index == 1 and clusters[k - 1].index == 1
+    ]
+    if not cand:
+        return {}
+    ii = [i for k in cand for i in clusters[k].indices]
+    pp = [i for k in cand for i in clusters[k - 1].indices]
+    same = lam.take(ii) == lam.take(pp).conj()
+    same &= (fig.right.take(ii, axis=1) == fig.right.take(pp, axis=1).conj()).all(axis=0)
+    same &= (fig.left_unit.take(ii, axis=1) == fig.left_unit.take(pp, axis=1).conj()).all(axis=0)
+    starts = np.cumsum([0] + [clusters[k].algebraic for k in cand[:-1]])
+    mates: dict[int, int] = {}
+    for k, ok in zip(cand, np.logical_and.reduceat(same, starts)):
+        if ok and k - 1 not in mates:
+            mates[k] = k - 1
+    return mates
 
 
 def _model(eta: np.ndarray, sensitivity: np.ndarray, defective: tuple) -> ErrorModel:
