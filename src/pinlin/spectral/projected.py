@@ -57,10 +57,14 @@ PROJECTION_MARGIN = 10.0
 PROJECTION_STEPS = 6
 
 #: Smallest n for which :func:`projected_pays`: below it the SVDs of T_1, T_2, T_3 (sizes n, 2n, 3n) take
-#: less time than the projected path's fixed cost (about 0.6 ms of numpy calls for three steps; measured
-#: with one BLAS thread for three chains of length 2 mixed into n = 5 ... 80: 0.2 ms against 1.3 ms at
-#: n = 5, 0.8 against 1.2 ms at n = 24, 2.7 against 1.1 ms at n = 40, 10 against 2 ms at n = 80).
+#: less time than the projected path's fixed cost of numpy calls (about 0.5 ms).  Measured (one BLAS thread,
+#: thread CPU, medians of interleaved calls) on chains (2, 2, 2) and (2, 1) mixed orthogonally into n modes:
+#: projected 0.6 / 0.6 / 0.7 / 0.8 ms against full ranks 0.3 / 0.6 / 1.1 / 2.3 ms at n = 16 / 24 / 32 / 44.
 PROJECTION_MIN_ORDER = 32
+
+#: First step of the inverse iteration after which the residual is checked (the rate is about
+#: sqrt(spread / distance) per step, below 1e-3 for a double root: three steps from a poor start).
+FIRST_CHECK = 3
 
 #: A member's vector whose component outside those before it is below this fraction of the
 #: largest is replaced by a generic vector at the start of the iteration.
@@ -171,29 +175,38 @@ def _projected_pencil(problem: QuadraticProblem, mu, mu0: complex, X, gap: float
     shift = mu0 + rho
     scale = np.sqrt(frobenius(Ms) ** 2 + frobenius(Cs) ** 2 + frobenius(Ks) ** 2 + n)  # ||A||_F + ||B||_F, about
     target = rank_tol * scale / PROJECTION_MARGIN**2
-    Z = _start(np.concatenate((X * mu, X)))
+    Q, replaced = _start(np.concatenate((X * mu, X)))
     lu = None
     for step in range(PROJECTION_STEPS + 1):
-        Q, _ = np.linalg.qr(Z)
-        Q1, Q2 = Q[:n], Q[n:]
-        AQ = np.concatenate((-(Cs @ Q1) - Ks @ Q2, Q1))
-        W, B11 = np.linalg.qr(np.concatenate((Ms @ Q1, Q2)))
-        A11 = W.conj().T @ AQ
-        residual = frobenius(AQ - W @ A11)
-        if residual <= target:
-            return A11, B11, residual
+        # the residual is checked on an unaltered start and from step FIRST_CHECK on (each check is two QRs)
+        if (step == 0 and not replaced) or step >= FIRST_CHECK:
+            pencil = _on_subspace(Ms, Cs, Ks, Q)
+            if pencil[2] <= target:
+                return pencil
         if step == PROJECTION_STEPS:
             return None
         if lu is None:
             lu = sla.lu_factor((shift * shift) * Ms + shift * Cs + Ks, check_finite=False)
         # (A - s B) w = B q: L(s) w_2 = -(M q_1 + (C + s M) q_2), w_1 = q_2 + s w_2
+        Q1, Q2 = Q[:n], Q[n:]
         W2 = -sla.lu_solve(lu, Ms @ Q1 + (Cs + shift * Ms) @ Q2, check_finite=False)
-        Z = np.concatenate((Q2 + shift * W2, W2))
+        Q, _ = np.linalg.qr(np.concatenate((Q2 + shift * W2, W2)))
     return None
 
 
-def _start(Z: np.ndarray) -> np.ndarray:
-    """The members' vectors with those nearly dependent on the ones before them replaced by generic vectors.
+def _on_subspace(Ms, Cs, Ks, Q):
+    """(A_11, B_11, ||R||_F): A Q = W A_11 + R and B Q = W B_11 (W, B_11 the QR factors of B Q)."""
+    n = Ms.shape[0]
+    Q1, Q2 = Q[:n], Q[n:]
+    AQ = np.concatenate((-(Cs @ Q1) - Ks @ Q2, Q1))
+    W, B11 = np.linalg.qr(np.concatenate((Ms @ Q1, Q2)))
+    A11 = W.conj().T @ AQ
+    return A11, B11, frobenius(AQ - W @ A11)
+
+
+def _start(Z: np.ndarray) -> tuple[np.ndarray, bool]:
+    """Orthonormal columns spanning the members' vectors, those nearly dependent on the ones before them
+    replaced by generic vectors (True when some were).
 
     A defective cluster's computed vectors are nearly parallel (exactly equal when
     its members are): the iteration must start with a component along every
@@ -202,15 +215,16 @@ def _start(Z: np.ndarray) -> np.ndarray:
     up to rounding).  The replacements exp(i phi j k) (phi the golden angle, k the
     column) lie in no invariant subspace but by coincidence.
     """
-    _, R = np.linalg.qr(Z)
+    Q, R = np.linalg.qr(Z)
     d = np.abs(np.diagonal(R))
     weak = np.flatnonzero(d <= START_INDEPENDENCE * d.max())
-    if weak.size:
-        Z = Z.copy()
-        rows = np.arange(Z.shape[0])
-        for k in weak:
-            Z[:, k] = np.exp(1j * GOLDEN_ANGLE * (k + 1) * rows)
-    return Z
+    if not weak.size:
+        return Q, False
+    Z = Z.copy()
+    rows = np.arange(Z.shape[0])
+    for k in weak:
+        Z[:, k] = np.exp(1j * GOLDEN_ANGLE * (k + 1) * rows)
+    return np.linalg.qr(Z)[0], True
 
 
 def _pencil_toeplitz(N: np.ndarray, B: np.ndarray, k: int) -> np.ndarray:
