@@ -59,7 +59,7 @@ PROJECTION_STEPS = 6
 #: Smallest n for which :func:`projected_pays`: below it the SVDs of T_1, T_2, T_3 (sizes n, 2n, 3n) take
 #: less time than the projected path's fixed cost of numpy calls (about 0.5 ms).  Measured (one BLAS thread,
 #: thread CPU, medians of interleaved calls) on chains (2, 2, 2) and (2, 1) mixed orthogonally into n modes:
-#: projected 0.6 / 0.6 / 0.7 / 0.8 ms against full ranks 0.3 / 0.6 / 1.1 / 2.3 ms at n = 16 / 24 / 32 / 44.
+#: projected 0.5 / 0.6 / 0.6 / 0.7 ms against full ranks 0.3 / 0.6 / 1.1 / 2.2 ms at n = 16 / 24 / 32 / 44.
 PROJECTION_MIN_ORDER = 32
 
 #: First step of the inverse iteration after which the residual is checked (the rate is about
