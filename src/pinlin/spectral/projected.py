@@ -73,6 +73,9 @@ START_INDEPENDENCE = 1e-4
 #: The golden angle [rad]: the phases of the generic start vectors.
 GOLDEN_ANGLE = np.pi * (3.0 - np.sqrt(5.0))
 
+#: LAPACK's complex LU factorization and solve (read-only after import: shared by threads safely).
+_LU = sla.get_lapack_funcs(("getrf", "getrs"), dtype=np.complex128)
+
 
 def projected_pays(n: int, m: int) -> bool:
     """The projected path is worth trying for a cluster of m eigenvalues of an n x n problem.
@@ -176,7 +179,7 @@ def _projected_pencil(problem: QuadraticProblem, mu, mu0: complex, X, gap: float
     scale = np.sqrt(frobenius(Ms) ** 2 + frobenius(Cs) ** 2 + frobenius(Ks) ** 2 + n)  # ||A||_F + ||B||_F, about
     target = rank_tol * scale / PROJECTION_MARGIN**2
     Q, replaced = _start(np.concatenate((X * mu, X)))
-    lu = None
+    lu = piv = None
     for step in range(PROJECTION_STEPS + 1):
         # the residual is checked on an unaltered start and from step FIRST_CHECK on (each check is two QRs)
         if (step == 0 and not replaced) or step >= FIRST_CHECK:
@@ -185,11 +188,17 @@ def _projected_pencil(problem: QuadraticProblem, mu, mu0: complex, X, gap: float
                 return pencil
         if step == PROJECTION_STEPS:
             return None
+        getrf, getrs = _LU
         if lu is None:
-            lu = sla.lu_factor((shift * shift) * Ms + shift * Cs + Ks, check_finite=False)
+            lu, piv, info = getrf((shift * shift) * Ms + shift * Cs + Ks)
+            if info != 0:
+                return None  # L(s) exactly singular: s is an eigenvalue
         # (A - s B) w = B q: L(s) w_2 = -(M q_1 + (C + s M) q_2), w_1 = q_2 + s w_2
         Q1, Q2 = Q[:n], Q[n:]
-        W2 = -sla.lu_solve(lu, Ms @ Q1 + (Cs + shift * Ms) @ Q2, check_finite=False)
+        W2, info = getrs(lu, piv, Ms @ Q1 + (Cs + shift * Ms) @ Q2)
+        W2 = -W2
+        if info != 0 or not np.isfinite(W2).all():
+            return None
         Q, _ = np.linalg.qr(np.concatenate((Q2 + shift * W2, W2)))
     return None
 
