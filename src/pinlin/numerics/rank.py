@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["JORDAN_RANK_TOL", "ADJUGATE_RANK_TOL", "kernel_dimension", "null_basis"]
+__all__ = ["JORDAN_RANK_TOL", "ADJUGATE_RANK_TOL", "kernel_dimension", "null_basis", "chains_from_kernels"]
 
 #: Default relative singular value threshold of the Jordan (Toeplitz) rank decisions.
 JORDAN_RANK_TOL = 1e-8
@@ -36,3 +36,40 @@ def null_basis(A: np.ndarray, threshold: float) -> np.ndarray:
     _, s, Vh = np.linalg.svd(A)
     r = int(np.sum(s > threshold))
     return Vh[r:].conj().T
+
+
+def chains_from_kernels(kernel_dimension_of, max_length: int, max_total: int | None = None):
+    """Partial multiplicities from dim ker T_k, k = 1, 2, ... (theory: spectrum).
+
+    ``kernel_dimension_of(k)`` gives dim ker T_k, or None when it cannot be decided;
+    it is called for k = 1, 2, ... until no chain is longer than k - 1, k =
+    ``max_length``, or dim ker T_k exceeds ``max_total``.  dim ker T_k -
+    dim ker T_{k-1} counts the chains of length >= k; a count above the previous
+    one is rank noise and is capped by it.
+
+    Returns
+    -------
+    (partial, kernel_dims) or None
+        Chain lengths longest first and dim ker T_k for the k computed; None when
+        some kernel dimension was undecided.
+    """
+    dims = [0]
+    counts: list[int] = []  # counts[k-1] = number of chains of length >= k
+    for k in range(1, max_length + 1):
+        d = kernel_dimension_of(k)
+        if d is None:
+            return None
+        dims.append(d)
+        if max_total is not None and d > max_total:
+            break
+        c = d - dims[k - 1]
+        if counts and c > counts[-1]:
+            c = counts[-1]
+        if c <= 0:
+            break
+        counts.append(c)
+    partial: list[int] = []
+    for length in range(len(counts), 0, -1):
+        longer = counts[length] if length < len(counts) else 0
+        partial += [length] * (counts[length - 1] - longer)
+    return tuple(partial), tuple(dims[1:])

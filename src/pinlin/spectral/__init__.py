@@ -16,7 +16,11 @@ One concept per module, in the order of :func:`modal_analysis`:
   functions of the data uncertainty) of the computed pairs (formulas in
   :mod:`pinlin.numerics.accuracy`);
 - :mod:`.multiplicity` -- clusters of computed eigenvalues and their partial
-  multiplicities (block Toeplitz ranks);
+  multiplicities (block Toeplitz ranks; semisimple clusters certified without an SVD);
+- :mod:`.projected` -- the partial multiplicities of a cluster from the small pencil projected
+  on its deflating subspace (no SVD of size n);
+- :mod:`.clusters` -- the clusters of a computed spectrum, their structure (a conjugate cluster
+  from its partner) and their left vectors;
 - :mod:`.jordan` -- Jordan chains at an eigenvalue (:func:`jordan_chains`);
 - :mod:`.qualitative` -- modal constants m, d, g, k, n and structural facts;
 - :mod:`.stability` -- the verdict: :class:`Stability` and the theorems on structure alone

@@ -13,18 +13,15 @@ import warnings
 import numpy as np
 
 from ..errors import ComputationError, ParameterError
-from ..numerics.accuracy import ETA_FLOOR
 from ..numerics.checks import check_tolerance, check_uncertainty
-from ..numerics.clustering import CLUSTER_TOL, find_clusters
+from ..numerics.clustering import CLUSTER_TOL
 from ..numerics.definiteness import DEFAULT_UNCERTAINTY
-from ..numerics.floating import EPS
-from ..numerics.norms import column_norms
 from ..numerics.rank import JORDAN_RANK_TOL
 from ..numerics.threads import small_kernels
-from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale, pair_figures
+from .accuracy import PairFigures, pair_figures
+from .clusters import BIORTHOGONAL_RCOND, cluster_figures, cluster_structure
 from .deferred import DeferredFigures, DeferredVerdict
 from .modes import Method, Modes
-from .multiplicity import Cluster, ClusterEvidence, analyse_cluster
 from .ordering import mirrored_figures, mode_kinds, order_spectrum
 from .paths import EIGH_TOL, STRUCTURE_TOL, choose_path, solve_path
 from .problem import QuadraticProblem, as_problem
@@ -32,11 +29,6 @@ from .stability import STABILITY_SAFETY
 from .structured import PATHS
 
 __all__ = ["modal_analysis", "STRUCTURE_TOL", "EIGH_TOL", "BIORTHOGONAL_RCOND"]
-
-#: The left vectors of a semisimple cluster are biorthogonalized (Y^T L' X = I)
-#: only when sigma_min / sigma_max of Y^T L' X exceeds this: a thousand times the
-#: rounding level of that SVD, so that the inverse keeps three digits or more.
-BIORTHOGONAL_RCOND = 1e3 * EPS
 
 #: Solver paths whose pencil is symmetric definite (M positive definite, K symmetric, C = 0 or
 #: proportional): their multiple eigenvalues are semisimple unless a pair's two roots coincide.
@@ -148,8 +140,8 @@ def modal_analysis(
         # pairs of a symmetric definite pencil sharing one real vector: their clusters are semisimple by theorem
         mirrored = raw.second is not None and name in SYMMETRIC_DEFINITE_PATHS
         lam, block, fig = _figures(problem, raw)
-        clusters, notes = _clusters(problem, lam, fig, tolerances, mirrored)
-        left, left_ok, model, more = _cluster_figures(problem, lam, fig, clusters)
+        clusters, notes = cluster_structure(problem, lam, fig, tolerances, mirrored)
+        left, left_ok, model, more = cluster_figures(problem, lam, fig, clusters)
         notes += more
         multiplicity = np.ones(lam.shape[0], dtype=int)
         for c in clusters:
@@ -305,89 +297,3 @@ def _validated_options(method, scaling, **tolerances) -> dict[str, float]:
     if method not in ("auto",) + PATHS:
         raise ParameterError("method", f"expected 'auto' or one of {PATHS}, got {method!r}")
     return out
-
-
-def _clusters(
-    problem: QuadraticProblem, lam, fig: PairFigures, tolerances, mirrored: bool = False
-) -> tuple[list[Cluster], list[str]]:
-    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, and notes.
-
-    The computed vectors and figures go along as the evidence of
-    :func:`~pinlin.spectral.multiplicity.semisimple_certificate` (semisimple
-    clusters without an SVD); ``mirrored``: the eigenvalues are pairs of a
-    symmetric definite pencil sharing one vector.
-    """
-    notes: list[str] = []
-    clusters: list[Cluster] = []
-    groups = find_clusters(
-        lam, tolerances["cluster_tol"], problem.scaling.gamma, fig.error_bound, tolerances["safety"]
-    )
-    if not groups:
-        return clusters, notes
-    with np.errstate(over="ignore", invalid="ignore"):
-        evidence = ClusterEvidence(
-            fig.right, fig.sensitivity, fig.error_bound, fig.backward_error, problem.weight(lam), mirrored
-        )
-    for idx in groups:
-        c = analyse_cluster(problem, lam, idx, tolerances["rank_tol"], evidence)
-        if c.geometric == 0:
-            notes.append(
-                f"eigenvalues {[i + 1 for i in idx]} are within cluster_tol but L is nonsingular at their mean "
-                f"(rank_tol {tolerances['rank_tol']:g}): treated as distinct"
-            )
-            continue
-        if not c.consistent:
-            notes.append(c.note)
-        clusters.append(c)
-    return clusters, notes
-
-
-def _cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
-    """Left vectors and the error model corrected for the clusters (defective members: kappa = inf, see Modes).
-
-    A semisimple cluster gets left vectors biorthogonalized at its mean
-    (Y^T L'(lam_c) X = I) and sensitivities w(lam) ||y||; a defective one unit
-    left vectors, kappa = inf and the bound spread + scale eta^(1/p)
-    (:class:`~pinlin.spectral.accuracy.DefectiveBound`, :func:`defective_scale`).
-    """
-    eta = np.maximum(fig.backward_error, ETA_FLOOR)
-    if not clusters:  # the figures' own arrays (fresh from pair_figures, owned by this analysis)
-        return fig.left, fig.left_normalized, _model(eta, fig.sensitivity, ()), []
-    left = fig.left.copy()
-    left_ok = fig.left_normalized.copy()
-    sens = fig.sensitivity.copy()
-    defective = []
-    notes: list[str] = []
-    for c in clusters:
-        ii = list(c.indices)
-        if c.semisimple or c.index == 1:
-            Y = fig.left_unit[:, ii]
-            P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
-            try:
-                sv = np.linalg.svd(P, compute_uv=False)
-                if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
-                    raise np.linalg.LinAlgError("Y^T L' X is numerically singular")
-                Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
-            except np.linalg.LinAlgError:
-                notes.append(f"cluster at {c.center:.6g}: left vectors could not be biorthogonalized")
-                continue
-            left[:, ii] = Yn
-            left_ok[ii] = True
-            sens[ii] = problem.weight(lam[ii]) * column_norms(Yn)
-        else:
-            left[:, ii] = fig.left_unit[:, ii]
-            left_ok[ii] = False
-            sens[ii] = np.inf
-            spread = float(np.max(np.abs(lam[ii] - c.center)))
-            defective.append(
-                DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
-                               c.index)
-            )
-    return left, left_ok, _model(eta, sens, tuple(defective)), notes
-
-
-def _model(eta: np.ndarray, sensitivity: np.ndarray, defective: tuple) -> ErrorModel:
-    """The error model with its arrays made read-only (the verdict formed later reads them; nobody writes them)."""
-    eta.flags.writeable = False
-    sensitivity.flags.writeable = False
-    return ErrorModel(eta, sensitivity, defective)

@@ -63,9 +63,10 @@ import numpy as np
 from ..errors import ComputationError
 from ..numerics.floating import EPS
 from ..numerics.norms import frobenius
-from ..numerics.rank import JORDAN_RANK_TOL, kernel_dimension
+from ..numerics.rank import JORDAN_RANK_TOL, chains_from_kernels, kernel_dimension
 from ..results import Result
 from .problem import QuadraticProblem
+from .projected import projected_pays, projected_structure
 
 __all__ = ["Cluster", "ClusterEvidence", "analyse_cluster", "semisimple_certificate", "partial_multiplicities", "toeplitz", "derivative_blocks", "block_scale"]
 
@@ -78,6 +79,10 @@ _CERTIFIED_METHOD = (
     "semisimple certificate: ||L(center) Q|| below the rank threshold for orthonormal cluster vectors Q "
     "(bounded by the pairs' residuals and distances), "
     "the resolvent of the other eigenvalues below its inverse (no SVD)"
+)
+_PROJECTED_METHOD = (
+    "dim ker T_k of the m x m pencil projected on the cluster's deflating subspace (inverse subspace "
+    "iteration from the computed vectors); the other eigenvalues beyond the threshold's reach"
 )
 _STRUCTURE_METHOD = (
     "semisimple by structure (symmetric definite pencil, no pair's two roots in the cluster); the resolvent of "
@@ -249,23 +254,9 @@ def partial_multiplicities(
             f"scale gamma = {problem.scaling.gamma:.3g}); rescale the system"
         )
     threshold = rank_tol * block_scale(Ms, Cs, Ks, mu0)
-    dims = [0]
-    counts: list[int] = []  # counts[k-1] = number of chains of length >= k
-    for k in range(1, max_length + 1):
-        dims.append(kernel_dimension(toeplitz(blocks, k), threshold))
-        if max_total is not None and dims[k] > max_total:
-            break
-        c = dims[k] - dims[k - 1]
-        if counts and c > counts[-1]:
-            c = counts[-1]  # rank noise: the counts cannot increase
-        if c <= 0:
-            break
-        counts.append(c)
-    partial: list[int] = []
-    for length in range(len(counts), 0, -1):
-        longer = counts[length] if length < len(counts) else 0
-        partial += [length] * (counts[length - 1] - longer)
-    return tuple(partial), tuple(dims[1:])
+    return chains_from_kernels(
+        lambda k: kernel_dimension(toeplitz(blocks, k), threshold), max_length, max_total
+    )
 
 
 def rank_threshold(problem: QuadraticProblem, lam0: complex, rank_tol: float) -> float:
@@ -336,6 +327,16 @@ def semisimple_certificate(
     return method
 
 
+def _projected(problem, lam, indices, center, evidence, rank_tol):
+    """:func:`~pinlin.spectral.projected.projected_structure` at the Toeplitz threshold where it pays, or None."""
+    if not projected_pays(problem.n, len(indices)):
+        return None
+    threshold = rank_threshold(problem, center, rank_tol)
+    if not (np.isfinite(threshold) and threshold > 0):
+        return None
+    return projected_structure(problem, lam, indices, center, evidence, rank_tol, threshold)
+
+
 def analyse_cluster(
     problem: QuadraticProblem,
     lam: np.ndarray,
@@ -346,12 +347,14 @@ def analyse_cluster(
     """The Jordan structure of one cluster of computed eigenvalues (see :class:`Cluster`).
 
     With ``evidence`` (the computed vectors and figures) a semisimple cluster is
-    certified by :func:`semisimple_certificate` when it can be; the Toeplitz
-    ranks decide otherwise, and always without it.
+    certified by :func:`semisimple_certificate` when it can be, and otherwise the
+    ranks of the small pencil projected on the cluster's deflating subspace decide
+    when they can (:func:`pinlin.spectral.projected.projected_structure`); the full
+    Toeplitz ranks decide otherwise, and always without it.
     """
     t0 = time.perf_counter()
     members = lam[list(indices)]
-    center = complex(np.mean(members))
+    center = complex(np.add.reduce(members) / len(indices))  # np.mean's sum and division, without its wrapper
     # a cluster closed under conjugation (members in exact conjugate pairs) has a real mean
     if abs(np.sum(members.imag)) <= CONJUGATE_SUM_ULPS * EPS * np.sum(np.abs(members.imag)):
         center = complex(center.real, 0.0)
@@ -362,6 +365,12 @@ def analyse_cluster(
         return Cluster(
             tuple(indices), center, m, m, (1,) * m, True, (m,), error=spread, method=how,
             elapsed=time.perf_counter() - t0,
+        )
+    projected = None if evidence is None else _projected(problem, lam, indices, center, evidence, rank_tol)
+    if projected is not None:
+        return Cluster(
+            tuple(indices), center, m, projected[1][0], projected[0], True, projected[1], error=spread,
+            method=_PROJECTED_METHOD, elapsed=time.perf_counter() - t0,
         )
     partial, dims = partial_multiplicities(problem, center, max_length=m + 1, rank_tol=rank_tol, max_total=m)
     geometric = dims[0] if dims else 0

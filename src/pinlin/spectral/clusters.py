@@ -1,0 +1,200 @@
+"""The clusters of a computed spectrum: their Jordan structure and their left vectors (theory: spectrum).
+
+:func:`cluster_structure` groups the computed eigenvalues that rounding cannot
+tell apart and decides each group's partial multiplicities
+(:func:`~pinlin.spectral.multiplicity.analyse_cluster`); :func:`cluster_figures`
+then biorthogonalizes the left vectors of the semisimple clusters and gives the
+defective ones their error model.
+
+The coefficients are real, so L(conj lam) = conj L(lam): the eigenvalue conj lam
+has the Jordan structure of lam, its vectors are the conjugates.  A cluster
+whose members are exactly the conjugates of the previous cluster's (the
+order of the spectrum puts conjugate groups next to each other) takes that
+cluster's structure, and, when its vectors are exactly the conjugates too, its
+biorthogonalized left vectors, without computing them again: the same numbers
+to the last bit, since every operation of that computation commutes exactly
+with conjugation (IEEE rounding is symmetric under negation).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..numerics.accuracy import ETA_FLOOR
+from ..numerics.clustering import find_clusters
+from ..numerics.floating import EPS
+from ..numerics.norms import column_norms
+from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale
+from .multiplicity import Cluster, ClusterEvidence, analyse_cluster
+from .problem import QuadraticProblem
+
+__all__ = ["BIORTHOGONAL_RCOND", "cluster_structure", "cluster_figures", "conjugate_cluster"]
+
+#: The left vectors of a semisimple cluster are biorthogonalized (Y^T L' X = I)
+#: only when sigma_min / sigma_max of Y^T L' X exceeds this: a thousand times the
+#: rounding level of that SVD, so that the inverse keeps three digits or more.
+BIORTHOGONAL_RCOND = 1e3 * EPS
+
+_CONJUGATE_METHOD = " (taken from the conjugate cluster: L(conj lam) = conj L(lam), real coefficients)"
+
+
+def conjugate_cluster(partner: Cluster, lam: np.ndarray, indices: tuple[int, ...]) -> Cluster | None:
+    """The cluster at ``indices`` as the conjugate of ``partner``, or None when its members are not exactly theirs.
+
+    Exactly: lam[indices[k]] == conj(lam[partner.indices[k]]) for every k, bit for bit,
+    and partner's center not real (a real cluster is its own conjugate).  The center
+    is then the conjugate of partner's (the mean of conjugates is the conjugate of
+    the mean, to the last bit), the spread and the structure are partner's.
+    """
+    if len(indices) != partner.algebraic or partner.center.imag == 0:
+        return None
+    if not np.array_equal(lam[list(indices)], lam[list(partner.indices)].conj()):
+        return None
+    t0 = time.perf_counter()
+    method = partner.method if partner.method.endswith(_CONJUGATE_METHOD) else partner.method + _CONJUGATE_METHOD
+    p = partner
+    return Cluster(
+        tuple(indices), p.center.conjugate(), p.algebraic, p.geometric, p.partial, p.consistent, p.kernel_dims,
+        p.note, error=p.error, method=method, elapsed=time.perf_counter() - t0,
+    )
+
+
+def cluster_structure(
+    problem: QuadraticProblem, lam, fig: PairFigures, tolerances, mirrored: bool = False
+) -> tuple[list[Cluster], list[str]]:
+    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, and notes.
+
+    The computed vectors and figures go along as the evidence of
+    :func:`~pinlin.spectral.multiplicity.semisimple_certificate` (semisimple
+    clusters without an SVD); ``mirrored``: the eigenvalues are pairs of a
+    symmetric definite pencil sharing one vector.  A cluster that is exactly the
+    conjugate of the one before it takes its structure (:func:`conjugate_cluster`).
+    """
+    notes: list[str] = []
+    clusters: list[Cluster] = []
+    groups = find_clusters(
+        lam, tolerances["cluster_tol"], problem.scaling.gamma, fig.error_bound, tolerances["safety"]
+    )
+    if not groups:
+        return clusters, notes
+    with np.errstate(over="ignore", invalid="ignore"):
+        evidence = ClusterEvidence(
+            fig.right, fig.sensitivity, fig.error_bound, fig.backward_error, problem.weight(lam), mirrored
+        )
+    c = None
+    for idx in groups:
+        c = None if c is None else conjugate_cluster(c, lam, idx)
+        if c is None:
+            c = analyse_cluster(problem, lam, idx, tolerances["rank_tol"], evidence)
+        if c.geometric == 0:
+            notes.append(
+                f"eigenvalues {[i + 1 for i in idx]} are within cluster_tol but L is nonsingular at their mean "
+                f"(rank_tol {tolerances['rank_tol']:g}): treated as distinct"
+            )
+            continue
+        if not c.consistent:
+            notes.append(c.note)
+        clusters.append(c)
+    return clusters, notes
+
+
+def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters):
+    """Left vectors and the error model corrected for the clusters (defective members: kappa = inf, see Modes).
+
+    A semisimple cluster gets left vectors biorthogonalized at its mean
+    (Y^T L'(lam_c) X = I) and sensitivities w(lam) ||y||; a defective one unit
+    left vectors, kappa = inf and the bound spread + scale eta^(1/p)
+    (:class:`~pinlin.spectral.accuracy.DefectiveBound`, :func:`defective_scale`).
+    A semisimple cluster whose members and vectors are exactly the conjugates of
+    the previous cluster's takes the conjugates of its biorthogonalized vectors
+    (:func:`_conjugate_mates`).
+    """
+    eta = np.maximum(fig.backward_error, ETA_FLOOR)
+    if not clusters:  # the figures' own arrays (fresh from pair_figures, owned by this analysis)
+        return fig.left, fig.left_normalized, _model(eta, fig.sensitivity, ()), []
+    left = fig.left.copy()
+    left_ok = fig.left_normalized.copy()
+    sens = fig.sensitivity.copy()
+    defective = []
+    notes: list[str] = []
+    mates = _conjugate_mates(fig, lam, clusters)
+    for k, c in enumerate(clusters):
+        ii = list(c.indices)
+        if k in mates:
+            continue
+        if c.index == 1:  # semisimple, or chains of length one that do not add up (inconsistent ranks)
+            if not _biorthogonalize(problem, lam, fig, c, ii, left, left_ok, sens):
+                notes.append(f"cluster at {c.center:.6g}: left vectors could not be biorthogonalized")
+        else:
+            left[:, ii] = fig.left_unit[:, ii]
+            left_ok[ii] = False
+            sens[ii] = np.inf
+            spread = float(np.max(np.abs(lam[ii] - c.center)))
+            defective.append(
+                DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
+                               c.index)
+            )
+    for k, partner in mates.items():
+        ii, pp = list(clusters[k].indices), list(clusters[partner].indices)
+        if left_ok[pp].all():
+            left[:, ii] = left[:, pp].conj()
+            left_ok[ii] = True
+            sens[ii] = sens[pp]
+        elif not _biorthogonalize(problem, lam, fig, clusters[k], ii, left, left_ok, sens):
+            notes.append(f"cluster at {clusters[k].center:.6g}: left vectors could not be biorthogonalized")
+    return left, left_ok, _model(eta, sens, tuple(defective)), notes
+
+
+def _biorthogonalize(problem: QuadraticProblem, lam, fig: PairFigures, c: Cluster, ii, left, left_ok, sens) -> bool:
+    """Left vectors of a semisimple cluster scaled so that Y^T L'(center) X = I, written into the arrays given.
+
+    False (nothing written) when Y^T L' X is numerically singular (:data:`BIORTHOGONAL_RCOND`).
+    """
+    Y = fig.left_unit[:, ii]
+    P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
+    try:
+        sv = np.linalg.svd(P, compute_uv=False)
+        if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
+            return False
+        Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
+    except np.linalg.LinAlgError:
+        return False
+    left[:, ii] = Yn
+    left_ok[ii] = True
+    sens[ii] = problem.weight(lam[ii]) * column_norms(Yn)
+    return True
+
+
+def _conjugate_mates(fig: PairFigures, lam: np.ndarray, clusters) -> dict[int, int]:
+    """{k: k - 1} for the clusters k (chains of length one) whose eigenvalues, right and unit left vectors are
+    exactly the conjugates of those of cluster k - 1 (also of length one), member by member.
+
+    One comparison of each array for all candidates together (a clustered spectrum of a real problem has its
+    clusters in conjugate pairs next to each other).
+    """
+    cand = [
+        k for k in range(1, len(clusters))
+        if clusters[k].algebraic == clusters[k - 1].algebraic and clusters[k].index == 1 and clusters[k - 1].index == 1
+    ]
+    if not cand:
+        return {}
+    ii = [i for k in cand for i in clusters[k].indices]
+    pp = [i for k in cand for i in clusters[k - 1].indices]
+    same = lam.take(ii) == lam.take(pp).conj()
+    same &= (fig.right.take(ii, axis=1) == fig.right.take(pp, axis=1).conj()).all(axis=0)
+    same &= (fig.left_unit.take(ii, axis=1) == fig.left_unit.take(pp, axis=1).conj()).all(axis=0)
+    starts = np.cumsum([0] + [clusters[k].algebraic for k in cand[:-1]])
+    mates: dict[int, int] = {}
+    for k, ok in zip(cand, np.logical_and.reduceat(same, starts)):
+        if ok and k - 1 not in mates:
+            mates[k] = k - 1
+    return mates
+
+
+def _model(eta: np.ndarray, sensitivity: np.ndarray, defective: tuple) -> ErrorModel:
+    """The error model with its arrays made read-only (the verdict formed later reads them; nobody writes them)."""
+    eta.flags.writeable = False
+    sensitivity.flags.writeable = False
+    return ErrorModel(eta, sensitivity, defective)
