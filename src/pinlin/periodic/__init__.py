@@ -3,8 +3,14 @@
 One concept per module:
 
 - :mod:`.inputs` -- checked coefficient functions t -> matrix and the period;
+- :mod:`.sampling` -- the trigonometric interpolant of periodic coefficients from equispaced samples, its
+  error measured on fresh samples;
+- :mod:`.second_order` -- M, C, K in first-order form, and the tests of their conservative structure
+  (constant, or a time-varying Lagrangian system);
 - :mod:`.collocation` -- step transitions of y' = A(t) y by Gauss-Legendre collocation with step doubling,
   grouped into well-conditioned segments;
+- :mod:`.collocation_grid` -- the same on a step grid refined in rounds, for coefficients cheap at many times;
+- :mod:`.sampled` -- the transitions from sampled coefficients (or, where they do not converge, at the nodes);
 - :mod:`.cyclic` -- multipliers and periodic eigenvectors of a segment product from the lifted block-cyclic
   matrix (the product is never formed for them);
 - :mod:`.bounds` -- each multiplier's error bound (integration error and eigensolver backward error through

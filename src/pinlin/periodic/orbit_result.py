@@ -100,7 +100,8 @@ class PeriodicOrbit(Result):
         for name, omega in scene.prescribed.items():  # the advancing angle, exactly
             dq[scene.robot.joint(name).idx_v] = omega * float(t)
         q = pin.integrate(model, self.base, dq)
-        FreeDynamics(scene).apply_motions(float(t), q, v)
+        if scene.motions:
+            FreeDynamics(scene).apply_motions(float(t), q, v)
         return q, v
 
     def q(self, t: float) -> np.ndarray:
