@@ -145,9 +145,13 @@ def stage_solve(An: np.ndarray, h: np.ndarray, a: np.ndarray, b: np.ndarray,
         X, Y = np.ascontiguousarray(An[:, :, n:, :n]), An[:, :, n:, n:]
         aa = (a[:, None, :] * a.T[None, :, :]).reshape(s * s, s)      # aa[i k, j] = a_ij a_jk
         XX = (aa @ X.reshape(B, s, n * n)).reshape(B, s, s, n, n)
-        block = (hh[:, None, None, None, None] * a[None, :, None, :, None] * Y.transpose(0, 2, 1, 3)[:, None]
-                 + (hh * hh)[:, None, None, None, None] * XX.transpose(0, 1, 3, 2, 4))
-        L = np.eye(s * n) - block.reshape(B, s * n, s * n)
+        # L = I - h a_ik Y_k - h^2 XX_ik in place: block (i, k) of the (s n)-square matrix
+        L = np.empty((B, s, n, s, n))        # C order: the reshapes below are views
+        np.multiply(-a[None, :, None, :, None], Y.transpose(0, 2, 1, 3)[:, None], out=L)
+        L *= hh[:, None, None, None, None]
+        L -= (hh * hh)[:, None, None, None, None] * XX.transpose(0, 1, 3, 2, 4)
+        L = L.reshape(B, s * n, s * n)
+        L.reshape(B, -1)[:, ::s * n + 1] += 1.0
         rhs = np.zeros((B, s, n, 2 * n))
         rhs[..., :n] = hh[:, None, None, None] * (a @ X.reshape(B, s, n * n)).reshape(B, s, n, n)
         rhs[..., n:] = np.eye(n)
