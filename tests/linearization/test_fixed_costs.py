@@ -1,0 +1,69 @@
+"""linearize's fixed costs paid once per scene (issue 27 part 3): each cheaper route against the general one.
+
+The mirror of Pinocchio's upper-triangular M by flat indices against ``np.where``,
+the split of a block view against the split of its copy, and halving by the 0-d
+``HALF`` against a Python float, each on inputs where the two could differ.
+"""
+
+import numpy as np
+
+import pinlin
+from pinlin.linearization.split import split_stiffness
+from pinlin.model.evaluation import symmetric_from_upper, workspace
+from pinlin.numerics.arrays import HALF
+
+
+def _turntable():
+    robot = pinlin.load_urdf_string(pinlin.turntable_urdf(0.5, 1.0))
+    return pinlin.Scene(robot, [pinlin.JointSpring("slider", 10.0, rest=0.3)], prescribed={"table": 2.0})
+
+
+def test_mirror_by_flat_indices_is_np_where_on_a_lower_triangle_of_garbage():
+    """The lower triangle Pinocchio leaves is arbitrary: only the upper one may reach the result."""
+    scene = pinlin.Scene(pinlin.load_example("panda"), [])
+    ws = workspace(scene)
+    nv = scene.model.nv
+    rng = np.random.default_rng(7)
+    a = np.asfortranarray(rng.standard_normal((nv, nv)))  # Data's matrices are column-major
+    before = a.copy()
+    M = symmetric_from_upper(a, ws)
+    assert np.array_equal(M, np.where(ws.lower, a.T, a))
+    assert np.array_equal(M, M.T) and M.flags.c_contiguous and M.flags.owndata
+    assert np.array_equal(a, before) and not np.array_equal(a, a.T)
+
+
+def test_split_of_a_block_view_equals_the_split_of_its_copy():
+    rng = np.random.default_rng(3)
+    big = rng.standard_normal((5, 5))
+    view = big[1:4, 1:4]
+    assert not view.flags.c_contiguous
+    for tol in (0.0, 1e3):  # the skew part kept, and dropped (reported)
+        kept_view, kept_copy = {}, {}
+        S1, N1 = split_stiffness(view, 1.0, tol, kept_view)
+        S2, N2 = split_stiffness(view.copy(), 1.0, tol, kept_copy)
+        assert np.array_equal(S1, S2) and np.array_equal(N1, N2) and kept_view == kept_copy
+        assert np.array_equal(S1, (view + view.T) / 2)
+    assert np.array_equal(big[1:4, 1:4], view)  # the input untouched
+
+
+def test_halving_by_the_zero_dimensional_half_is_the_float_product():
+    rng = np.random.default_rng(5)
+    for a in (rng.standard_normal((3, 3)) * 1e300, np.array([[5e-324, -3.3e-320], [np.inf, 1.0]])):
+        by_half, by_float = a.copy(), a.copy()
+        by_half *= HALF
+        by_float *= 0.5
+        assert by_half.dtype == np.float64 and np.array_equal(by_half, by_float)
+    assert not HALF.flags.writeable
+
+
+def test_turntable_gyroscopic_part_from_a_strided_block_is_the_closed_form():
+    """The turntable's C is a strided block of dtau/dv; G = 2 m Omega r0 [[0, 1], [-1, 0]], D = 0 (theory: turntable)."""
+    a, m, k, l0, W = 0.5, 1.0, 10.0, 0.3, 2.0
+    scene = _turntable()
+    r0 = (k * l0 + m * W**2 * a) / (k - m * W**2)
+    q = scene.neutral()
+    q[3] = r0
+    sys = pinlin.linearize(scene, q)
+    np.testing.assert_allclose(sys.G, 2 * m * W * r0 * np.array([[0.0, 1.0], [-1.0, 0.0]]), rtol=1e-14, atol=1e-14)
+    assert not sys.D.any() and np.array_equal(sys.G, -sys.G.T)
+    np.testing.assert_allclose(sys.M, np.diag([m * r0**2, m]), rtol=1e-14, atol=1e-14)
