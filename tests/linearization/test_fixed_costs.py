@@ -6,8 +6,12 @@ the split of a block view against the split of its copy, and halving by the 0-d
 """
 
 import numpy as np
+import pytest
 
 import pinlin
+from pinlin.linearization.plan import plan_of
+from pinlin.linearization.system import LinearizedSystem
+from pinlin.linearization.templates import system_template
 from pinlin.linearization.split import split_stiffness
 from pinlin.model.evaluation import symmetric_from_upper, workspace
 from pinlin.numerics.arrays import HALF
@@ -67,3 +71,29 @@ def test_turntable_gyroscopic_part_from_a_strided_block_is_the_closed_form():
     np.testing.assert_allclose(sys.G, 2 * m * W * r0 * np.array([[0.0, 1.0], [-1.0, 0.0]]), rtol=1e-14, atol=1e-14)
     assert not sys.D.any() and np.array_equal(sys.G, -sys.G.T)
     np.testing.assert_allclose(sys.M, np.diag([m * r0**2, m]), rtol=1e-14, atol=1e-14)
+
+
+def test_system_from_the_scene_template_holds_trusteds_attributes_in_its_order():
+    """linearize builds its result from the plan's template: the same dictionary, key for key, as ``trusted``'s."""
+    scene = _turntable()
+    q = scene.neutral()
+    q[3] = 0.5
+    sys = pinlin.linearize(scene, q, balancing=True)
+    reference = LinearizedSystem.trusted(
+        np.array(sys.M), np.array(sys.D), np.array(sys.G), np.array(sys.S), np.array(sys.N), dof_names=list(sys.dof_names),
+        q=np.array(sys.q), v=scene.v0, residual=sys.residual, balancing=np.array(sys.balancing), elapsed=sys.elapsed,
+        calls=list(sys.calls), dropped=dict(sys.dropped), notes=list(sys.notes), method="analytic",
+    )  # fmt: skip
+    ours, theirs = vars(sys), vars(reference)
+    assert list(ours) == list(theirs)
+    for key, value in theirs.items():
+        if isinstance(value, np.ndarray):
+            assert np.array_equal(ours[key], value) and not ours[key].flags.writeable, key
+        else:
+            assert type(ours[key]) is type(value) and ours[key] == value, key
+    assert sys.balancing is not None and sys.notes[-1].startswith("held at q")
+    template = plan_of(scene).template
+    with pytest.raises(TypeError):
+        template["method"] = "changed"  # shared by every system of the scene and by threads: read-only
+    with pytest.raises(ValueError, match="read-only"):
+        system_template(("x",), np.zeros(1))
