@@ -25,7 +25,7 @@ import pinocchio as pin
 from ..model.evaluation import Evaluation, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
+from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -99,23 +99,14 @@ def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: 
         a.flags.writeable = False
     zero = np.zeros(S.shape[1:])
     zero.flags.writeable = False
+    dropped: list[dict[str, float]] = [{} for _ in range(len(qs))]  # in the single call's order: N, Coriolis D, G
+    N = rows_or_zero(N, N_sizes.tolist(), tol, "N", zero, dropped)
+    for p, size in enumerate(D_sizes.tolist()):
+        if size <= tol and size:
+            dropped[p]["D (Coriolis rounding)"] = size
+    G = rows_or_zero(G, G_sizes.tolist(), tol, "G", zero, dropped)
     systems = Systems(scene, ("computeRNEADerivatives",), plan.proof_notes, (clock() - elapsed0) / len(qs), balancing)
-    out = []
-    sizes = zip(N_sizes.tolist(), D_sizes.tolist(), G_sizes.tolist())
-    for Mi, Di, Gi, Si, Ni, q, rel_i, ri, (N_size, D_size, G_size) in zip(M, D, G, S, N, qs, rel.tolist(), r, sizes):
-        dropped: dict[str, float] = {}  # in the single call's order: N, then the Coriolis D, then G
-        if N_size <= tol:
-            if N_size:
-                dropped["N"] = N_size
-            Ni = zero
-        if D_size <= tol and D_size:
-            dropped["D (Coriolis rounding)"] = D_size
-        if G_size <= tol:
-            if G_size:
-                dropped["G"] = G_size
-            Gi = zero
-        out.append(systems.at(Mi, Di, Gi, Si, Ni, q, rel_i, ri, dropped))
-    return tuple(out)
+    return systems.build(M, D, G, S, N, qs, rel.tolist(), r, dropped)
 
 
 def _split_damping(plan, C: np.ndarray, pinocchio_C: np.ndarray, scale_C: np.ndarray, tol: float):

@@ -21,13 +21,15 @@ are the single call's.
 
 from __future__ import annotations
 
+from itertools import repeat
+
 import numpy as np
 import pinocchio as pin
 
 from ..model.evaluation import crba_is_symmetric, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
+from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -108,15 +110,10 @@ def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol:
     D, G = plan.rest_damping.split(tol, damped)  # read-only views, one pair for the batch
     zero = np.zeros(S.shape[1:])
     zero.flags.writeable = False
+    dropped: list[dict[str, float]] = [{} for _ in range(len(qs))]
+    N = rows_or_zero(N, sizes.tolist(), tol, "N", zero, dropped)  # "N" first, as split_stiffness runs first
+    if damped:
+        for entry in dropped:
+            entry.update(damped)
     systems = Systems(scene, calls, (), (clock() - elapsed0) / len(qs), balancing)
-    out = []
-    for Mi, Si, Ni, q, size, rel_i, ri in zip(M, S, N, qs, sizes.tolist(), rel.tolist(), r):
-        dropped: dict[str, float] = {}
-        if size <= tol:
-            if size:
-                dropped["N"] = size  # first, as split_stiffness runs before split_damping
-            Ni = zero
-        if damped:
-            dropped.update(damped)
-        out.append(systems.at(Mi, D, G, Si, Ni, q, rel_i, ri, dropped))
-    return tuple(out)
+    return systems.build(M, repeat(D), repeat(G), S, N, qs, rel.tolist(), r, dropped)
