@@ -6,14 +6,16 @@ the split of a block view against the split of its copy, and halving by the 0-d
 """
 
 import numpy as np
+import pinocchio as pin
 import pytest
 
 import pinlin
+from pinlin.linearization import batch_moving, batch_static
 from pinlin.linearization.plan import plan_of
 from pinlin.linearization.system import LinearizedSystem
 from pinlin.linearization.templates import system_template
 from pinlin.linearization.split import split_stiffness
-from pinlin.model.evaluation import symmetric_from_upper, workspace
+from pinlin.model.evaluation import live_view, symmetric_from_upper, workspace
 from pinlin.numerics.arrays import HALF
 
 
@@ -97,3 +99,38 @@ def test_system_from_the_scene_template_holds_trusteds_attributes_in_its_order()
         template["method"] = "changed"  # shared by every system of the scene and by threads: read-only
     with pytest.raises(ValueError, match="read-only"):
         system_template(("x",), np.zeros(1))
+
+
+def test_live_view_of_data_follows_each_pass():
+    scene = pinlin.Scene(pinlin.load_example("ur5"), [])
+    model, data = scene.model, workspace(scene).data
+    view, live = live_view(data, "g")
+    assert live
+    for q in (np.full(model.nq, 0.3), np.full(model.nq, -0.7)):
+        g = pin.computeGeneralizedGravity(model, data, q).copy()
+        assert np.array_equal(view, g)
+
+
+@pytest.mark.parametrize("moving", [False, True])
+def test_batch_reads_data_after_each_pass_when_the_binding_copies(monkeypatch, moving):
+    """The fallback of live_view (a binding that copies Data's vectors): the same systems as the live view's."""
+    if moving:
+        scene = _turntable()
+        qs = np.tile(scene.neutral(), (3, 1))
+        qs[:, 3] = (0.5, 0.7, 0.9)
+        module = batch_moving
+    else:
+        scene = pinlin.Scene(pinlin.load_example("ur5"), [pinlin.FollowerWrench("tool0", force=(0.0, 0.0, 5.0))])
+        qs = np.array([np.full(6, 0.1 * k) for k in range(1, 4)])
+        module = batch_static
+    live = pinlin.linearize_many(scene, qs, balancing=True)
+
+    def copying(data, name):  # a stale copy: used at any point, it would give the first point's forces to all
+        return getattr(data, name).copy(), False
+
+    monkeypatch.setattr(module, "live_view", copying)
+    copied = pinlin.linearize_many(scene, qs, balancing=True)
+    for a, b, q in zip(live, copied, qs):
+        assert np.array_equal(a.balancing, b.balancing) and np.array_equal(a.K, b.K)
+        assert np.array_equal(b.balancing, pinlin.linearize(scene, q, balancing=True).balancing)
+    assert not np.array_equal(copied[0].balancing, copied[2].balancing)

@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from ..model.evaluation import Evaluation, workspace
+from ..model.evaluation import Evaluation, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
@@ -60,9 +60,10 @@ def _evaluate(scene: Scene, qs: np.ndarray):
     zero = np.zeros(nv)
     tau, pinocchio_K, pinocchio_C, upper = (np.empty((P, nv)),) + tuple(np.empty((P, nv, nv)) for _ in range(3))
     derivatives = pin.computeRNEADerivatives
+    view, live = live_view(data, "tau")
     for q, t, k, c, m in zip(qs, tau, pinocchio_K, pinocchio_C, upper):
         k[...], c[...], m[...] = derivatives(model, data, q, v0, zero, *extra)  # views of Data: copied
-        t[...] = data.tau
+        t[...] = view if live else data.tau
     M = np.where(ws.lower, upper.transpose(0, 2, 1), upper)  # symmetric_from_upper on every point at once
     Q, K, C = np.zeros((P, nv)), pinocchio_K.copy(), pinocchio_C.copy()
     groups = scene.groups

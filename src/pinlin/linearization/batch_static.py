@@ -26,7 +26,7 @@ from itertools import repeat
 import numpy as np
 import pinocchio as pin
 
-from ..model.evaluation import crba_is_symmetric, workspace
+from ..model.evaluation import crba_is_symmetric, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
@@ -63,15 +63,17 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
     crba = pin.crba
     if fext is not None:
         calls, derivatives = ("computeStaticTorqueDerivatives", "crba"), pin.computeStaticTorqueDerivatives
+        view, live = live_view(data, "tau")
         for q, t, k, m in zip(qs, tau, K, M):
             k[...] = derivatives(model, data, q, fext)
-            t[...] = data.tau
+            t[...] = view if live else data.tau
             m[...] = crba(model, data, q)
     elif scene.has_gravity:
         calls, derivatives = ("computeGeneralizedGravityDerivatives", "crba"), pin.computeGeneralizedGravityDerivatives
+        view, live = live_view(data, "g")
         for q, t, k, m in zip(qs, tau, K, M):
             k[...] = derivatives(model, data, q)
-            t[...] = data.g
+            t[...] = view if live else data.g
             m[...] = crba(model, data, q)
     else:
         calls = ("crba",)

@@ -24,7 +24,7 @@ import weakref
 import numpy as np
 import pinocchio as pin
 
-__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric"]
+__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric", "live_view"]
 
 #: ``data.oMf[i]`` costs about 1.1 us per frame (boost.python's proxy), ``data.oMf.tolist()``
 #: about 0.05 us per frame of the model: reading at least one frame in this many, convert them all.
@@ -64,6 +64,19 @@ def crba_is_symmetric() -> bool:
         model.appendBodyToJoint(parent, inertia, pin.SE3.Identity())
     M = pin.crba(model, model.createData(), np.array([0.3, 0.4]))
     return bool(M[0, 1] != 0 and M[1, 0] == M[0, 1] and M.flags.owndata)
+
+
+def live_view(data: pin.Data, name: str) -> tuple[np.ndarray, bool]:
+    """(``getattr(data, name)``, whether that array follows every later pass): a loop reads it once.
+
+    eigenpy hands out Data's vectors (``tau``, ``g``) as arrays on Data's own memory,
+    which each algorithm rewrites in place, so one view read before a loop over points
+    holds each pass's values after it (reading the attribute costs about as much as
+    copying a small vector).  Decided by whether a second read shares its memory;
+    when it does not (a binding that copies), read the attribute after each pass.
+    """
+    view = getattr(data, name)
+    return view, bool(np.shares_memory(view, getattr(data, name)))
 
 
 class Workspace:
