@@ -134,3 +134,45 @@ def test_batch_reads_data_after_each_pass_when_the_binding_copies(monkeypatch, m
         assert np.array_equal(a.balancing, b.balancing) and np.array_equal(a.K, b.K)
         assert np.array_equal(b.balancing, pinlin.linearize(scene, q, balancing=True).balancing)
     assert not np.array_equal(copied[0].balancing, copied[2].balancing)
+
+
+PLANAR_URDF = """<robot name="sled"><link name="base"/>
+  <link name="sled"><inertial><mass value="2"/><origin xyz="0.1 0 0"/>
+    <inertia ixx="0.1" iyy="0.2" izz="0.3" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="arm"><inertial><mass value="1"/><origin xyz="0 0 -0.4"/>
+    <inertia ixx="0.05" iyy="0.05" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="slide" type="planar"><parent link="base"/><child link="sled"/><axis xyz="0 0 1"/></joint>
+  <joint name="hinge" type="revolute"><parent link="sled"/><child link="arm"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" effort="1" velocity="1"/></joint></robot>"""
+
+
+@pytest.mark.parametrize("root", ["free_flyer", "planar"])
+def test_batched_logs_of_multi_dof_springs_equal_single_calls(root):
+    """linearize_many evaluates a multi-DOF spring's log on all rows at once: each system is linearize's, bitwise,
+    at deflections across the log's branches (the series buckets of beta and gamma, the closed form, rest itself)."""
+    if root == "planar":
+        robot = pinlin.load_urdf_string(PLANAR_URDF)
+        joint, deflections = "slide", [0.0, 1e-5, 0.2, 2.5]
+    else:
+        robot = pinlin.load_example("solo12", free_flyer=True)
+        joint, deflections = "root_joint", [0.0, 1e-5, 0.2, 1.2, 2.5]
+    info = robot.joint(joint)
+    rng = np.random.default_rng(23)
+    A = rng.normal(size=(info.nv, info.nv))
+    rest = pin.neutral(robot.model)
+    scene = pinlin.Scene(robot, [pinlin.JointSpring(joint, A @ A.T + np.eye(info.nv), rest=rest[info.q_slice])])
+    qs = []
+    for angle in deflections:
+        xi = np.zeros(robot.model.nv)
+        xi[info.v_slice] = rng.normal(size=info.nv)
+        rotation = info.v_slice.start + (2 if root == "planar" else 3)
+        turn = np.linalg.norm(xi[rotation : info.v_slice.stop])
+        xi[rotation : info.v_slice.stop] *= angle / turn
+        qs.append(pin.integrate(robot.model, rest, xi))
+    assert batch_static.applies(scene)  # the stacked path, whose springs take the batched log
+    many = pinlin.linearize_many(scene, np.array(qs), balancing=True)
+    for q, sys in zip(qs, many):
+        single = pinlin.linearize(scene, q, balancing=True)
+        for name in ("M", "D", "G", "S", "N"):
+            assert np.array_equal(getattr(sys, name), getattr(single, name)), name
+        assert np.array_equal(sys.balancing, single.balancing)

@@ -210,18 +210,19 @@ class SpringGroup(ElementGroup):
                 np.subtract.at(Q.T, self.iv, force.T)
             self.diagonal.add_many(K, self.k)
         for qs_j, vs, rest, log, Ks, derivative in self.prepared:
+            if derivative:  # the log of every row at once, then the single call's products row by row
+                for row, Kp, e, jacobian in zip(Q, K, *log.evaluate_many(qs[:, qs_j])):
+                    view, block = row[vs], Kp[vs, vs]
+                    view -= np.dot(Ks, e)
+                    block += np.dot(Ks, jacobian)
+                continue
             for q, row, Kp in zip(qs, Q, K):
                 view, block = row[vs], Kp[vs, vs]
                 if log is None:
                     view -= np.dot(Ks, q[qs_j] - rest)
-                    block += Ks
-                elif derivative:
-                    e, jacobian = log.evaluate(q[qs_j])
-                    view -= np.dot(Ks, e)
-                    block += np.dot(Ks, jacobian)
                 else:
                     view -= np.dot(Ks, log.difference(q[qs_j]))
-                    block += Ks
+                block += Ks
 
     def add_damping(self, ev, C: np.ndarray) -> None:
         """Springs add no damping."""
@@ -261,6 +262,11 @@ class _GroupLog:
 
     def evaluate(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return self.difference(q), self.jacobian(q)
+
+    def evaluate_many(self, qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`evaluate` at each row of ``qs`` (P, nq_j), stacked: (P, nv_j) and (P, nv_j, nv_j)."""
+        pairs = [self.evaluate(q) for q in qs]
+        return np.array([e for e, _ in pairs]), np.array([jacobian for _, jacobian in pairs])
 
 
 def _lie_log(joint: pin.JointModel, rest: np.ndarray):

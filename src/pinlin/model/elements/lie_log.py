@@ -171,6 +171,38 @@ class JointLog:
         """de/dq = J_log(rest^{-1} q) (nv_j x nv_j)."""
         return self.evaluate(q)[1]
 
+    def evaluate_many(self, qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`evaluate` at each row of ``qs`` (P, nq_j): e (P, nv_j) and de/dq (P, nv_j, nv_j), bitwise.
+
+        The same operations as the single evaluation, in the same order, on arrays
+        of all rows (elementwise IEEE arithmetic and ``np.sqrt`` round as Python's
+        floats do); the transcendental parts (atan2, and beta and gamma with their
+        series buckets) are taken per row by the single evaluation's own functions.
+        Rows are C-contiguous (P, ...) stacks.
+        """
+        e, J = _se3_log_many(*self._points(np.asarray(qs, dtype=float).T))
+        if self.name == "SE(3)":
+            return e, J
+        index = [3, 4, 5] if self.name == "SO(3)" else [0, 1, 5]
+        return np.ascontiguousarray(e[:, index]), np.ascontiguousarray(J[:, index][:, :, index])
+
+    def _points(self, q: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray]]:
+        """:meth:`_point` of each column of ``q`` (nq_j, P): theta and p as three (P,) arrays each."""
+        zero = np.zeros(q.shape[1])
+        if self.name == "SO(3)":
+            return _quaternion_log_many(*_relative(self._rest, q)), [zero, zero, zero]
+        if self.name == "SE(3)":
+            (x0, y0, z0), quat0, (r00, r01, r02, r10, r11, r12, r20, r21, r22) = self._rest
+            dx, dy, dz = q[0] - x0, q[1] - y0, q[2] - z0
+            p = [r00 * dx + r01 * dy + r02 * dz, r10 * dx + r11 * dy + r12 * dz, r20 * dx + r21 * dy + r22 * dz]
+            return _quaternion_log_many(*_relative(quat0, q[3:])), p
+        x0, y0, c0, s0 = self._rest
+        x1, y1, c1, s1 = q
+        dx, dy = x1 - x0, y1 - y0
+        sines, cosines = (c0 * s1 - s0 * c1).tolist(), (c0 * c1 + s0 * s1).tolist()
+        angle = np.array([math.atan2(s, c) for s, c in zip(sines, cosines)])
+        return [zero, zero, angle], [c0 * dx + s0 * dy, c0 * dy - s0 * dx, zero]
+
 
 def _relative(a, b) -> tuple[float, float, float, float]:
     """(w, x, y, z) of conj(a) b for quaternions a, b given as (x, y, z, w) (Pinocchio's order)."""
@@ -182,6 +214,56 @@ def _relative(a, b) -> tuple[float, float, float, float]:
         (aw * by - ay * bw) + (ax * bz - az * bx),
         (aw * bz - az * bw) + (ay * bx - ax * by),
     )
+
+
+def _quaternion_log_many(w: np.ndarray, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> list[np.ndarray]:
+    """:func:`_quaternion_log` of each entry of (P,) arrays: theta as three (P,) arrays (exactly 0 where v = 0)."""
+    n = np.sqrt(x * x + y * y + z * z)
+    angle = np.array([
+        2.0 * math.atan2(ni, wi) if wi >= 0.0 else -2.0 * math.atan2(ni, -wi) for ni, wi in zip(n.tolist(), w.tolist())
+    ])  # fmt: skip
+    still = n == 0.0
+    if still.any():
+        n[still] = 1.0  # the rows are set to exactly 0 below, as the single log returns them
+    theta = [angle * x / n, angle * y / n, angle * z / n]
+    if still.any():
+        for component in theta:
+            component[still] = 0.0
+    return theta
+
+
+def _se3_log_many(theta: list[np.ndarray], p: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`se3_log` of P points given as three (P,) arrays each: e (P, 6) and J_log (P, 6, 6), bitwise."""
+    x, y, z = theta
+    px, py, pz = p
+    t2 = x * x + y * y + z * z
+    b, g = (np.array(values) for values in zip(*map(beta_gamma, t2.tolist())))
+    d = 1.0 - b * t2
+    a00, a01, a02 = d + b * x * x, b * x * y - 0.5 * z, b * x * z + 0.5 * y
+    a10, a11, a12 = b * y * x + 0.5 * z, d + b * y * y, b * y * z - 0.5 * x
+    a20, a21, a22 = b * z * x - 0.5 * y, b * z * y + 0.5 * x, d + b * z * z
+    e = np.stack([a00 * px + a10 * py + a20 * pz, a01 * px + a11 * py + a21 * pz, a02 * px + a12 * py + a22 * pz,
+                  x, y, z], axis=1)  # fmt: skip
+    tp = x * px + y * py + z * pz
+    ux, uy, uz = g * (x * tp - t2 * px), g * (y * tp - t2 * py), g * (z * tp - t2 * pz)
+    cx, cy, cz = y * pz - z * py, z * px - x * pz, x * py - y * px
+    btp = b * tp
+    d00, d01, d02 = ux * x - b * px * x + btp, -0.5 * pz + ux * y - b * px * y + b * cz, 0.5 * py + ux * z - b * px * z - b * cy
+    d10, d11, d12 = 0.5 * pz + uy * x - b * py * x - b * cz, uy * y - b * py * y + btp, -0.5 * px + uy * z - b * py * z + b * cx
+    d20, d21, d22 = -0.5 * py + uz * x - b * pz * x + b * cy, 0.5 * px + uz * y - b * pz * y - b * cx, uz * z - b * pz * z + btp
+    b00, b01, b02 = d00 * a00 + d01 * a10 + d02 * a20, d00 * a01 + d01 * a11 + d02 * a21, d00 * a02 + d01 * a12 + d02 * a22
+    b10, b11, b12 = d10 * a00 + d11 * a10 + d12 * a20, d10 * a01 + d11 * a11 + d12 * a21, d10 * a02 + d11 * a12 + d12 * a22
+    b20, b21, b22 = d20 * a00 + d21 * a10 + d22 * a20, d20 * a01 + d21 * a11 + d22 * a21, d20 * a02 + d21 * a12 + d22 * a22
+    zero = np.zeros(len(x))
+    J = np.stack([
+        a00, a01, a02, b00, b01, b02,
+        a10, a11, a12, b10, b11, b12,
+        a20, a21, a22, b20, b21, b22,
+        zero, zero, zero, a00, a01, a02,
+        zero, zero, zero, a10, a11, a12,
+        zero, zero, zero, a20, a21, a22,
+    ], axis=1).reshape(-1, 6, 6)  # fmt: skip
+    return e, J
 
 
 #: The joint kinds (Pinocchio's short names) whose Lie group JointLog evaluates, and that group.
