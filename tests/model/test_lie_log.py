@@ -157,4 +157,5 @@ def test_joint_log_of_many_rows_is_the_single_evaluation_bitwise(kind):
         e_single, jacobian_single = log.evaluate(q)
         assert np.array_equal(e, e_single) and np.array_equal(jacobian, jacobian_single)
         assert np.array_equal(np.signbit(e), np.signbit(e_single))  # zeros of the same sign too
+        assert np.array_equal(np.signbit(jacobian), np.signbit(jacobian_single))
     assert not E[0].any() and np.array_equal(J[0], np.eye(model.nv))

@@ -180,28 +180,29 @@ class JointLog:
         series buckets) are taken per row by the single evaluation's own functions.
         Rows are C-contiguous (P, ...) stacks.
         """
-        e, J = _se3_log_many(*self._points(np.asarray(qs, dtype=float).T))
+        e, J = _se3_log_many(*self._points(np.ascontiguousarray(np.asarray(qs, dtype=float).T)))
         if self.name == "SE(3)":
             return e, J
         index = [3, 4, 5] if self.name == "SO(3)" else [0, 1, 5]
         return np.ascontiguousarray(e[:, index]), np.ascontiguousarray(J[:, index][:, :, index])
 
-    def _points(self, q: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray]]:
-        """:meth:`_point` of each column of ``q`` (nq_j, P): theta and p as three (P,) arrays each."""
-        zero = np.zeros(q.shape[1])
+    def _points(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_point` of each column of ``q`` (nq_j, P): theta and p (3, P)."""
         if self.name == "SO(3)":
-            return _quaternion_log_many(*_relative(self._rest, q)), [zero, zero, zero]
+            return _quaternion_log_many(*_relative_many(self._rest, q)), np.zeros((3, q.shape[1]))
         if self.name == "SE(3)":
-            (x0, y0, z0), quat0, (r00, r01, r02, r10, r11, r12, r20, r21, r22) = self._rest
-            dx, dy, dz = q[0] - x0, q[1] - y0, q[2] - z0
-            p = [r00 * dx + r01 * dy + r02 * dz, r10 * dx + r11 * dy + r12 * dz, r20 * dx + r21 * dy + r22 * dz]
-            return _quaternion_log_many(*_relative(quat0, q[3:])), p
+            position, quat0, rotation = self._rest
+            R0T = np.array(rotation).reshape(3, 3, 1)
+            delta = q[:3] - np.array(position).reshape(3, 1)
+            p = R0T[:, 0] * delta[0] + R0T[:, 1] * delta[1] + R0T[:, 2] * delta[2]
+            return _quaternion_log_many(*_relative_many(quat0, q[3:])), p
         x0, y0, c0, s0 = self._rest
         x1, y1, c1, s1 = q
         dx, dy = x1 - x0, y1 - y0
         sines, cosines = (c0 * s1 - s0 * c1).tolist(), (c0 * c1 + s0 * s1).tolist()
+        zero = np.zeros(q.shape[1])
         angle = np.array([math.atan2(s, c) for s, c in zip(sines, cosines)])
-        return [zero, zero, angle], [c0 * dx + s0 * dy, c0 * dy - s0 * dx, zero]
+        return np.stack([zero, zero, angle]), np.stack([c0 * dx + s0 * dy, c0 * dy - s0 * dx, zero])
 
 
 def _relative(a, b) -> tuple[float, float, float, float]:
@@ -216,54 +217,95 @@ def _relative(a, b) -> tuple[float, float, float, float]:
     )
 
 
-def _quaternion_log_many(w: np.ndarray, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> list[np.ndarray]:
-    """:func:`_quaternion_log` of each entry of (P,) arrays: theta as three (P,) arrays (exactly 0 where v = 0)."""
+def _beta_gamma_many(t2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`beta_gamma` of each entry of ``t2`` (P,): the same series bucket and Horner steps, on arrays.
+
+    Entries beyond the series (t >= 2, and NaN) take the single function itself (its closed forms).
+    """
+    b, g = np.empty(len(t2)), np.empty(len(t2))
+    done = np.zeros(len(t2), dtype=bool)
+    for limit, series_b, series_g in _BUCKETS:
+        rows = ~done & (t2 < limit)  # the first bucket that holds t^2, as the single function picks it
+        if rows.any():
+            ts = t2[rows]
+            bb, gg = np.zeros(len(ts)), np.zeros(len(ts))
+            for cb, cg in zip(series_b, series_g):
+                bb = bb * ts + cb
+                gg = gg * ts + cg
+            b[rows], g[rows] = bb, gg
+            done |= rows
+    for i in np.flatnonzero(~done).tolist():
+        b[i], g[i] = beta_gamma(float(t2[i]))
+    return b, g
+
+
+def _quaternion_log_many(w: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """:func:`_quaternion_log` of P quaternions, w (P,) and v (3, P): theta (3, P), exactly 0 where v = 0."""
+    x, y, z = v
     n = np.sqrt(x * x + y * y + z * z)
     angle = np.array([
         2.0 * math.atan2(ni, wi) if wi >= 0.0 else -2.0 * math.atan2(ni, -wi) for ni, wi in zip(n.tolist(), w.tolist())
     ])  # fmt: skip
     still = n == 0.0
     if still.any():
-        n[still] = 1.0  # the rows are set to exactly 0 below, as the single log returns them
-    theta = [angle * x / n, angle * y / n, angle * z / n]
+        n[still] = 1.0  # the columns are set to exactly 0 below, as the single log returns them
+    theta = angle * v / n
     if still.any():
-        for component in theta:
-            component[still] = 0.0
+        theta[:, still] = 0.0
     return theta
 
 
-def _se3_log_many(theta: list[np.ndarray], p: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`se3_log` of P points given as three (P,) arrays each: e (P, 6) and J_log (P, 6, 6), bitwise."""
+def _relative_many(a, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_relative` of the quaternion ``a`` (x, y, z, w floats) and the columns of ``b`` (4, P): w (P,), v (3, P).
+
+    The single function's pairs, entry for entry: w = aw bw + ax bx + ay by + az bz and
+    v = (aw b_v - a_v bw) + (a_k b_l - a_l b_k) with (k, l) = (z, y), (x, z), (y, x).
+    """
+    ax, ay, az, aw = a
+    w = aw * b[3] + ax * b[0] + ay * b[1] + az * b[2]
+    v = (aw * b[:3] - np.array([[ax], [ay], [az]]) * b[3]) + (
+        np.array([[az], [ax], [ay]]) * b[[1, 2, 0]] - np.array([[ay], [az], [ax]]) * b[[2, 0, 1]]
+    )
+    return w, v
+
+
+def _skew_many(v: np.ndarray, diagonal: np.ndarray) -> np.ndarray:
+    """[v]x of each column of v (3, P) with ``diagonal`` (P,) on its diagonal: (3, 3, P)."""
+    x, y, z = v
+    return np.stack([diagonal, -z, y, z, diagonal, -x, -y, x, diagonal]).reshape(3, 3, -1)
+
+
+def _se3_log_many(theta: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`se3_log` of P points, theta and p (3, P): e (P, 6) and J_log (P, 6, 6), bitwise.
+
+    Every entry is the single function's expression with the same association: the
+    products b theta_i theta_j, u_i theta_j, b p_i theta_j as outer products, the skew
+    terms added to the off-diagonal entries only (a -0.0 on the diagonal adds nothing,
+    not even to a zero's sign), D A as three rank-one sums in order.  The points run
+    along the last axis (long inner loops), transposed once at the end.
+    """
     x, y, z = theta
-    px, py, pz = p
     t2 = x * x + y * y + z * z
-    b, g = (np.array(values) for values in zip(*map(beta_gamma, t2.tolist())))
+    b, g = _beta_gamma_many(t2)
     d = 1.0 - b * t2
-    a00, a01, a02 = d + b * x * x, b * x * y - 0.5 * z, b * x * z + 0.5 * y
-    a10, a11, a12 = b * y * x + 0.5 * z, d + b * y * y, b * y * z - 0.5 * x
-    a20, a21, a22 = b * z * x - 0.5 * y, b * z * y + 0.5 * x, d + b * z * z
-    e = np.stack([a00 * px + a10 * py + a20 * pz, a01 * px + a11 * py + a21 * pz, a02 * px + a12 * py + a22 * pz,
-                  x, y, z], axis=1)  # fmt: skip
+    A = (b * theta)[:, None] * theta  # (b theta_i) theta_j, (3, 3, P)
+    A += _skew_many(0.5 * theta, d)  # d + b theta_i^2 on the diagonal, b theta_i theta_j -+ theta_k / 2 off it
+    e = np.empty((6, len(x)))
+    e[:3] = A[0] * p[0] + A[1] * p[1] + A[2] * p[2]  # W p, W = A^T
+    e[3:] = theta
+    px, py, pz = p
     tp = x * px + y * py + z * pz
-    ux, uy, uz = g * (x * tp - t2 * px), g * (y * tp - t2 * py), g * (z * tp - t2 * pz)
-    cx, cy, cz = y * pz - z * py, z * px - x * pz, x * py - y * px
-    btp = b * tp
-    d00, d01, d02 = ux * x - b * px * x + btp, -0.5 * pz + ux * y - b * px * y + b * cz, 0.5 * py + ux * z - b * px * z - b * cy
-    d10, d11, d12 = 0.5 * pz + uy * x - b * py * x - b * cz, uy * y - b * py * y + btp, -0.5 * px + uy * z - b * py * z + b * cx
-    d20, d21, d22 = -0.5 * py + uz * x - b * pz * x + b * cy, 0.5 * px + uz * y - b * pz * y - b * cx, uz * z - b * pz * z + btp
-    b00, b01, b02 = d00 * a00 + d01 * a10 + d02 * a20, d00 * a01 + d01 * a11 + d02 * a21, d00 * a02 + d01 * a12 + d02 * a22
-    b10, b11, b12 = d10 * a00 + d11 * a10 + d12 * a20, d10 * a01 + d11 * a11 + d12 * a21, d10 * a02 + d11 * a12 + d12 * a22
-    b20, b21, b22 = d20 * a00 + d21 * a10 + d22 * a20, d20 * a01 + d21 * a11 + d22 * a21, d20 * a02 + d21 * a12 + d22 * a22
-    zero = np.zeros(len(x))
-    J = np.stack([
-        a00, a01, a02, b00, b01, b02,
-        a10, a11, a12, b10, b11, b12,
-        a20, a21, a22, b20, b21, b22,
-        zero, zero, zero, a00, a01, a02,
-        zero, zero, zero, a10, a11, a12,
-        zero, zero, zero, a20, a21, a22,
-    ], axis=1).reshape(-1, 6, 6)  # fmt: skip
-    return e, J
+    u = g * (theta * tp - t2 * p)
+    c = np.stack([y * pz - z * py, z * px - x * pz, x * py - y * px])
+    D = u[:, None] * theta
+    D += _skew_many(0.5 * p, np.full(len(x), -0.0))  # [p]x / 2 first, off the diagonal: (p / 2) + u theta^T
+    D -= (b * p)[:, None] * theta
+    D += _skew_many(-(b * c), b * tp)  # b theta.p on the diagonal, -b [theta x p]x off it
+    J = np.zeros((6, 6, len(x)))
+    J[:3, :3] = A
+    J[3:, 3:] = A
+    J[:3, 3:] = D[:, 0, None] * A[0] + D[:, 1, None] * A[1] + D[:, 2, None] * A[2]
+    return np.ascontiguousarray(e.T), np.ascontiguousarray(J.transpose(2, 0, 1))
 
 
 #: The joint kinds (Pinocchio's short names) whose Lie group JointLog evaluates, and that group.
