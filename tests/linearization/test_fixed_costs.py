@@ -176,3 +176,29 @@ def test_batched_logs_of_multi_dof_springs_equal_single_calls(root):
         for name in ("M", "D", "G", "S", "N"):
             assert np.array_equal(getattr(sys, name), getattr(single, name)), name
         assert np.array_equal(sys.balancing, single.balancing)
+
+
+def test_chunks_share_the_batched_log_each_reading_its_own_rows(monkeypatch):
+    """With several chunks the log is evaluated once for the call: every point still gets its own (bitwise)."""
+    from pinlin.linearization import batch
+
+    robot = pinlin.load_example("solo12", free_flyer=True)
+    info = robot.joint("root_joint")
+    rest = pin.neutral(robot.model)
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("root_joint", 50.0, rest=rest[info.q_slice])])
+    rng = np.random.default_rng(29)
+    qs = []
+    for _ in range(7):
+        xi = np.zeros(robot.model.nv)
+        xi[info.v_slice] = 0.3 * rng.normal(size=6)
+        qs.append(pin.integrate(robot.model, rest, xi))
+    monkeypatch.setattr(batch, "CHUNK_ENTRIES", 3 * robot.model.nv**2)  # chunks of 3, 3 and 1 points
+    calls = []
+    evaluate_many = type(scene.groups[0].prepared[0][3]).evaluate_many
+    monkeypatch.setattr(type(scene.groups[0].prepared[0][3]), "evaluate_many",
+                        lambda log, rows: calls.append(len(rows)) or evaluate_many(log, rows))  # fmt: skip
+    many = pinlin.linearize_many(scene, np.array(qs), balancing=True)
+    assert calls == [7]  # once for the call, all rows
+    for q, sys in zip(qs, many):
+        single = pinlin.linearize(scene, q, balancing=True)
+        assert np.array_equal(sys.K, single.K) and np.array_equal(sys.balancing, single.balancing)

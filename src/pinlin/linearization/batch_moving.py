@@ -22,7 +22,7 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from ..model.evaluation import Evaluation, live_view, workspace
+from ..model.evaluation import BatchPoints, Evaluation, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
@@ -76,9 +76,13 @@ def _evaluate(scene: Scene, qs: np.ndarray):
     return tau, Q, K, C, M, pinocchio_K, pinocchio_C
 
 
-def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float,
-                     balancing: bool, elapsed0: float, clock) -> tuple[LinearizedSystem, ...]:  # fmt: skip
-    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
+def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
+                     elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
+
+    ``batch`` is taken for the paths' common call and not read: this path evaluates its
+    elements point by point on Evaluations (their own memo).
+    """
     plan = plan_of(scene)
     tau, Q, K, C, M, pinocchio_K, pinocchio_C = _evaluate(scene, qs)
     scale_C, scale_K = norms(pinocchio_C), norms(pinocchio_K)

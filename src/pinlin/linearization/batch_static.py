@@ -26,7 +26,7 @@ from itertools import repeat
 import numpy as np
 import pinocchio as pin
 
-from ..model.evaluation import crba_is_symmetric, live_view, workspace
+from ..model.evaluation import BatchPoints, crba_is_symmetric, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
@@ -86,15 +86,18 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
     return tau, K, M, calls
 
 
-def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float,
-                      balancing: bool, elapsed0: float, clock) -> tuple[LinearizedSystem, ...]:  # fmt: skip
-    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
+def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
+                      elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
+
+    ``batch``: the call's points, qs its chunk (the element groups' work shared by the chunks).
+    """
     plan = plan_of(scene)
     tau, K, M, calls = _pinocchio(scene, qs)
     scale_K = norms(K)
     Q = np.zeros(tau.shape)
     for group in scene.groups:
-        group.add_many(qs, Q, K)
+        group.add_many(qs, Q, K, batch)
     r = tau - Q
     force_scale, rel = relative_residuals(tau, Q, K, r, equilibrium_tol)
     rounding = scale_K if plan.symmetric_elements else scale_K + norms(K)

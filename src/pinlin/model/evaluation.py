@@ -24,7 +24,8 @@ import weakref
 import numpy as np
 import pinocchio as pin
 
-__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric", "live_view"]
+__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric", "live_view",
+           "BatchPoints"]
 
 #: ``data.oMf[i]`` costs about 1.1 us per frame (boost.python's proxy), ``data.oMf.tolist()``
 #: about 0.05 us per frame of the model: reading at least one frame in this many, convert them all.
@@ -361,3 +362,36 @@ class Evaluation:
                 group.add_elastic_stiffness(self, K)
             self._elastic = K
         return self._elastic
+
+
+class BatchPoints:
+    """The configurations of one :func:`pinlin.linearize_many` call, and what element groups compute once for all.
+
+    The stacked path takes the points in chunks (stacks that fit a cache); per-point work that
+    needs no stack (a multi-DOF spring's log, whose numpy calls cost more than the points)
+    runs once on every row through :meth:`memo`, each chunk reading its own ``rows``.  Owned
+    by one call, like an :class:`Evaluation`: never stored on a scene or a group.
+
+    Parameters
+    ----------
+    qs : (P, nq) ndarray
+        Every point of the call (checked configurations).
+    rows : slice
+        The rows of the chunk at hand (default: all).
+    """
+
+    __slots__ = ("qs", "rows", "_memo")
+
+    def __init__(self, qs: np.ndarray, rows: slice = slice(None), memo: dict | None = None):
+        self.qs, self.rows, self._memo = qs, rows, {} if memo is None else memo
+
+    def chunk(self, start: int, stop: int) -> BatchPoints:
+        """The same call's points, seen by the chunk of rows start:stop (one memo for all chunks)."""
+        return BatchPoints(self.qs, slice(start, stop), self._memo)
+
+    def memo(self, owner, build):
+        """``build()`` once per call and ``owner`` (an element group's log, ...), then the same value (all rows)."""
+        value = self._memo.get(owner)
+        if value is None:
+            value = self._memo[owner] = build()
+        return value

@@ -10,6 +10,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...numerics.arrays import readonly
+from ..evaluation import BatchPoints
 from ..numbers import numeric_array
 from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 from .lie_log import joint_log
@@ -193,11 +194,12 @@ class SpringGroup(ElementGroup):
 
     batched = True
 
-    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray) -> None:
+    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray, batch: BatchPoints | None = None) -> None:
         """:meth:`add_force` and :meth:`add_stiffness` at each row of ``qs`` (P, nq), into Q (P, nv) and K (P, nv, nv).
 
         A multi-DOF spring's log is evaluated once per row for both, as the single
-        call shares it through its evaluation.
+        call shares it through its evaluation; with ``batch`` (qs its chunk of rows)
+        once for all the call's rows.
         """
         if len(self.iv):
             force = self.k * (qs[:, self.q_index] - self.rest)
@@ -211,7 +213,12 @@ class SpringGroup(ElementGroup):
             self.diagonal.add_many(K, self.k)
         for qs_j, vs, rest, log, Ks, derivative in self.prepared:
             if derivative:  # the log of every row at once, then the single call's products row by row
-                for row, Kp, e, jacobian in zip(Q, K, *log.evaluate_many(qs[:, qs_j])):
+                if batch is None:
+                    E, J = log.evaluate_many(qs[:, qs_j])
+                else:
+                    E, J = batch.memo(log, lambda log=log, qs_j=qs_j: log.evaluate_many(batch.qs[:, qs_j]))
+                    E, J = E[batch.rows], J[batch.rows]
+                for row, Kp, e, jacobian in zip(Q, K, E, J):
                     view, block = row[vs], Kp[vs, vs]
                     view -= np.dot(Ks, e)
                     block += np.dot(Ks, jacobian)
