@@ -218,10 +218,13 @@ class SpringGroup(ElementGroup):
                 else:
                     E, J = batch.memo(log, lambda log=log, qs_j=qs_j: log.evaluate_many(batch.qs[:, qs_j]))
                     E, J = E[batch.rows], J[batch.rows]
-                for row, Kp, e, jacobian in zip(Q, K, E, J):
-                    view, block = row[vs], Kp[vs, vs]
-                    view -= np.dot(Ks, e)
-                    block += np.dot(Ks, jacobian)
+                forces, stiffnesses = np.empty(E.shape), np.empty(J.shape)
+                for e, jacobian, force, stiffness in zip(E, J, forces, stiffnesses):  # the single call's products
+                    np.dot(Ks, e, out=force)
+                    np.dot(Ks, jacobian, out=stiffness)
+                view, block = Q[:, vs], K[:, vs, vs]
+                view -= forces  # entry for entry the single call's updates, on all rows at once
+                block += stiffnesses
                 continue
             for q, row, Kp in zip(qs, Q, K):
                 view, block = row[vs], Kp[vs, vs]
