@@ -202,3 +202,18 @@ def test_chunks_share_the_batched_log_each_reading_its_own_rows(monkeypatch):
     for q, sys in zip(qs, many):
         single = pinlin.linearize(scene, q, balancing=True)
         assert np.array_equal(sys.K, single.K) and np.array_equal(sys.balancing, single.balancing)
+
+
+@pytest.mark.parametrize("n", [3, 6])
+def test_stacked_products_are_the_single_calls_dot_row_by_row(n):
+    """linearize_many's spring products (np.matmul on stacks) against np.dot per row, bitwise, with entries
+    spread over many decades (where a different summation order would show)."""
+    rng = np.random.default_rng(31 + n)
+    for _ in range(20):
+        Ks = rng.normal(size=(n, n)) * 10.0 ** rng.uniform(-3, 3, size=(n, n))
+        P = int(rng.integers(1, 60))
+        E = rng.normal(size=(P, n)) * 10.0 ** rng.uniform(-8, 2, size=(P, n))
+        J = rng.normal(size=(P, n, n)) * 10.0 ** rng.uniform(-4, 4, size=(P, n, n))
+        forces, stiffnesses = np.matmul(Ks, E[:, :, None])[:, :, 0], np.matmul(Ks, J)
+        for p in range(P):
+            assert np.array_equal(forces[p], np.dot(Ks, E[p])) and np.array_equal(stiffnesses[p], np.dot(Ks, J[p]))

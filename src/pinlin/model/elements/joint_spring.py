@@ -218,10 +218,9 @@ class SpringGroup(ElementGroup):
                 else:
                     E, J = batch.memo(log, lambda log=log, qs_j=qs_j: log.evaluate_many(batch.qs[:, qs_j]))
                     E, J = E[batch.rows], J[batch.rows]
-                forces, stiffnesses = np.empty(E.shape), np.empty(J.shape)
-                for e, jacobian, force, stiffness in zip(E, J, forces, stiffnesses):  # the single call's products
-                    np.dot(Ks, e, out=force)
-                    np.dot(Ks, jacobian, out=stiffness)
+                # the single call's products row by row: matmul hands each matrix of a stack to the BLAS
+                # routine np.dot calls for one (gemv, gemm), with the same arguments
+                forces, stiffnesses = np.matmul(Ks, E[:, :, None])[:, :, 0], np.matmul(Ks, J)
                 view, block = Q[:, vs], K[:, vs, vs]
                 view -= forces  # entry for entry the single call's updates, on all rows at once
                 block += stiffnesses
