@@ -32,6 +32,7 @@ import pinocchio as pin
 
 from ..model.evaluation import Evaluation, Workspace, symmetric_from_upper
 from ..model.scene import Scene
+from ..numerics.arrays import HALF
 from ..numerics.norms import fro
 from .plan import plan_of
 
@@ -114,7 +115,7 @@ def _dynamics(ev: Evaluation, fext, stiffness: bool, derivatives: bool, a: np.nd
         if not derivatives:
             return np.array(ev.call("rnea", pin.rnea, model, data, q, ev.v, zero, *extra)), None, None, None
         dq, dv, Mu = ev.call("computeRNEADerivatives", pin.computeRNEADerivatives, model, data, q, ev.v, zero, *extra)
-        ev.provide_mass_matrix(symmetric_from_upper(Mu, ev.ws.lower))  # views of Data: copied
+        ev.provide_mass_matrix(symmetric_from_upper(Mu, ev.ws))  # views of Data: copied
         return data.tau.copy(), np.array(dq), np.array(dv), ev.mass_matrix()
     if fext is not None:
         if stiffness:  # the binding returns a fresh array
@@ -170,7 +171,7 @@ def assemble(
                 coriolis_D = C
             else:
                 coriolis_D = C + C.T.copy()  # (C + C^T) / 2; the contiguous copy makes the sum cheaper
-                coriolis_D *= 0.5
+                coriolis_D *= HALF
     elif damping:  # at rest: C is the elements' damping alone
         if plan.rest_damping is None:
             C = np.zeros((nv, nv))

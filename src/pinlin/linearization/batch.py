@@ -26,6 +26,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ConfigurationError
+from ..model.evaluation import BatchPoints
 from ..model.scene import UNIT_NORM_MIN, Scene
 from . import batch_moving, batch_static
 from .linearize import linearize
@@ -116,9 +117,11 @@ def linearize_many(
     points = configurations(scene, rows)
     tol = plan_of(scene).structure_tol if structure_tol is None else float(structure_tol)
     step = max(1, CHUNK_ENTRIES // scene.model.nv**2)
+    batch = BatchPoints(points)  # what the element groups compute once for every chunk
     systems: tuple[LinearizedSystem, ...] = ()
     for start in range(0, len(points), step):  # the first chunk's time includes the checks above
-        systems += path(scene, points[start : start + step], equilibrium_tol, tol, balancing, t0, time.perf_counter)
+        chunk = batch.chunk(start, start + step)
+        systems += path(scene, points[chunk.rows], equilibrium_tol, tol, balancing, t0, time.perf_counter, chunk)
         t0 = time.perf_counter()
     return systems
 

@@ -16,6 +16,7 @@ every decision is the single call's.
 from __future__ import annotations
 
 import math
+from itertools import repeat
 
 import numpy as np
 
@@ -27,7 +28,8 @@ from .checks import check_equilibrium, check_finite_and_mass, check_mass
 from .plan import plan_of
 from .system import LinearizedSystem
 
-__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "Systems", "TINY"]
+__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "rows_or_zero",
+           "Systems", "TINY"]
 
 TINY = float(np.finfo(float).tiny)
 
@@ -128,41 +130,60 @@ def _assembly(residual: np.ndarray, force_scale: float) -> Assembly:
                     rounding_scale_C=0.0, rounding_scale_K=0.0, coriolis_D=None, calls=[])  # fmt: skip
 
 
+def rows_or_zero(X: np.ndarray, sizes: list[float], tol: float, name: str, zero: np.ndarray, dropped: list[dict]):
+    """The rows of the stack X, each whose size is at or below ``tol`` replaced by ``zero`` (the single call's skew test).
+
+    A nonzero size so replaced goes to ``dropped[p][name]``, as the single call reports
+    it.  Returns X itself when no row is replaced (the usual case), else a list.
+    """
+    small = [p for p, size in enumerate(sizes) if size <= tol]
+    if not small:
+        return X
+    rows = list(X)
+    for p in small:
+        rows[p] = zero
+        if sizes[p]:
+            dropped[p][name] = sizes[p]
+    return rows
+
+
 class Systems:
     """Builds the batch's LinearizedSystem objects: what is common to all points, once.
 
-    The first system comes from :meth:`LinearizedSystem.trusted`; the others are
-    copies of its attribute dictionary with the per-point entries replaced (the
-    matrices, q, the figures, ``dropped``, ``notes``, ``balancing``), so every
-    system holds the same attributes as the single call's, without re-forming the
-    shared tuples and dictionaries per point.  Every array handed in must be
-    read-only already (rows of the batch's read-only stacks, shared read-only views).
+    Each system is a copy of the scene's template (:func:`~.templates.system_template`,
+    kept by its plan) with the batch's ``calls``, ``notes`` and ``elapsed`` filled in
+    once, then the per-point entries (the matrices, q, the figures, ``dropped``, and
+    with ``balancing`` the notes and the actuator forces): the same attributes, in the
+    same order, as the single call's.  Every array handed in must be read-only
+    already (rows of the batch's read-only stacks, shared read-only views).
     """
 
-    __slots__ = ("scene", "calls", "notes", "elapsed", "balancing", "template")
+    __slots__ = ("template", "notes", "balancing")
 
     def __init__(self, scene: Scene, calls: tuple, notes: tuple, elapsed: float, balancing: bool):
-        self.scene, self.calls, self.notes, self.elapsed, self.balancing = scene, calls, notes, elapsed, balancing
-        self.template: dict | None = None
+        template = plan_of(scene).template.copy()
+        template["calls"], template["notes"], template["elapsed"] = calls, notes, elapsed
+        self.template, self.notes, self.balancing = template, notes, balancing
 
-    def at(self, M, D, G, S, N, q, rel: float, r, dropped: dict) -> LinearizedSystem:
-        """The system of one point: ``r`` its residual on the free coordinates (kept with ``balancing``)."""
-        notes = self.notes
-        if self.balancing:
-            notes = notes + (f"held at q by constant actuator forces (relative residual {rel:.2e})",)
-        balancing = r if self.balancing else None
-        if self.template is None:
-            system = LinearizedSystem.trusted(
-                M, D, G, S, N, dof_names=self.scene.dof_names, q=q, v=self.scene.v0, residual=rel,
-                balancing=balancing, elapsed=self.elapsed, calls=self.calls, dropped=dropped, notes=notes,
-                method="analytic", frozen=True,
-            )  # fmt: skip
-            self.template = dict(vars(system))
-            return system
-        attributes = self.template.copy()
-        attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = M, D, G, S, N
-        attributes["q"], attributes["residual"], attributes["balancing"] = q, rel, balancing
-        attributes["dropped"], attributes["notes"] = dropped, notes
-        system = object.__new__(LinearizedSystem)
-        object.__setattr__(system, "__dict__", attributes)
-        return system
+    def build(self, M, D, G, S, N, qs, rel: list[float], r, dropped: list[dict]) -> tuple[LinearizedSystem, ...]:
+        """The systems of all points.
+
+        Each of M, D, G, S, N, qs and r iterates over the points (a stack's rows, a list,
+        or ``itertools.repeat`` of one shared array); ``r`` holds the residuals on the free
+        coordinates (kept with ``balancing``), ``rel`` the relative residuals,
+        ``dropped`` one dictionary per point (taken over).
+        """
+        template, new, cls = self.template, object.__new__, LinearizedSystem
+        residuals = r if self.balancing else repeat(None)  # no row views when they are not kept
+        out = []
+        for Mi, Di, Gi, Si, Ni, q, rel_i, ri, dropped_i in zip(M, D, G, S, N, qs, rel, residuals, dropped):
+            attributes = template.copy()
+            attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = Mi, Di, Gi, Si, Ni
+            attributes["q"], attributes["residual"], attributes["dropped"] = q, rel_i, dropped_i
+            if self.balancing:
+                attributes["balancing"] = ri
+                attributes["notes"] = self.notes + (f"held at q by constant actuator forces (relative residual {rel_i:.2e})",)
+            system = new(cls)
+            object.__setattr__(system, "__dict__", attributes)
+            out.append(system)
+        return tuple(out)

@@ -22,10 +22,10 @@ from __future__ import annotations
 import numpy as np
 import pinocchio as pin
 
-from ..model.evaluation import Evaluation, workspace
+from ..model.evaluation import BatchPoints, Evaluation, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
+from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -60,9 +60,10 @@ def _evaluate(scene: Scene, qs: np.ndarray):
     zero = np.zeros(nv)
     tau, pinocchio_K, pinocchio_C, upper = (np.empty((P, nv)),) + tuple(np.empty((P, nv, nv)) for _ in range(3))
     derivatives = pin.computeRNEADerivatives
+    view, live = live_view(data, "tau")
     for q, t, k, c, m in zip(qs, tau, pinocchio_K, pinocchio_C, upper):
         k[...], c[...], m[...] = derivatives(model, data, q, v0, zero, *extra)  # views of Data: copied
-        t[...] = data.tau
+        t[...] = view if live else data.tau
     M = np.where(ws.lower, upper.transpose(0, 2, 1), upper)  # symmetric_from_upper on every point at once
     Q, K, C = np.zeros((P, nv)), pinocchio_K.copy(), pinocchio_C.copy()
     groups = scene.groups
@@ -75,9 +76,13 @@ def _evaluate(scene: Scene, qs: np.ndarray):
     return tau, Q, K, C, M, pinocchio_K, pinocchio_C
 
 
-def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float,
-                     balancing: bool, elapsed0: float, clock) -> tuple[LinearizedSystem, ...]:  # fmt: skip
-    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
+def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
+                     elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
+
+    ``batch`` is taken for the paths' common call and not read: this path evaluates its
+    elements point by point on Evaluations (their own memo).
+    """
     plan = plan_of(scene)
     tau, Q, K, C, M, pinocchio_K, pinocchio_C = _evaluate(scene, qs)
     scale_C, scale_K = norms(pinocchio_C), norms(pinocchio_K)
@@ -99,23 +104,14 @@ def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: 
         a.flags.writeable = False
     zero = np.zeros(S.shape[1:])
     zero.flags.writeable = False
+    dropped: list[dict[str, float]] = [{} for _ in range(len(qs))]  # in the single call's order: N, Coriolis D, G
+    N = rows_or_zero(N, N_sizes.tolist(), tol, "N", zero, dropped)
+    for p, size in enumerate(D_sizes.tolist()):
+        if size <= tol and size:
+            dropped[p]["D (Coriolis rounding)"] = size
+    G = rows_or_zero(G, G_sizes.tolist(), tol, "G", zero, dropped)
     systems = Systems(scene, ("computeRNEADerivatives",), plan.proof_notes, (clock() - elapsed0) / len(qs), balancing)
-    out = []
-    sizes = zip(N_sizes.tolist(), D_sizes.tolist(), G_sizes.tolist())
-    for Mi, Di, Gi, Si, Ni, q, rel_i, ri, (N_size, D_size, G_size) in zip(M, D, G, S, N, qs, rel.tolist(), r, sizes):
-        dropped: dict[str, float] = {}  # in the single call's order: N, then the Coriolis D, then G
-        if N_size <= tol:
-            if N_size:
-                dropped["N"] = N_size
-            Ni = zero
-        if D_size <= tol and D_size:
-            dropped["D (Coriolis rounding)"] = D_size
-        if G_size <= tol:
-            if G_size:
-                dropped["G"] = G_size
-            Gi = zero
-        out.append(systems.at(Mi, Di, Gi, Si, Ni, q, rel_i, ri, dropped))
-    return tuple(out)
+    return systems.build(M, D, G, S, N, qs, rel.tolist(), r, dropped)
 
 
 def _split_damping(plan, C: np.ndarray, pinocchio_C: np.ndarray, scale_C: np.ndarray, tol: float):

@@ -21,13 +21,15 @@ are the single call's.
 
 from __future__ import annotations
 
+from itertools import repeat
+
 import numpy as np
 import pinocchio as pin
 
-from ..model.evaluation import crba_is_symmetric, workspace
+from ..model.evaluation import BatchPoints, crba_is_symmetric, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals
+from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -61,15 +63,17 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
     crba = pin.crba
     if fext is not None:
         calls, derivatives = ("computeStaticTorqueDerivatives", "crba"), pin.computeStaticTorqueDerivatives
+        view, live = live_view(data, "tau")
         for q, t, k, m in zip(qs, tau, K, M):
             k[...] = derivatives(model, data, q, fext)
-            t[...] = data.tau
+            t[...] = view if live else data.tau
             m[...] = crba(model, data, q)
     elif scene.has_gravity:
         calls, derivatives = ("computeGeneralizedGravityDerivatives", "crba"), pin.computeGeneralizedGravityDerivatives
+        view, live = live_view(data, "g")
         for q, t, k, m in zip(qs, tau, K, M):
             k[...] = derivatives(model, data, q)
-            t[...] = data.g
+            t[...] = view if live else data.g
             m[...] = crba(model, data, q)
     else:
         calls = ("crba",)
@@ -82,15 +86,18 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
     return tau, K, M, calls
 
 
-def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float,
-                      balancing: bool, elapsed0: float, clock) -> tuple[LinearizedSystem, ...]:  # fmt: skip
-    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`."""
+def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
+                      elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+    """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
+
+    ``batch``: the call's points, qs its chunk (the element groups' work shared by the chunks).
+    """
     plan = plan_of(scene)
     tau, K, M, calls = _pinocchio(scene, qs)
     scale_K = norms(K)
     Q = np.zeros(tau.shape)
     for group in scene.groups:
-        group.add_many(qs, Q, K)
+        group.add_many(qs, Q, K, batch)
     r = tau - Q
     force_scale, rel = relative_residuals(tau, Q, K, r, equilibrium_tol)
     rounding = scale_K if plan.symmetric_elements else scale_K + norms(K)
@@ -108,15 +115,10 @@ def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol:
     D, G = plan.rest_damping.split(tol, damped)  # read-only views, one pair for the batch
     zero = np.zeros(S.shape[1:])
     zero.flags.writeable = False
+    dropped: list[dict[str, float]] = [{} for _ in range(len(qs))]
+    N = rows_or_zero(N, sizes.tolist(), tol, "N", zero, dropped)  # "N" first, as split_stiffness runs first
+    if damped:
+        for entry in dropped:
+            entry.update(damped)
     systems = Systems(scene, calls, (), (clock() - elapsed0) / len(qs), balancing)
-    out = []
-    for Mi, Si, Ni, q, size, rel_i, ri in zip(M, S, N, qs, sizes.tolist(), rel.tolist(), r):
-        dropped: dict[str, float] = {}
-        if size <= tol:
-            if size:
-                dropped["N"] = size  # first, as split_stiffness runs before split_damping
-            Ni = zero
-        if damped:
-            dropped.update(damped)
-        out.append(systems.at(Mi, D, G, Si, Ni, q, rel_i, ri, dropped))
-    return tuple(out)
+    return systems.build(M, repeat(D), repeat(G), S, N, qs, rel.tolist(), r, dropped)

@@ -29,6 +29,7 @@ from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan, plan_of
 from .split import split_damping as _split_damping
 from .split import split_stiffness as _split_stiffness
 from .system import LinearizedSystem
+from .templates import system_from_template
 
 __all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES", "STRUCTURE_EPS_FACTOR"]
 
@@ -169,18 +170,9 @@ def linearize(
     D, G = _split_damping(C, base, plan, tol, dropped)
     if balancing:
         notes.append(f"held at q by constant actuator forces (relative residual {rel:.2e})")
-    return LinearizedSystem.trusted(
-        M, D, G, S, N,
-        dof_names=scene.dof_names,
-        q=q,
-        v=scene.v0,
-        residual=rel,
-        balancing=r.copy() if balancing else None,
-        elapsed=time.perf_counter() - t0,
-        calls=tuple(calls),
-        dropped=dropped,
-        notes=tuple(notes),
-        method="analytic",
+    return system_from_template(
+        plan.template, M, D, G, S, N, q, rel, r.copy() if balancing else None, time.perf_counter() - t0,
+        tuple(calls), dropped, tuple(notes),
     )  # fmt: skip
 
 

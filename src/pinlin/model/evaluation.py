@@ -24,7 +24,8 @@ import weakref
 import numpy as np
 import pinocchio as pin
 
-__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric"]
+__all__ = ["Workspace", "workspace", "Evaluation", "symmetric_from_upper", "crba_is_symmetric", "live_view",
+           "BatchPoints"]
 
 #: ``data.oMf[i]`` costs about 1.1 us per frame (boost.python's proxy), ``data.oMf.tolist()``
 #: about 0.05 us per frame of the model: reading at least one frame in this many, convert them all.
@@ -33,14 +34,18 @@ _TRANSLATION = operator.attrgetter("translation")
 _HOMOGENEOUS = operator.attrgetter("homogeneous")
 
 
-def symmetric_from_upper(a: np.ndarray, lower: np.ndarray) -> np.ndarray:
-    """A copy of ``a`` with its strictly lower triangle mirrored from the upper one.
+def symmetric_from_upper(a: np.ndarray, ws: Workspace) -> np.ndarray:
+    """A copy of ``a`` (C order) with its strictly lower triangle mirrored from the upper one.
 
     Pinocchio's C++ ``crba`` (and ``computeRNEADerivatives``' M) fill only the upper
-    triangle of M.  ``lower`` is :attr:`Workspace.lower`: the (nv x nv) boolean mask
-    of the strict lower triangle.
+    triangle of M.  The entries are ``np.where(ws.lower, a.T, a)``'s, bitwise; the
+    mirror is one copy and one flat-index assignment (:attr:`Workspace.below` and
+    :attr:`Workspace.above`), half the cost of ``np.where`` on a small matrix.
     """
-    return np.where(lower, a.T, a)  # one pass, a fresh array
+    M = a.copy()  # C order: its flat view below is not a copy
+    flat = M.reshape(-1)
+    flat[ws.below] = flat[ws.above]
+    return M
 
 
 @functools.cache
@@ -62,6 +67,19 @@ def crba_is_symmetric() -> bool:
     return bool(M[0, 1] != 0 and M[1, 0] == M[0, 1] and M.flags.owndata)
 
 
+def live_view(data: pin.Data, name: str) -> tuple[np.ndarray, bool]:
+    """(``getattr(data, name)``, whether that array follows every later pass): a loop reads it once.
+
+    eigenpy hands out Data's vectors (``tau``, ``g``) as arrays on Data's own memory,
+    which each algorithm rewrites in place, so one view read before a loop over points
+    holds each pass's values after it (reading the attribute costs about as much as
+    copying a small vector).  Decided by whether a second read shares its memory;
+    when it does not (a binding that copies), read the attribute after each pass.
+    """
+    view = getattr(data, name)
+    return view, bool(np.shares_memory(view, getattr(data, name)))
+
+
 class Workspace:
     """Pinocchio ``Data`` for one robot's models (every scene of it), owned by one thread.
 
@@ -76,13 +94,17 @@ class Workspace:
         Pinocchio's data would not fit in the memory allowed.
     """
 
-    __slots__ = ("model", "data", "lower", "__weakref__")
+    __slots__ = ("model", "data", "lower", "below", "above", "__weakref__")
 
     def __init__(self, scene):
         self.model = scene.model
         self.data = scene.robot.create_data(scene.model, scene.memory_limit)
         #: Mask of M's strict lower triangle, for mirroring Pinocchio's upper-triangular M in one pass.
         self.lower = np.tri(scene.model.nv, k=-1, dtype=bool)
+        #: Flat indices of the strict lower triangle of an (nv x nv) C-order matrix, and of its mirror images.
+        rows, cols = np.nonzero(self.lower)
+        self.below = rows * scene.model.nv + cols
+        self.above = cols * scene.model.nv + rows
 
 
 _local = threading.local()
@@ -321,7 +343,7 @@ class Evaluation:
         """The full mass matrix M(q) (nv x nv), exactly symmetric."""
         if self._mass is None:
             M = self.call("crba", pin.crba, self.model, self.data, self.q)
-            self._mass = M if crba_is_symmetric() else symmetric_from_upper(M, self.ws.lower)
+            self._mass = M if crba_is_symmetric() else symmetric_from_upper(M, self.ws)
         return self._mass
 
     def provide_mass_matrix(self, M: np.ndarray) -> None:
@@ -340,3 +362,36 @@ class Evaluation:
                 group.add_elastic_stiffness(self, K)
             self._elastic = K
         return self._elastic
+
+
+class BatchPoints:
+    """The configurations of one :func:`pinlin.linearize_many` call, and what element groups compute once for all.
+
+    The stacked path takes the points in chunks (stacks that fit a cache); per-point work that
+    needs no stack (a multi-DOF spring's log, whose numpy calls cost more than the points)
+    runs once on every row through :meth:`memo`, each chunk reading its own ``rows``.  Owned
+    by one call, like an :class:`Evaluation`: never stored on a scene or a group.
+
+    Parameters
+    ----------
+    qs : (P, nq) ndarray
+        Every point of the call (checked configurations).
+    rows : slice
+        The rows of the chunk at hand (default: all).
+    """
+
+    __slots__ = ("qs", "rows", "_memo")
+
+    def __init__(self, qs: np.ndarray, rows: slice = slice(None), memo: dict | None = None):
+        self.qs, self.rows, self._memo = qs, rows, {} if memo is None else memo
+
+    def chunk(self, start: int, stop: int) -> BatchPoints:
+        """The same call's points, seen by the chunk of rows start:stop (one memo for all chunks)."""
+        return BatchPoints(self.qs, slice(start, stop), self._memo)
+
+    def memo(self, owner, build):
+        """``build()`` once per call and ``owner`` (an element group's log, ...), then the same value (all rows)."""
+        value = self._memo.get(owner)
+        if value is None:
+            value = self._memo[owner] = build()
+        return value

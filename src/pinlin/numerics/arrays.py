@@ -15,7 +15,13 @@ import numpy as np
 
 from ..errors import ParameterError
 
-__all__ = ["readonly", "check_times", "check_vector", "check_samples"]
+__all__ = ["readonly", "HALF", "check_times", "check_vector", "check_samples"]
+
+#: 0.5 as a read-only 0-d float64 array, for halving small arrays in place (``A *= HALF``): the same
+#: product as ``A *= 0.5``, bitwise, at about half the cost (numpy 2 promotes a Python float operand
+#: on every call, which costs as much as the ufunc on a 9 x 9 matrix).
+HALF = np.array(0.5)
+HALF.flags.writeable = False
 
 
 def readonly(a, dtype=None) -> np.ndarray | None:

@@ -177,10 +177,12 @@ class ElementGroup:
         default group, which asks each element at each point; groups that know
         better (joint springs and dampers) say so.
     batched : bool
-        True when the group implements ``add_many(qs, Q, K)``: its forces at rest
-        (v = 0) and stiffness at P configurations at once (Q (P, nv), K (P, nv, nv)),
+        True when the group implements ``add_many(qs, Q, K, batch=None)``: its forces at
+        rest (v = 0) and stiffness at P configurations at once (Q (P, nv), K (P, nv, nv)),
         for :func:`pinlin.linearize_many`; each point's values are bitwise those of
-        :meth:`add_force` and :meth:`add_stiffness`.  False for the default group.
+        :meth:`add_force` and :meth:`add_stiffness`.  ``batch`` (a
+        :class:`~pinlin.model.evaluation.BatchPoints`, qs its chunk) lets a group compute
+        once for all the call's points.  False for the default group.
     """
 
     batched = False

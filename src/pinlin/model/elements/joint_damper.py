@@ -96,7 +96,7 @@ class DamperGroup(ElementGroup):
 
     batched = True
 
-    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray) -> None:
+    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray, batch=None) -> None:
         """Forces at rest (v = 0) and stiffness at each row of ``qs``: none."""
 
     def add_damping(self, ev, C: np.ndarray) -> None:

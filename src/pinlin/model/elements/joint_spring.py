@@ -10,6 +10,7 @@ import pinocchio as pin
 
 from ...errors import ParameterError
 from ...numerics.arrays import readonly
+from ..evaluation import BatchPoints
 from ..numbers import numeric_array
 from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 from .lie_log import joint_log
@@ -193,11 +194,12 @@ class SpringGroup(ElementGroup):
 
     batched = True
 
-    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray) -> None:
+    def add_many(self, qs: np.ndarray, Q: np.ndarray, K: np.ndarray, batch: BatchPoints | None = None) -> None:
         """:meth:`add_force` and :meth:`add_stiffness` at each row of ``qs`` (P, nq), into Q (P, nv) and K (P, nv, nv).
 
         A multi-DOF spring's log is evaluated once per row for both, as the single
-        call shares it through its evaluation.
+        call shares it through its evaluation; with ``batch`` (qs its chunk of rows)
+        once for all the call's rows.
         """
         if len(self.iv):
             force = self.k * (qs[:, self.q_index] - self.rest)
@@ -210,18 +212,26 @@ class SpringGroup(ElementGroup):
                 np.subtract.at(Q.T, self.iv, force.T)
             self.diagonal.add_many(K, self.k)
         for qs_j, vs, rest, log, Ks, derivative in self.prepared:
+            if derivative:  # the log of every row at once, then the single call's products row by row
+                if batch is None:
+                    E, J = log.evaluate_many(qs[:, qs_j])
+                else:
+                    E, J = batch.memo(log, lambda log=log, qs_j=qs_j: log.evaluate_many(batch.qs[:, qs_j]))
+                    E, J = E[batch.rows], J[batch.rows]
+                # the single call's products row by row: matmul hands each matrix of a stack to the BLAS
+                # routine np.dot calls for one (gemv, gemm), with the same arguments
+                forces, stiffnesses = np.matmul(Ks, E[:, :, None])[:, :, 0], np.matmul(Ks, J)
+                view, block = Q[:, vs], K[:, vs, vs]
+                view -= forces  # entry for entry the single call's updates, on all rows at once
+                block += stiffnesses
+                continue
             for q, row, Kp in zip(qs, Q, K):
                 view, block = row[vs], Kp[vs, vs]
                 if log is None:
                     view -= np.dot(Ks, q[qs_j] - rest)
-                    block += Ks
-                elif derivative:
-                    e, jacobian = log.evaluate(q[qs_j])
-                    view -= np.dot(Ks, e)
-                    block += np.dot(Ks, jacobian)
                 else:
                     view -= np.dot(Ks, log.difference(q[qs_j]))
-                    block += Ks
+                block += Ks
 
     def add_damping(self, ev, C: np.ndarray) -> None:
         """Springs add no damping."""
@@ -261,6 +271,11 @@ class _GroupLog:
 
     def evaluate(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return self.difference(q), self.jacobian(q)
+
+    def evaluate_many(self, qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`evaluate` at each row of ``qs`` (P, nq_j), stacked: (P, nv_j) and (P, nv_j, nv_j)."""
+        pairs = [self.evaluate(q) for q in qs]
+        return np.array([e for e, _ in pairs]), np.array([jacobian for _, jacobian in pairs])
 
 
 def _lie_log(joint: pin.JointModel, rest: np.ndarray):

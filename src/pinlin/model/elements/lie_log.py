@@ -32,6 +32,7 @@ import math
 import numpy as np
 import pinocchio as pin
 
+from ...numerics.arrays import readonly
 from .se3 import SERIES_COEFFICIENTS
 
 __all__ = ["beta_gamma", "se3_log", "JointLog", "joint_log", "curved_joints", "exp_chart_rate", "SERIES_BELOW"]
@@ -127,7 +128,7 @@ class JointLog:
     exactly, as with Pinocchio.
     """
 
-    __slots__ = ("name", "_rest")
+    __slots__ = ("name", "_rest", "_columns")
 
     def __init__(self, name: str, rest: np.ndarray):
         self.name = name  # the Lie group, as Pinocchio names it
@@ -136,6 +137,18 @@ class JointLog:
             self._rest = (tuple(rest[:3].tolist()), tuple(rest[3:].tolist()), tuple(R0.T.ravel().tolist()))
         else:  # SO(3): (qx, qy, qz, qw); SE(2): (x, y, cos, sin)
             self._rest = tuple(rest.tolist())
+        self._columns = self._batch_constants()
+
+    def _batch_constants(self) -> tuple | None:
+        """The rest as the column arrays :meth:`evaluate_many` multiplies with (read-only); None on SE(2)."""
+        if self.name == "SE(2)":
+            return None
+        ax, ay, az, aw = self._rest[1] if self.name == "SE(3)" else self._rest
+        columns = ([aw, ax, ay, az], [ax, ay, az], [az, ax, ay], [ay, az, ax])
+        quaternion = tuple(readonly(np.reshape(c, (-1, 1))) for c in columns)
+        if self.name == "SO(3)":
+            return quaternion
+        return readonly(np.reshape(self._rest[0], (3, 1))), readonly(np.reshape(self._rest[2], (3, 3, 1))), quaternion
 
     def _point(self, q: np.ndarray) -> tuple[list[float], list[float]]:
         """(theta, p) of X = rest^{-1} q, theta = log3 of X's rotation (its axis times its angle)."""
@@ -171,6 +184,35 @@ class JointLog:
         """de/dq = J_log(rest^{-1} q) (nv_j x nv_j)."""
         return self.evaluate(q)[1]
 
+    def evaluate_many(self, qs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`evaluate` at each row of ``qs`` (P, nq_j): e (P, nv_j) and de/dq (P, nv_j, nv_j), C-contiguous, bitwise.
+
+        The single evaluation's operations in its order on arrays of all rows (IEEE arithmetic and
+        ``np.sqrt`` round as Python's floats do); atan2 and the closed forms of beta, gamma per row.
+        """
+        e, J = _se3_log_many(*self._points(np.ascontiguousarray(np.asarray(qs, dtype=float).T)))
+        if self.name == "SE(3)":
+            return e, J
+        index = [3, 4, 5] if self.name == "SO(3)" else [0, 1, 5]
+        return np.ascontiguousarray(e[:, index]), np.ascontiguousarray(J[:, index][:, :, index])
+
+    def _points(self, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`_point` of each column of ``q`` (nq_j, P): theta and p (3, P)."""
+        if self.name == "SO(3)":
+            return _quaternion_log_many(*_relative_many(self._columns, q)), np.zeros((3, q.shape[1]))
+        if self.name == "SE(3)":
+            position, R0T, quaternion = self._columns
+            rotated = R0T * (q[:3] - position)  # r_ij (q_j - x_j), summed over j in order
+            p = rotated[:, 0] + rotated[:, 1] + rotated[:, 2]
+            return _quaternion_log_many(*_relative_many(quaternion, q[3:])), p
+        x0, y0, c0, s0 = self._rest
+        x1, y1, c1, s1 = q
+        dx, dy = x1 - x0, y1 - y0
+        sines, cosines = (c0 * s1 - s0 * c1).tolist(), (c0 * c1 + s0 * s1).tolist()
+        zero = np.zeros(q.shape[1])
+        angle = np.array([math.atan2(s, c) for s, c in zip(sines, cosines)])
+        return np.stack([zero, zero, angle]), np.stack([c0 * dx + s0 * dy, c0 * dy - s0 * dx, zero])
+
 
 def _relative(a, b) -> tuple[float, float, float, float]:
     """(w, x, y, z) of conj(a) b for quaternions a, b given as (x, y, z, w) (Pinocchio's order)."""
@@ -182,6 +224,98 @@ def _relative(a, b) -> tuple[float, float, float, float]:
         (aw * by - ay * bw) + (ax * bz - az * bx),
         (aw * bz - az * bw) + (ay * bx - ax * by),
     )
+
+
+#: For :meth:`JointLog.evaluate_many` (read-only): the buckets' limits of t^2 and Horner coefficients of (beta,
+#: gamma) as (terms, 2, 1) arrays; the signs of [v]x and [-v]x from (d, v_z, v_y, v_z, d, v_x, v_y, v_x, d);
+#: theta x p = theta[next] p[prev] - theta[prev] p[next]; 0-d operands (cheaper than Python floats, the same products).
+_LIMITS = readonly([limit for limit, _, _ in _BUCKETS])
+_HORNER = tuple(readonly(np.array(list(zip(series_b, series_g)))[:, :, None]) for _, series_b, series_g in _BUCKETS)
+_SKEW, _NEGATIVE_SKEW = readonly([[1, -1, 1, 1, 1, -1, -1, 1, 1], [1, 1, -1, -1, 1, 1, 1, -1, 1]], float)[:, :, None]
+_NEXT, _PREVIOUS, _HALF, _ONE = readonly([1, 2, 0]), readonly([2, 0, 1]), readonly(0.5), readonly(1.0)
+
+
+def _beta_gamma_many(t2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`beta_gamma` of each entry of ``t2`` (P,): its series bucket and Horner steps on arrays, else itself."""
+    which = np.searchsorted(_LIMITS, t2, side="right")  # the first bucket whose limit exceeds t^2
+    first, last = int(which.min()), int(which.max())
+    bg = np.empty((2, len(t2)))
+    for k in range(first, min(last, len(_BUCKETS) - 1) + 1):
+        rows = slice(None) if first == last else which == k
+        ts = t2[rows]
+        acc = np.zeros((2, len(ts)))
+        for coefficients in _HORNER[k]:  # b = b t^2 + c_b and g = g t^2 + c_g, from the highest
+            acc *= ts
+            acc += coefficients
+        bg[:, rows] = acc
+    for i in np.flatnonzero(which == len(_BUCKETS)).tolist():
+        bg[:, i] = beta_gamma(float(t2[i]))
+    return bg[0], bg[1]
+
+
+def _quaternion_log_many(w: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """:func:`_quaternion_log` of P quaternions, w (P,) and v (3, P): theta (3, P), exactly 0 where v = 0."""
+    squares = v * v
+    n = np.sqrt(squares[0] + squares[1] + squares[2])
+    angle = np.array([
+        2.0 * math.atan2(ni, wi) if wi >= 0.0 else -2.0 * math.atan2(ni, -wi) for ni, wi in zip(n.tolist(), w.tolist())
+    ])  # fmt: skip
+    still = n == 0.0
+    n[still] = 1.0  # those columns are set to exactly 0 below, as the single log returns them
+    theta = angle * v / n
+    theta[:, still] = 0.0
+    return theta
+
+
+def _relative_many(a: tuple[np.ndarray, ...], b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_relative` of a quaternion ``a`` (columns, :meth:`JointLog._batch_constants`) and the columns of
+    ``b`` (4, P; x, y, z, w): w (P,), v (3, P), the single function's pairs entry for entry."""
+    a_w, a_v, a_next, a_previous = a
+    terms = a_w * b[[3, 0, 1, 2]]
+    w = terms[0] + terms[1] + terms[2] + terms[3]
+    v = (a_w[0] * b[:3] - a_v * b[3]) + (a_next * b[_NEXT] - a_previous * b[_PREVIOUS])
+    return w, v
+
+
+def _skew_many(v: np.ndarray, diagonal: np.ndarray, signs: np.ndarray = _SKEW) -> np.ndarray:
+    """[v]x (``signs`` _NEGATIVE_SKEW: [-v]x) of each column of v (3, P), ``diagonal`` (P,) on the diagonal: (3, 3, P)."""
+    x, y, z = v
+    out = np.stack([diagonal, z, y, z, diagonal, x, y, x, diagonal])
+    out *= signs  # a sign change is exact, zeros included
+    return out.reshape(3, 3, -1)
+
+
+def _se3_log_many(theta: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`se3_log` of P points, theta and p (3, P): e (P, 6) and J_log (P, 6, 6), bitwise.
+
+    Each entry is the single function's expression, associated alike: b theta_i theta_j, u_i theta_j,
+    b p_i theta_j as outer products, skew terms added off the diagonal only (a -0.0 on it adds nothing,
+    not even to a zero's sign), sums over an index in order.  Points run along the last axis.
+    """
+    P = theta.shape[1]
+    squares = theta * theta
+    t2 = squares[0] + squares[1] + squares[2]
+    b, g = _beta_gamma_many(t2)
+    A = (b * theta)[:, None] * theta  # (b theta_i) theta_j, (3, 3, P)
+    A += _skew_many(_HALF * theta, _ONE - b * t2)  # d + b theta_i^2 on the diagonal, -+ theta_k / 2 off it
+    e = np.empty((6, P))
+    Wp = A * p[:, None]  # a_ij p_i, summed over i in order: W p with W = A^T
+    e[:3] = Wp[0] + Wp[1] + Wp[2]
+    e[3:] = theta
+    products = theta * p
+    tp = products[0] + products[1] + products[2]
+    u = g * (theta * tp - t2 * p)
+    c = theta[_NEXT] * p[_PREVIOUS] - theta[_PREVIOUS] * p[_NEXT]
+    D = u[:, None] * theta
+    D += _skew_many(_HALF * p, np.full(P, -0.0))  # [p]x / 2 first, off the diagonal: (p / 2) + u theta^T
+    D -= (b * p)[:, None] * theta
+    D += _skew_many(b * c, b * tp, _NEGATIVE_SKEW)  # b theta.p on the diagonal, -b [theta x p]x off it
+    J = np.zeros((6, 6, P))
+    J[:3, :3] = A
+    J[3:, 3:] = A
+    DA = D[:, :, None] * A  # d_ik a_kj, summed over k in order
+    J[:3, 3:] = DA[:, 0] + DA[:, 1] + DA[:, 2]
+    return np.ascontiguousarray(e.T), np.ascontiguousarray(J.transpose(2, 0, 1))
 
 
 #: The joint kinds (Pinocchio's short names) whose Lie group JointLog evaluates, and that group.
