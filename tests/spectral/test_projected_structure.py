@@ -157,8 +157,7 @@ def test_conjugate_clusters_carry_the_numbers_computed_afresh(monkeypatch):
     for c in taken:
         assert c.partial == (1,) * c.algebraic
         assert c.center == complex(np.add.reduce(modes.eigenvalues[list(c.indices)]) / c.algebraic)
-    monkeypatch.setattr(clusters, "conjugate_cluster", lambda partner, lam, indices: None)
-    monkeypatch.setattr(clusters, "_conjugate_mates", lambda fig, lam, found: {})
+    monkeypatch.setattr(clusters, "_conjugate_groups", lambda lam, fig, groups: (np.zeros(len(groups), bool),) * 2)
     fresh = pinlin.modal_analysis(sys)
     assert all(c.method.startswith("semisimple certificate") and not c.method.endswith("coefficients)")
                for c in fresh.clusters)

@@ -151,6 +151,7 @@ def mirrored_figures(
     else:
         left_b = np.where(ok, half.right / np.where(ok, deriv_b, 1.0), half.right)
     right = np.repeat(half.right.astype(complex), 2, axis=-1)
+    weight = np.repeat(weight, 2)
     fig = PairFigures(
         right,
         _interleave(half.left, left_b),
@@ -162,8 +163,9 @@ def mirrored_figures(
         right,
         np.repeat(half.products, 2, axis=-1),
         np.repeat(half.quadratic, 2, axis=-1),
+        weight,
     )
-    return _interleave(la, lb), np.repeat(block, 2), fig, np.repeat(weight, 2)
+    return _interleave(la, lb), np.repeat(block, 2), fig, weight
 
 
 def mode_kinds(
