@@ -63,6 +63,7 @@ import numpy as np
 from ..errors import ComputationError
 from ..numerics.floating import EPS
 from ..numerics.norms import frobenius
+from ..numerics.small_linalg import eigvalsh
 from ..numerics.rank import JORDAN_RANK_TOL, chains_from_kernels, kernel_dimension
 from ..results import Result
 from .problem import QuadraticProblem
@@ -310,7 +311,7 @@ def semisimple_certificate(
     else:
         # Q = X R^-1 orthonormal: ||L Q||_2 <= ||L X||_F / sigma_min(X), sigma_min(X)^2 the least eigenvalue of X^H X
         X = evidence.right[:, ii]
-        gram_min = float(np.linalg.eigvalsh(X.conj().T @ X)[0])
+        gram_min = float(eigvalsh(X.conj().T @ X)[0])
         if not gram_min > INDEPENDENCE_TOL**2:
             return None
         if not float(np.sqrt(np.dot(r, r) / gram_min)) <= tau / CERTIFICATE_MARGIN:
