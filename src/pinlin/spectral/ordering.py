@@ -56,6 +56,22 @@ def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def spectrum_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(perm, at): ``lam[perm]`` is in the order of the module doc; ``at`` holds the new positions of the
     Im > 0 members of the conjugate pairs (their mates follow at ``at + 1``)."""
+    k = lam.shape[0]
+    if k and not k % 2:
+        first = lam[0::2].copy()  # contiguous, as lam.take(leaders) below
+        if np.count_nonzero(first.imag > 0) + np.count_nonzero(lam[1::2] == first.conj()) == k:
+            # no real eigenvalue, every pair adjacent with Im > 0 first (QZ's order): the leaders are the even
+            # positions, each with its mate next to it -- what _pairs and the general steps below give then
+            keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
+            perm = np.empty(k, dtype=int)
+            perm[0::2] = 2 * keys
+            perm[1::2] = perm[0::2] + 1
+            return perm, np.arange(0, k, 2)
+    return _general_order(lam)
+
+
+def _general_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`spectrum_order` for any arrangement of the pairs (real eigenvalues, pairs apart)."""
     leaders, mates = _pairs(lam)
     first = lam.take(leaders)
     keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
