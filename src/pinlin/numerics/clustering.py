@@ -67,17 +67,17 @@ def find_clusters(
     a = np.abs(lam)
     # candidates only: |lam_i - lam_j| >= ||lam_i| - |lam_j||, so linked eigenvalues have moduli within
     # cluster_tol max(|lam_j|, scale) of each other; sorted by modulus, each is compared with those in that window
-    order = np.argsort(a, kind="stable")
+    order = a.argsort(kind="stable")  # (the array methods: numpy's function wrappers cost a call each)
     sa = a[order]
     with np.errstate(divide="ignore", invalid="ignore"):
         reach = sa + cluster_tol * np.maximum(sa, scale) / (1.0 - cluster_tol)
-    hi = np.searchsorted(sa, reach, side="right")
+    hi = sa.searchsorted(reach, side="right")
     counts = np.maximum(hi - np.arange(k) - 1, 0)
-    total = int(counts.sum())
+    total = int(np.add.reduce(counts))
     if total == 0:
         return [(i,) for i in range(k)] if singletons else []
-    first = np.repeat(np.arange(k), counts)
-    step = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    first = np.arange(k).repeat(counts)
+    step = np.arange(total) - (counts.cumsum() - counts).repeat(counts)
     i, j = order[first], order[first + 1 + step]
     dist = np.abs(lam[i] - lam[j])
     linked = dist <= cluster_tol * np.maximum(np.maximum(a[i], a[j]), scale)
@@ -118,11 +118,11 @@ def _components(k: int, first: np.ndarray, second: np.ndarray, singletons: bool)
         linked = np.zeros(k, dtype=bool)
         linked[first] = True
         linked[second] = True
-        nodes = np.flatnonzero(linked)
-    order = np.argsort(label[nodes], kind="stable")  # by label, ascending within one (nodes are ascending)
+        nodes = linked.nonzero()[0]
+    order = label[nodes].argsort(kind="stable")  # by label, ascending within one (nodes are ascending)
     members = nodes[order]
     lab = label[members]
-    cuts = (np.flatnonzero(lab[1:] != lab[:-1]) + 1).tolist()
+    cuts = ((lab[1:] != lab[:-1]).nonzero()[0] + 1).tolist()
     flat = members.tolist()
     least = 1 if singletons else 2
     groups = [tuple(flat[a:b]) for a, b in zip([0, *cuts], [*cuts, len(flat)]) if b - a >= least]

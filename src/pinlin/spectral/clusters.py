@@ -19,6 +19,7 @@ with conjugation (IEEE rounding is symmetric under negation).
 from __future__ import annotations
 
 import time
+from itertools import accumulate
 
 import numpy as np
 
@@ -146,11 +147,15 @@ def _conjugate_groups(lam: np.ndarray, fig: PairFigures, groups) -> tuple[np.nda
         return same_lam, same_all
     ii = [i for g in cand for i in groups[g]]
     pp = [i for g in cand for i in groups[g - 1]]
-    same = lam.take(ii) == lam.take(pp).conj()
-    starts = np.cumsum([0] + [len(groups[g]) for g in cand[:-1]])
+    m = len(ii)
+    both = ii + pp  # one gather of each array: the candidates' members, then their partners'
+    z = lam.take(both)
+    same = z[:m] == z[m:].conj()
+    starts = list(accumulate([len(groups[g]) for g in cand[:-1]], initial=0))
     same_lam[cand] = np.logical_and.reduceat(same, starts)
-    same &= (fig.right.take(ii, axis=1) == fig.right.take(pp, axis=1).conj()).all(axis=0)
-    same &= (fig.left_unit.take(ii, axis=1) == fig.left_unit.take(pp, axis=1).conj()).all(axis=0)
+    for vectors in (fig.right, fig.left_unit):
+        V = vectors.take(both, axis=1)
+        same &= np.logical_and.reduce(V[:, :m] == V[:, m:].conj(), axis=0)
     same_all[cand] = np.logical_and.reduceat(same, starts)
     return same_lam, same_all
 
@@ -176,12 +181,15 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
     notes: list[str] = []
     if mates is None:
         mates = _conjugate_mates(fig, lam, clusters)
+    done = set()  # the clusters biorthogonalized here
     for k, c in enumerate(clusters):
         if k in mates:
             continue
         ii = list(c.indices)
         if c.index == 1:  # semisimple, or chains of length one that do not add up (inconsistent ranks)
-            if not _biorthogonalize(problem, lam, fig, c, ii, left, left_ok, sens):
+            if _biorthogonalize(problem, lam, fig, c, ii, left, left_ok, sens):
+                done.add(k)
+            else:
                 notes.append(f"cluster at {c.center:.6g}: left vectors could not be biorthogonalized")
         else:
             left[:, ii] = fig.left_unit[:, ii]
@@ -193,20 +201,28 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
                                c.index)
             )
     if mates:
-        _take_mates(problem, lam, fig, clusters, mates, (left, left_ok, sens), notes)
+        _take_mates(problem, lam, fig, clusters, mates, done, (left, left_ok, sens), notes)
     return left, left_ok, _model(eta, sens, tuple(defective)), notes
 
 
-def _take_mates(problem: QuadraticProblem, lam, fig: PairFigures, clusters, mates, out, notes: list[str]) -> None:
-    """The mates' left vectors and sensitivities: the conjugates of their partners' where those were
-    biorthogonalized (one gather for all of them), computed afresh otherwise; written into ``out``."""
+def _take_mates(
+    problem: QuadraticProblem, lam, fig: PairFigures, clusters, mates, done, out, notes: list[str]
+) -> None:
+    """The mates' left vectors and sensitivities: the conjugates of their partners' where those have
+    normalized left vectors (one gather for all of them), computed afresh otherwise; written into ``out``.
+
+    ``done``: the clusters whose left vectors were biorthogonalized (all normalized then).
+    """
     left, left_ok, sens = out
     ks = list(mates)
     ii = [i for k in ks for i in clusters[k].indices]
     pp = [i for k in ks for i in clusters[mates[k]].indices]
-    starts = np.cumsum([0] + [clusters[k].algebraic for k in ks[:-1]])
-    ok = np.logical_and.reduceat(left_ok.take(pp), starts)
-    if ok.all():
+    if all(mates[k] in done for k in ks):
+        ok = None
+    else:
+        starts = list(accumulate([clusters[k].algebraic for k in ks[:-1]], initial=0))
+        ok = np.logical_and.reduceat(left_ok.take(pp), starts)
+    if ok is None or ok.all():
         left[:, ii] = left.take(pp, axis=1).conj()
         left_ok[ii] = True
         sens[ii] = sens.take(pp)
