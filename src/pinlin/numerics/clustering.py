@@ -7,6 +7,8 @@ as a cluster of them, whose mean is accurate to about eta.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["CLUSTER_TOL", "CLUSTER_BOUND_FACTOR", "find_clusters"]
@@ -150,8 +152,9 @@ def _far_apart(lam: np.ndarray, cluster_tol: float, scale: float) -> bool:
         return False
     w = lam[im >= 0]
     size = np.abs(w)
-    a = np.sort(size)
-    if a.size == 0 or not np.isfinite(a[-1]):
+    a = size.copy()
+    a.sort()  # np.sort's copy and sort, without its wrapper
+    if a.size == 0 or not math.isfinite(a[-1]):
         return False
     limit = (cluster_tol * _FAR_MARGIN) * np.maximum(a, scale)  # at least |lam_i - lam_j| for every candidate pair
     if a.size > 1 and np.count_nonzero(a[1:] - a[:-1] <= limit[1:]) != 0:
