@@ -144,8 +144,8 @@ def modal_analysis(
         left, left_ok, model, more = cluster_figures(problem, lam, fig, clusters, mates)
         notes += more
         multiplicity = np.ones(lam.shape[0], dtype=int)
-        for c in clusters:
-            multiplicity[list(c.indices)] = c.algebraic
+        if clusters:
+            multiplicity[[i for c in clusters for i in c.indices]] = [c.algebraic for c in clusters for _ in c.indices]
         freq, zeta = _frequency_damping(lam)
         bound = model.bound(0.0)
         # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is

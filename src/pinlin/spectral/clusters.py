@@ -185,7 +185,7 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
     for k, c in enumerate(clusters):
         if k in mates:
             continue
-        ii = list(c.indices)
+        ii = np.array(c.indices, dtype=np.intp)  # one index array for all the gathers and writes below
         if c.index == 1:  # semisimple, or chains of length one that do not add up (inconsistent ranks)
             if _biorthogonalize(problem, lam, fig, c, ii, left, left_ok, sens):
                 done.add(k)
@@ -196,10 +196,8 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
             left_ok[ii] = False
             sens[ii] = np.inf
             spread = float(np.max(np.abs(lam[ii] - c.center)))
-            defective.append(
-                DefectiveBound(tuple(ii), spread, defective_scale(problem, c.center, c.index), float(np.max(eta[ii])),
-                               c.index)
-            )
+            scale = defective_scale(problem, c.center, c.index)
+            defective.append(DefectiveBound(tuple(c.indices), spread, scale, float(np.max(eta[ii])), c.index))
     if mates:
         _take_mates(problem, lam, fig, clusters, mates, done, (left, left_ok, sens), notes)
     return left, left_ok, _model(eta, sens, tuple(defective)), notes

@@ -197,8 +197,7 @@ def mode_kinds(
     typical = lam
     if clusters:
         typical = lam.copy()
-        for c in clusters:
-            typical[list(c.indices)] = c.center
+        typical[[i for c in clusters for i in c.indices]] = [c.center for c in clusters for _ in c.indices]
     # codes into _KINDS, the later tests taking precedence as in theory: stability's order
     code = np.full(typical.shape[0], 2)  # "overdamped"
     code[np.abs(typical.imag) > r] = 1  # "underdamped"
