@@ -216,7 +216,8 @@ def _undamped(problem: QuadraticProblem) -> bool:
     sys = problem.system
     if sys is None:
         return not np.count_nonzero(problem.C)
-    return not np.count_nonzero(sys.D) and not (np.count_nonzero(sys.G) and np.count_nonzero(sys.N))
+    zero = problem.zero  # which of D, G, N are exactly zero (decided once per problem)
+    return zero["D"] and (zero["G"] or zero["N"])
 
 
 def _owned(a: np.ndarray) -> np.ndarray:
