@@ -157,8 +157,7 @@ def test_conjugate_clusters_carry_the_numbers_computed_afresh(monkeypatch):
     for c in taken:
         assert c.partial == (1,) * c.algebraic
         assert c.center == complex(np.add.reduce(modes.eigenvalues[list(c.indices)]) / c.algebraic)
-    monkeypatch.setattr(clusters, "conjugate_cluster", lambda partner, lam, indices: None)
-    monkeypatch.setattr(clusters, "_conjugate_mates", lambda fig, lam, found: {})
+    monkeypatch.setattr(clusters, "_conjugate_groups", lambda lam, fig, groups: (np.zeros(len(groups), bool),) * 2)
     fresh = pinlin.modal_analysis(sys)
     assert all(c.method.startswith("semisimple certificate") and not c.method.endswith("coefficients)")
                for c in fresh.clusters)
@@ -168,3 +167,25 @@ def test_conjugate_clusters_carry_the_numbers_computed_afresh(monkeypatch):
     for name in ("left", "right", "eigenvalues", "error_bound", "left_normalized"):
         np.testing.assert_array_equal(getattr(fresh, name), getattr(modes, name), err_msg=name, strict=True)
     np.testing.assert_array_equal(fresh.condition, modes.condition, strict=True)
+
+
+def test_conjugate_groups_find_the_clusters_and_mates_of_the_pairwise_checks():
+    # analyse_clusters compares each group with the one before it once, for all groups together; the structure
+    # it takes from a partner and the mates it hands to cluster_figures are those of conjugate_cluster and of
+    # _conjugate_mates (the checks made cluster by cluster before)
+    from pinlin.spectral.analysis import _check_options, _figures
+    from pinlin.spectral.clusters import _conjugate_mates, analyse_clusters, conjugate_cluster
+    from pinlin.spectral.paths import choose_path, solve_path
+
+    for sys in (branched_chain(0.05), branched_chain()):
+        problem = as_problem(sys)
+        tol = _check_options("auto", True, cluster_tol=1e-5, rank_tol=1e-10, structure_tol=1e-10, uncertainty=0.0,
+                             safety=2.0, eigh_tol=1e-15)
+        name, reason, raw = choose_path(problem, "auto", tol["structure_tol"], tol["eigh_tol"])
+        raw = solve_path(problem, name, reason, raw, True, tol["eigh_tol"])[0]
+        lam, _, fig = _figures(problem, raw)
+        found, _, mates = analyse_clusters(problem, lam, fig, tol, raw.second is not None)
+        assert mates == _conjugate_mates(fig, lam, found)
+        for k in range(1, len(found)):
+            taken = conjugate_cluster(found[k - 1], lam, found[k].indices)
+            assert (taken is not None) == found[k].method.endswith("real coefficients)")

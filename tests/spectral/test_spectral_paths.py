@@ -137,3 +137,25 @@ def test_forced_method_that_does_not_apply(method, sys_kind, match):
     }
     with pytest.raises(ParameterError, match=match):
         pinlin.modal_analysis(systems[sys_kind], method=method)
+
+
+def test_spectrum_order_fast_path_equals_the_general_one():
+    # QZ's arrangement (every pair adjacent, Im > 0 first, no real eigenvalue) takes a short path in
+    # spectrum_order; it must give the general path's permutation, including ties in modulus and real part
+    from pinlin.spectral.ordering import _general_order, spectrum_order
+
+    rng = np.random.default_rng(27)
+    for trial in range(300):
+        p = int(rng.integers(1, 12))
+        z = rng.choice([-1.0, -0.5, 0.0, 0.5], p) + 1j * rng.choice([0.5, 1.0, 2.0], p)
+        if trial % 3 == 0:
+            z = rng.standard_normal(p) + 1j * np.abs(rng.standard_normal(p))
+        lam = np.empty(2 * p, dtype=complex)
+        lam[0::2], lam[1::2] = z, z.conj()
+        perm, at = spectrum_order(lam)
+        ref_perm, ref_at = _general_order(lam)
+        np.testing.assert_array_equal(perm, ref_perm, strict=True)
+        np.testing.assert_array_equal(at, ref_at, strict=True)
+    # not QZ's arrangement (a real eigenvalue, a pair apart): the general path, the same order as before
+    lam = np.array([1 + 2j, 1 - 2j, -3.0 + 0j, 0.5 + 1j, 2.0 + 0j, 0.5 - 1j])
+    np.testing.assert_array_equal(spectrum_order(lam)[0], _general_order(lam)[0], strict=True)

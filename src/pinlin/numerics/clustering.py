@@ -7,6 +7,8 @@ as a cluster of them, whose mean is accurate to about eta.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = ["CLUSTER_TOL", "CLUSTER_BOUND_FACTOR", "find_clusters"]
@@ -67,17 +69,17 @@ def find_clusters(
     a = np.abs(lam)
     # candidates only: |lam_i - lam_j| >= ||lam_i| - |lam_j||, so linked eigenvalues have moduli within
     # cluster_tol max(|lam_j|, scale) of each other; sorted by modulus, each is compared with those in that window
-    order = np.argsort(a, kind="stable")
+    order = a.argsort(kind="stable")  # (the array methods: numpy's function wrappers cost a call each)
     sa = a[order]
     with np.errstate(divide="ignore", invalid="ignore"):
         reach = sa + cluster_tol * np.maximum(sa, scale) / (1.0 - cluster_tol)
-    hi = np.searchsorted(sa, reach, side="right")
+    hi = sa.searchsorted(reach, side="right")
     counts = np.maximum(hi - np.arange(k) - 1, 0)
-    total = int(counts.sum())
+    total = int(np.add.reduce(counts))
     if total == 0:
         return [(i,) for i in range(k)] if singletons else []
-    first = np.repeat(np.arange(k), counts)
-    step = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    first = np.arange(k).repeat(counts)
+    step = np.arange(total) - (counts.cumsum() - counts).repeat(counts)
     i, j = order[first], order[first + 1 + step]
     dist = np.abs(lam[i] - lam[j])
     linked = dist <= cluster_tol * np.maximum(np.maximum(a[i], a[j]), scale)
@@ -109,7 +111,7 @@ def _components(k: int, first: np.ndarray, second: np.ndarray, singletons: bool)
         np.minimum.at(new, first, low)
         np.minimum.at(new, second, low)
         new = new[new]
-        if np.array_equal(new, label):
+        if not np.count_nonzero(new != label):  # np.array_equal's test, without its wrapper
             break
         label = new
     if singletons:
@@ -118,11 +120,11 @@ def _components(k: int, first: np.ndarray, second: np.ndarray, singletons: bool)
         linked = np.zeros(k, dtype=bool)
         linked[first] = True
         linked[second] = True
-        nodes = np.flatnonzero(linked)
-    order = np.argsort(label[nodes], kind="stable")  # by label, ascending within one (nodes are ascending)
+        nodes = linked.nonzero()[0]
+    order = label[nodes].argsort(kind="stable")  # by label, ascending within one (nodes are ascending)
     members = nodes[order]
     lab = label[members]
-    cuts = (np.flatnonzero(lab[1:] != lab[:-1]) + 1).tolist()
+    cuts = ((lab[1:] != lab[:-1]).nonzero()[0] + 1).tolist()
     flat = members.tolist()
     least = 1 if singletons else 2
     groups = [tuple(flat[a:b]) for a, b in zip([0, *cuts], [*cuts, len(flat)]) if b - a >= least]
@@ -150,8 +152,9 @@ def _far_apart(lam: np.ndarray, cluster_tol: float, scale: float) -> bool:
         return False
     w = lam[im >= 0]
     size = np.abs(w)
-    a = np.sort(size)
-    if a.size == 0 or not np.isfinite(a[-1]):
+    a = size.copy()
+    a.sort()  # np.sort's copy and sort, without its wrapper
+    if a.size == 0 or not math.isfinite(a[-1]):
         return False
     limit = (cluster_tol * _FAR_MARGIN) * np.maximum(a, scale)  # at least |lam_i - lam_j| for every candidate pair
     if a.size > 1 and np.count_nonzero(a[1:] - a[:-1] <= limit[1:]) != 0:

@@ -77,6 +77,9 @@ class PairFigures:
     quadratic : (3, k) complex
         x^H M x, x^H C x, x^H K x of the unit right vectors (the modal constants
         follow from them, :func:`pinlin.spectral.qualitative.constants_of`).
+    weight : (k,) float or None
+        w(lam) = |lam|^2 ||M|| + |lam| ||C|| + ||K|| as the figures were formed with (the cluster
+        stage reuses it); None when not given.
     """
 
     right: np.ndarray
@@ -89,6 +92,7 @@ class PairFigures:
     left_unit: np.ndarray
     products: np.ndarray
     quadratic: np.ndarray
+    weight: np.ndarray | None = None
 
 
 def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=None, weight=None) -> PairFigures:
@@ -134,7 +138,7 @@ def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=Non
             sens = np.where(ok, weight / np.where(ok, size, 1.0), np.inf)
         left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
     bound = np.maximum(eta, ETA_FLOOR) * sens
-    return PairFigures(X, left, ok, deriv, eta, bound, sens, Y, yP, quad)
+    return PairFigures(X, left, ok, deriv, eta, bound, sens, Y, yP, quad, weight)
 
 
 @dataclass(frozen=True)

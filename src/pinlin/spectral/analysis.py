@@ -19,7 +19,7 @@ from ..numerics.definiteness import DEFAULT_UNCERTAINTY
 from ..numerics.rank import JORDAN_RANK_TOL
 from ..numerics.threads import small_kernels
 from .accuracy import PairFigures, pair_figures
-from .clusters import BIORTHOGONAL_RCOND, cluster_figures, cluster_structure
+from .clusters import BIORTHOGONAL_RCOND, analyse_clusters, cluster_figures
 from .deferred import DeferredFigures, DeferredVerdict
 from .modes import Method, Modes
 from .ordering import mirrored_figures, mode_kinds, order_spectrum
@@ -140,12 +140,12 @@ def modal_analysis(
         # pairs of a symmetric definite pencil sharing one real vector: their clusters are semisimple by theorem
         mirrored = raw.second is not None and name in SYMMETRIC_DEFINITE_PATHS
         lam, block, fig = _figures(problem, raw)
-        clusters, notes = cluster_structure(problem, lam, fig, tolerances, mirrored)
-        left, left_ok, model, more = cluster_figures(problem, lam, fig, clusters)
+        clusters, notes, mates = analyse_clusters(problem, lam, fig, tolerances, mirrored)
+        left, left_ok, model, more = cluster_figures(problem, lam, fig, clusters, mates)
         notes += more
         multiplicity = np.ones(lam.shape[0], dtype=int)
-        for c in clusters:
-            multiplicity[list(c.indices)] = c.algebraic
+        if clusters:
+            multiplicity[[i for c in clusters for i in c.indices]] = [c.algebraic for c in clusters for _ in c.indices]
         freq, zeta = _frequency_damping(lam)
         bound = model.bound(0.0)
         # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
@@ -216,7 +216,8 @@ def _undamped(problem: QuadraticProblem) -> bool:
     sys = problem.system
     if sys is None:
         return not np.count_nonzero(problem.C)
-    return not np.count_nonzero(sys.D) and not (np.count_nonzero(sys.G) and np.count_nonzero(sys.N))
+    zero = problem.zero  # which of D, G, N are exactly zero (decided once per problem)
+    return zero["D"] and (zero["G"] or zero["N"])
 
 
 def _owned(a: np.ndarray) -> np.ndarray:

@@ -54,6 +54,7 @@ the Toeplitz ranks as before.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -63,6 +64,7 @@ import numpy as np
 from ..errors import ComputationError
 from ..numerics.floating import EPS
 from ..numerics.norms import frobenius
+from ..numerics.small_linalg import eigvalsh
 from ..numerics.rank import JORDAN_RANK_TOL, chains_from_kernels, kernel_dimension
 from ..results import Result
 from .problem import QuadraticProblem
@@ -279,8 +281,12 @@ def semisimple_certificate(
     center: complex,
     evidence: ClusterEvidence,
     rank_tol: float,
+    *,
+    distance: np.ndarray | None = None,
 ) -> str | None:
     """How dim ker L(center) = m (the cluster's size) was certified without an SVD, or None (see module doc).
+
+    ``distance``: |lam_i - center| of the members, when the caller formed it.
 
     Returns
     -------
@@ -289,37 +295,36 @@ def semisimple_certificate(
         rank threshold by :data:`CERTIFICATE_MARGIN`; None when either does not
         (then the Toeplitz ranks decide).
     """
-    ii = list(indices)
+    ii = np.array(indices, dtype=np.intp)
     tau = rank_threshold(problem, center, rank_tol)
-    if len(ii) > problem.n or not (np.isfinite(tau) and tau > 0):
+    if ii.size > problem.n or not (math.isfinite(tau) and tau > 0):
         return None  # more members than dimensions: some chain is longer than one
     method = _CERTIFIED_METHOD
-    partners = {i ^ 1 for i in ii}
     # ||L(center) x_i|| <= ||L(lam_i) x_i|| + d_i ||L'(lam_i)|| + d_i^2 ||M|| (d_i = |lam_i - center|, unit x_i)
     nM, nC, _ = problem.norms
-    members = lam[ii]
-    d = np.abs(members - center)
-    r = evidence.backward_error[ii] * evidence.weight[ii] + d * (2 * np.abs(members) * nM + nC) + d * d * nM
-    if evidence.mirrored and not partners.intersection(ii):
+    members = lam.take(ii)
+    d = np.abs(members - center) if distance is None else distance
+    r = evidence.backward_error.take(ii) * evidence.weight.take(ii) + d * (2 * np.abs(members) * nM + nC) + d * d * nM
+    if evidence.mirrored and not {i ^ 1 for i in indices}.intersection(indices):
         # semisimple by theorem: the exact eigenvalue's eigenspace has dimension m, and L(center) is within
         # (distance + error bound) ||L'|| of L at it on that space
-        dist = d + evidence.bound[ii]
+        dist = d + evidence.bound.take(ii)
         if not np.max(dist * (2 * abs(center) * nM + nC + dist * nM)) <= tau / CERTIFICATE_MARGIN:
             return None
         method = _STRUCTURE_METHOD
     else:
         # Q = X R^-1 orthonormal: ||L Q||_2 <= ||L X||_F / sigma_min(X), sigma_min(X)^2 the least eigenvalue of X^H X
-        X = evidence.right[:, ii]
-        gram_min = float(np.linalg.eigvalsh(X.conj().T @ X)[0])
+        X = evidence.right.take(ii, axis=1)
+        gram_min = float(eigvalsh(X.conj().T @ X)[0])
         if not gram_min > INDEPENDENCE_TOL**2:
             return None
-        if not float(np.sqrt(np.dot(r, r) / gram_min)) <= tau / CERTIFICATE_MARGIN:
+        if not math.sqrt(float(np.dot(r, r)) / gram_min) <= tau / CERTIFICATE_MARGIN:  # r r >= 0 or NaN
             return None
     out = np.ones(lam.shape[0], dtype=bool)
     out[ii] = False
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         gap = np.abs(lam[out] - center) - evidence.bound[out]
-        if gap.size and not gap.min() > 0:
+        if gap.size and not np.minimum.reduce(gap) > 0:
             return None
         rest = float(np.add.reduce(evidence.sensitivity[out] / (evidence.weight[out] * gap)))
     if not rest * (CERTIFICATE_MARGIN * tau) < 1.0:  # also False for NaN or inf
@@ -356,11 +361,15 @@ def analyse_cluster(
     members = lam[list(indices)]
     center = complex(np.add.reduce(members) / len(indices))  # np.mean's sum and division, without its wrapper
     # a cluster closed under conjugation (members in exact conjugate pairs) has a real mean
-    if abs(np.sum(members.imag)) <= CONJUGATE_SUM_ULPS * EPS * np.sum(np.abs(members.imag)):
+    im = members.imag
+    if abs(np.add.reduce(im)) <= CONJUGATE_SUM_ULPS * EPS * np.add.reduce(np.abs(im)):  # np.sum's reductions
         center = complex(center.real, 0.0)
     m = len(indices)
-    spread = float(np.max(np.abs(members - center)) / max(abs(center), problem.scaling.gamma))
-    how = None if evidence is None else semisimple_certificate(problem, lam, indices, center, evidence, rank_tol)
+    dist = np.abs(members - center)
+    spread = float(np.maximum.reduce(dist) / max(abs(center), problem.scaling.gamma))
+    how = None if evidence is None else semisimple_certificate(
+        problem, lam, indices, center, evidence, rank_tol, distance=dist
+    )
     if how is not None:
         return Cluster(
             tuple(indices), center, m, m, (1,) * m, True, (m,), error=spread, method=how,

@@ -56,6 +56,22 @@ def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def spectrum_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(perm, at): ``lam[perm]`` is in the order of the module doc; ``at`` holds the new positions of the
     Im > 0 members of the conjugate pairs (their mates follow at ``at + 1``)."""
+    k = lam.shape[0]
+    if k and not k % 2:
+        first = lam[0::2].copy()  # contiguous, as lam.take(leaders) below
+        if np.count_nonzero(first.imag > 0) + np.count_nonzero(lam[1::2] == first.conj()) == k:
+            # no real eigenvalue, every pair adjacent with Im > 0 first (QZ's order): the leaders are the even
+            # positions, each with its mate next to it -- what _pairs and the general steps below give then
+            keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
+            perm = np.empty(k, dtype=int)
+            perm[0::2] = 2 * keys
+            perm[1::2] = perm[0::2] + 1
+            return perm, np.arange(0, k, 2)
+    return _general_order(lam)
+
+
+def _general_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`spectrum_order` for any arrangement of the pairs (real eigenvalues, pairs apart)."""
     leaders, mates = _pairs(lam)
     first = lam.take(leaders)
     keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
@@ -151,6 +167,7 @@ def mirrored_figures(
     else:
         left_b = np.where(ok, half.right / np.where(ok, deriv_b, 1.0), half.right)
     right = np.repeat(half.right.astype(complex), 2, axis=-1)
+    weight = np.repeat(weight, 2)
     fig = PairFigures(
         right,
         _interleave(half.left, left_b),
@@ -162,8 +179,9 @@ def mirrored_figures(
         right,
         np.repeat(half.products, 2, axis=-1),
         np.repeat(half.quadratic, 2, axis=-1),
+        weight,
     )
-    return _interleave(la, lb), np.repeat(block, 2), fig, np.repeat(weight, 2)
+    return _interleave(la, lb), np.repeat(block, 2), fig, weight
 
 
 def mode_kinds(
@@ -179,8 +197,7 @@ def mode_kinds(
     typical = lam
     if clusters:
         typical = lam.copy()
-        for c in clusters:
-            typical[list(c.indices)] = c.center
+        typical[[i for c in clusters for i in c.indices]] = [c.center for c in clusters for _ in c.indices]
     # codes into _KINDS, the later tests taking precedence as in theory: stability's order
     code = np.full(typical.shape[0], 2)  # "overdamped"
     code[np.abs(typical.imag) > r] = 1  # "underdamped"

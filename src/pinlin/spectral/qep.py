@@ -357,6 +357,8 @@ def _solve_scaled(
     block, norm_x, w = np.where(use1, 1, 2), np.where(use1, nx[0], nx[1]), w[: 2 * n]
     if all_finite:  # a pair's second member: the conjugate vectors and the first's figures, exactly
         mate = at + 1
+        if 2 * at.size == lam.shape[0]:  # every eigenvalue in a pair: at = 0, 2, 4, ... (slices, the same columns)
+            at, mate = slice(0, None, 2), slice(1, None, 2)
         P[..., mate] = P[..., at].conj()
         if Y is not None:
             Y[:, mate] = Y[:, at].conj()

@@ -29,6 +29,7 @@ import scipy.linalg as sla
 
 from ..errors import ComputationError
 from ..numerics.norms import frobenius
+from ..numerics.small_linalg import eigvalsh
 from .problem import QuadraticProblem
 from .qep import RawSpectrum, complex_columns, dggev, exact_pairs, products
 from .refine import RefinedPencil, pencil_backward_errors, refined_eigh
@@ -150,7 +151,7 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     MiS, _ = potrs(c, S, lower=False)
     MiD, _ = potrs(c, D, lower=False)
     comm = D @ MiS - S @ MiD
-    inv_norm = 1.0 / np.linalg.eigvalsh(sys.M)[0]
+    inv_norm = 1.0 / eigvalsh(sys.M)[0]
     return float(frobenius(comm) / nd / ns / inv_norm)
 
 
