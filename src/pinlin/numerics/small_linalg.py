@@ -18,6 +18,8 @@ try:  # the gufuncs behind numpy.linalg (numpy.linalg._umath_linalg in numpy 1.x
     from numpy.linalg import _umath_linalg as gufuncs
 except ImportError:  # pragma: no cover - a numpy without the module: the public functions
     gufuncs = None
+if gufuncs is not None and not all(hasattr(gufuncs, name) for name in ("eigvalsh_lo", "svd", "solve")):
+    gufuncs = None  # pragma: no cover - a numpy whose internal names differ: the public functions
 
 __all__ = ["eigvalsh", "singular_values", "solve"]
 
