@@ -169,12 +169,34 @@ def test_conjugate_clusters_carry_the_numbers_computed_afresh(monkeypatch):
     np.testing.assert_array_equal(fresh.condition, modes.condition, strict=True)
 
 
+def _pairwise_conjugate(partner, lam, indices) -> bool:
+    """The check cluster by cluster: the members at ``indices`` are exactly (bit for bit) the conjugates of a
+    complex ``partner``'s."""
+    return (len(indices) == partner.algebraic and partner.center.imag != 0
+            and np.array_equal(lam[list(indices)], lam[list(partner.indices)].conj()))
+
+
+def _pairwise_mates(fig, lam, clusters) -> dict:
+    """{k: k - 1} for the clusters k of chains of length one whose eigenvalues, right and unit left vectors are
+    exactly the conjugates of those of cluster k - 1 (also of chains of length one), checked cluster by cluster."""
+    mates = {}
+    for k in range(1, len(clusters)):
+        a, b = clusters[k], clusters[k - 1]
+        if a.algebraic != b.algebraic or a.index != 1 or b.index != 1 or k - 1 in mates:
+            continue
+        ii, pp = list(a.indices), list(b.indices)
+        if (np.array_equal(lam[ii], lam[pp].conj()) and np.array_equal(fig.right[:, ii], fig.right[:, pp].conj())
+                and np.array_equal(fig.left_unit[:, ii], fig.left_unit[:, pp].conj())):
+            mates[k] = k - 1
+    return mates
+
+
 def test_conjugate_groups_find_the_clusters_and_mates_of_the_pairwise_checks():
     # analyse_clusters compares each group with the one before it once, for all groups together; the structure
     # it takes from a partner and the mates it hands to cluster_figures are those of conjugate_cluster and of
     # _conjugate_mates (the checks made cluster by cluster before)
     from pinlin.spectral.analysis import _check_options, _figures
-    from pinlin.spectral.clusters import _conjugate_mates, analyse_clusters, conjugate_cluster
+    from pinlin.spectral.clusters import analyse_clusters
     from pinlin.spectral.paths import choose_path, solve_path
 
     for sys in (branched_chain(0.05), branched_chain()):
@@ -185,7 +207,7 @@ def test_conjugate_groups_find_the_clusters_and_mates_of_the_pairwise_checks():
         raw = solve_path(problem, name, reason, raw, True, tol["eigh_tol"])[0]
         lam, _, fig = _figures(problem, raw)
         found, _, mates = analyse_clusters(problem, lam, fig, tol, raw.second is not None)
-        assert mates == _conjugate_mates(fig, lam, found)
+        assert mates == _pairwise_mates(fig, lam, found)
         for k in range(1, len(found)):
-            taken = conjugate_cluster(found[k - 1], lam, found[k].indices)
-            assert (taken is not None) == found[k].method.endswith("real coefficients)")
+            assert _pairwise_conjugate(found[k - 1], lam, found[k].indices) == found[k].method.endswith(
+                "real coefficients)")

@@ -34,7 +34,7 @@ import scipy.linalg
 from ..errors import IntegrationBudgetError, IntegrationError
 
 __all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "integrate_transitions", "group_segments",
-           "ROUNDING_FACTOR", "MAX_STEP_NORM"]
+           "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
 
 #: Rounding error of one step's transition, in units of eps ||P||_2 times sqrt(s m): the stage solve and the
 #: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15,
@@ -191,6 +191,14 @@ class _Stepper:
         return P[0], Z[0], An
 
 
+def balancing(A0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(d, S) with S = d_j / d_i: the diagonal similarity D = diag(d) (powers of 2, from A(0)) that balances A,
+    applied as ``A * S`` = D^-1 A D, so that the step cap sees rates (frequencies, decay rates) rather than
+    the units of the coordinates."""
+    d = scipy.linalg.matrix_balance(A0, permute=False, separate=True)[1][0]
+    return d, d[None, :] / d[:, None]
+
+
 def _initial_step(A0: np.ndarray, period: float, stages: int, rtol: float) -> float:
     """A first step from ||A(0)||: the local error (h ||A||)^(2s+1) / (2s+1)! about rtol."""
     norm = max(float(np.linalg.norm(A0, 2)), 1e-300)
@@ -242,10 +250,7 @@ def integrate_transitions(
     start = time.perf_counter()
     st = _Stepper(A, m, stages)
     A0 = st.evaluate(np.array([0.0]))[0]
-    # a diagonal similarity (powers of 2, from A(0)) that balances A, so that the step cap sees rates
-    # (frequencies, decay rates) rather than the units of the coordinates
-    d = scipy.linalg.matrix_balance(A0, permute=False, separate=True)[1][0]
-    scaling = d[None, :] / d[:, None]
+    d, scaling = balancing(A0)
     t, h = 0.0, _initial_step(A0 * scaling, period, stages, rtol)
     cap = max_step_norm / max(float(np.linalg.norm(A0 * scaling, 2)), 1e-300)
     steps, rejected = [], 0
@@ -299,7 +304,7 @@ def group_segments(steps: list, growth: float, d: np.ndarray, lookahead: int = 1
     support in m beside a velocity in m/s), not how far the multipliers' scales drift apart.  The running
     products are formed ``lookahead`` steps at a time and their conditions taken on the stack."""
     segments, factors = [], []
-    scaling = d[None, :] / d[:, None]
+    scaling = d[None, :] / d[:, None]          # as balancing(A0) gives it
     begin = 0
     while begin < len(steps):
         products, end = [steps[begin].P], None

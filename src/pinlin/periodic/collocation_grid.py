@@ -18,11 +18,10 @@ import time
 from collections.abc import Callable
 
 import numpy as np
-import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
-from .collocation import (MAX_STEP_NORM, ROUNDING_FACTOR, Step, Transitions, gauss_legendre, group_segments,
-                          stage_solve)
+from .collocation import (MAX_STEP_NORM, ROUNDING_FACTOR, Step, Transitions, balancing, gauss_legendre,
+                          group_segments, stage_solve)
 
 __all__ = ["integrate_on_grid", "PROBES"]
 
@@ -120,13 +119,13 @@ def integrate_on_grid(
     """
     start = time.perf_counter()
     c, a, b = gauss_legendre(stages)
+    evaluations = (A0 is None) + (probe is None) * PROBES
     A0 = A(np.array([0.0]))[0] if A0 is None else A0
-    d = scipy.linalg.matrix_balance(A0, permute=False, separate=True)[1][0]
-    scaling = d[None, :] / d[:, None]
+    d, scaling = balancing(A0)
     if probe is None:
         probe = A(np.arange(PROBES) * period / PROBES)
     t0, h = _first_grid(probe, period, scaling, stages, rtol, max_step_norm)
-    steps, rejected, evaluations = [], 0, 1 + PROBES
+    steps, rejected = [], 0
     while t0.size:
         taken = len(steps) + rejected
         if taken + t0.size > max_steps or time.perf_counter() - start > max_time:

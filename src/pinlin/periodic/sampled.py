@@ -23,7 +23,7 @@ from .sampling import PeriodicSamples, group_norms, sample_periodic
 from .second_order import SecondOrderA, first_order_stack, lagrangian_defect, structure_defect
 
 __all__ = ["SAMPLING", "Integrated", "first_order_transitions", "second_order_transitions", "check_sampling",
-           "second_order_scales", "SAMPLING_FLOOR"]
+           "second_order_scales", "counted_errors", "block_errors", "SAMPLING_FLOOR"]
 
 #: The accepted modes of ``sampling``.
 SAMPLING = ("auto", "spectral", "nodes")
@@ -71,16 +71,24 @@ def second_order_scales(samples: np.ndarray) -> np.ndarray:
 def _sample(F, T, rtol, sampling, max_samples, scales=group_norms) -> PeriodicSamples | None:
     if sampling == "nodes":
         return None
-    samples = sample_periodic(F, T, tol=max(rtol, SAMPLING_FLOOR * _EPS), max_samples=int(max_samples),
-                              scales=scales)
+    tol = max(rtol, SAMPLING_FLOOR * _EPS)
+    samples = sample_periodic(F, T, tol=tol, max_samples=int(max_samples), scales=scales)
     if not samples.converged and sampling == "spectral":
         raise SamplingError(
             f"sampling='spectral': the trigonometric interpolant of the coefficients did not reach the relative "
-            f"error {max(rtol, SAMPLING_FLOOR * _EPS):.2g} with {samples.evaluations} samples (measured errors "
-            f"after each doubling: {', '.join(f'{e:.1e}' for e in samples.history)}); the coefficients are not "
-            f"smooth enough: use sampling='nodes'", samples.evaluations, samples.history,
-            max(rtol, SAMPLING_FLOOR * _EPS))
+            f"error {tol:.2g} with {samples.evaluations} samples (measured errors after each doubling: "
+            f"{', '.join(f'{e:.1e}' for e in samples.history)}); the coefficients are not smooth enough: use "
+            f"sampling='nodes'", samples.evaluations, samples.history, tol)
     return samples
+
+
+def _at_nodes(tr: Transitions, samples: PeriodicSamples | None, defect: float) -> Integrated:
+    """The transitions of the nodes path, counting the samples spent first where sampling did not converge."""
+    if samples is None:
+        return Integrated(tr, tr.evaluations, None, defect, "coefficients at every node")
+    return Integrated(tr, tr.evaluations + samples.evaluations, None, defect,
+                      f"coefficients at every node (sampling did not converge: {samples.evaluations} samples "
+                      f"spent first)")
 
 
 def _described(samples: PeriodicSamples, tr: Transitions) -> str:
@@ -93,10 +101,7 @@ def first_order_transitions(func, T: float, m: int, options: dict, sampling: str
     """The transitions of y' = A(t) y, A = ``func`` (checked callable)."""
     samples = _sample(lambda t: func(t)[None], T, options["rtol"], sampling, max_samples)
     if samples is None or not samples.converged:
-        tr = integrate_transitions(func, T, m, **options)
-        spent = 0 if samples is None else samples.evaluations
-        note = "" if samples is None else f" (sampling did not converge: {spent} samples spent first)"
-        return Integrated(tr, tr.evaluations + spent, None, float("nan"), "coefficients at every node" + note)
+        return _at_nodes(integrate_transitions(func, T, m, **options), samples, float("nan"))
     n = m // 2
     top = np.hstack([np.zeros((n, n)), np.eye(n)]) if m % 2 == 0 else None
     second = top is not None and bool(np.all(samples.samples[:, 0, :n] == top))
@@ -107,7 +112,7 @@ def first_order_transitions(func, T: float, m: int, options: dict, sampling: str
             values[:, :n] = top
         return values
 
-    counted = float(_counted(samples.error)[0])
+    counted = float(counted_errors(samples.error)[0])
     error = np.array([[counted * float(samples.scale[0])]]) if counted else None
     tr = integrate_on_grid(A, T, m, second_order=second, coefficient_error=error, probe=samples.samples[:, 0],
                            A0=samples.samples[0, 0], **options)
@@ -118,19 +123,19 @@ def _mass_inverse_norms(M: np.ndarray) -> np.ndarray:
     return 1.0 / np.linalg.svd(M, compute_uv=False)[:, -1]
 
 
-def _counted(error: np.ndarray) -> np.ndarray:
+def counted_errors(error: np.ndarray) -> np.ndarray:
     """The measured relative errors that count: at most :data:`SAMPLING_FLOOR` eps is the samples' own
     rounding (a Pinocchio pass or a user's function is accurate to a few eps of its norms), which neither
     path counts (the nodes path does not bound the rounding of its evaluations either)."""
     return np.where(error <= SAMPLING_FLOOR * _EPS, 0.0, error)
 
 
-def _block_errors(samples: PeriodicSamples, A: np.ndarray, n: int) -> np.ndarray | None:
+def block_errors(samples: PeriodicSamples, A: np.ndarray, n: int) -> np.ndarray | None:
     """Block bound [[0, 0], [e_X, e_Y]] on the interpolant's error in -M^-1 K and -M^-1 C:
     d(M^-1 K) = M^-1 (dK - dM M^-1 K), each d from the measured relative error of its group times the group's
     largest Frobenius norm, the largest over the samples; None when every error is at rounding level."""
     S = samples.samples
-    counted = _counted(samples.error)
+    counted = counted_errors(samples.error)
     if not counted.any():
         return None
     eM, eC, eK = counted * samples.scale
@@ -147,14 +152,13 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
     if samples is None or not samples.converged:
         A = SecondOrderA(*fallback(), n, give_up)
         tr = integrate_transitions(A, T, 2 * n, **options)
-        spent = 0 if samples is None else samples.evaluations
-        note = "" if samples is None else f" (sampling did not converge: {spent} samples spent first)"
-        return Integrated(tr, tr.evaluations + spent, None, A.defect, "coefficients at every node" + note)
+        return _at_nodes(tr, samples, A.defect)
     S = samples.samples
     A_samples = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * T / S.shape[0])
     defect = structure_defect(S[:, 0], S[:, 1], S[:, 2], S[0, 0], S[0, 1])
+    errors = block_errors(samples, A_samples, n)
     lagrangian = float("nan")
-    if defect > give_up and not _counted(samples.error).any():     # the derivatives are exact to rounding
+    if defect > give_up and errors is None:     # the interpolant, and so its derivatives, exact to rounding
         dS = samples.derivative_at_samples()
         rate = S.shape[0] / 2 * 2 * np.pi / T
         lagrangian = lagrangian_defect(S[:, 0], S[:, 1], S[:, 2], dS[:, 0], dS[:, 1], rate)
@@ -163,6 +167,6 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
         F = samples(times)
         return first_order_stack(F[:, 0], F[:, 1], F[:, 2], times)
 
-    tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=_block_errors(samples, A_samples, n),
-                           probe=A_samples, A0=A_samples[0], **options)
+    tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=errors, probe=A_samples,
+                           A0=A_samples[0], **options)
     return Integrated(tr, samples.evaluations, samples, defect, _described(samples, tr), lagrangian)

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["PeriodicSamples", "sample_periodic", "group_norms", "FIRST_SAMPLES", "STAGNATION"]
+__all__ = ["PeriodicSamples", "sample_periodic", "group_norms", "stalled", "FIRST_SAMPLES", "STAGNATION"]
 
 #: Samples of the first interpolant (doubled from there): a trigonometric polynomial of degree <= 3 is exact.
 FIRST_SAMPLES = 8
@@ -126,6 +126,12 @@ def group_norms(samples: np.ndarray) -> np.ndarray:
     return np.sqrt(np.sum(samples ** 2, axis=(2, 3))).max(axis=0)
 
 
+def stalled(history, samples: int) -> bool:
+    """The doubling that gave ``samples`` samples (errors after each doubling in ``history``) lowered the error by
+    less than :data:`STAGNATION`, from 64 samples on (32 checked against 32 fresh ones)."""
+    return samples > 32 and len(history) > 1 and history[-1] > history[-2] / STAGNATION
+
+
 def sample_periodic(F: Callable[[float], np.ndarray], period: float, *, tol: float, max_samples: int = 256,
                     first: int = FIRST_SAMPLES, scales: Callable[[np.ndarray], np.ndarray] = group_norms
                     ) -> PeriodicSamples:
@@ -169,8 +175,7 @@ def sample_periodic(F: Callable[[float], np.ndarray], period: float, *, tol: flo
         merged[0::2], merged[1::2] = samples, mids
         samples, N = merged, 2 * N
         converged = bool(np.all(error <= tol))
-        stalled = N > 32 and history[-1] > history[-2] / STAGNATION
-        if converged or stalled or 2 * N > max_samples or not np.all(np.isfinite(error)):
+        if converged or stalled(history, N) or 2 * N > max_samples or not np.all(np.isfinite(error)):
             break
     samples.flags.writeable = False
     spectrum = _spectrum(samples)

@@ -1,6 +1,6 @@
 """The clusters of a computed spectrum: their Jordan structure and their left vectors (theory: spectrum).
 
-:func:`cluster_structure` groups the computed eigenvalues that rounding cannot
+:func:`analyse_clusters` groups the computed eigenvalues that rounding cannot
 tell apart and decides each group's partial multiplicities
 (:func:`~pinlin.spectral.multiplicity.analyse_cluster`); :func:`cluster_figures`
 then biorthogonalizes the left vectors of the semisimple clusters and gives the
@@ -32,7 +32,7 @@ from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale
 from .multiplicity import Cluster, ClusterEvidence, analyse_cluster
 from .problem import QuadraticProblem
 
-__all__ = ["BIORTHOGONAL_RCOND", "analyse_clusters", "cluster_structure", "cluster_figures", "conjugate_cluster"]
+__all__ = ["BIORTHOGONAL_RCOND", "analyse_clusters", "cluster_figures"]
 
 #: The left vectors of a semisimple cluster are biorthogonalized (Y^T L' X = I)
 #: only when sigma_min / sigma_max of Y^T L' X exceeds this: a thousand times the
@@ -42,23 +42,11 @@ BIORTHOGONAL_RCOND = 1e3 * EPS
 _CONJUGATE_METHOD = " (taken from the conjugate cluster: L(conj lam) = conj L(lam), real coefficients)"
 
 
-def conjugate_cluster(partner: Cluster, lam: np.ndarray, indices: tuple[int, ...]) -> Cluster | None:
-    """The cluster at ``indices`` as the conjugate of ``partner``, or None when its members are not exactly theirs.
-
-    Exactly: lam[indices[k]] == conj(lam[partner.indices[k]]) for every k, bit for bit,
-    and partner's center not real (a real cluster is its own conjugate).  The center
-    is then the conjugate of partner's (the mean of conjugates is the conjugate of
-    the mean, to the last bit), the spread and the structure are partner's.
-    """
-    if len(indices) != partner.algebraic or partner.center.imag == 0:
-        return None
-    if not np.array_equal(lam[list(indices)], lam[list(partner.indices)].conj()):
-        return None
-    return _taken_from(partner, indices)
-
-
 def _taken_from(partner: Cluster, indices: tuple[int, ...]) -> Cluster | None:
-    """:func:`conjugate_cluster` once its members are known to be exactly the conjugates of partner's."""
+    """The cluster at ``indices`` as the conjugate of ``partner``, its members known to be exactly the conjugates of
+    partner's (bit for bit), or None when partner is real (its own conjugate) or of another size.  The center is
+    the conjugate of partner's (the mean of conjugates is the conjugate of the mean, to the last bit), the
+    spread and the structure are partner's."""
     if len(indices) != partner.algebraic or partner.center.imag == 0:
         return None
     t0 = time.perf_counter()
@@ -70,24 +58,16 @@ def _taken_from(partner: Cluster, indices: tuple[int, ...]) -> Cluster | None:
     )
 
 
-def cluster_structure(
+def analyse_clusters(
     problem: QuadraticProblem, lam, fig: PairFigures, tolerances, mirrored: bool = False
-) -> tuple[list[Cluster], list[str]]:
-    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, and notes.
+) -> tuple[list[Cluster], list[str], dict[int, int]]:
+    """Multiple eigenvalues: clusters of computed ones with their Jordan structure, notes, and the conjugate mates
+    of :func:`cluster_figures` found on the way.
 
     The computed vectors and figures go along as the evidence of
     :func:`~pinlin.spectral.multiplicity.semisimple_certificate` (semisimple
     clusters without an SVD); ``mirrored``: the eigenvalues are pairs of a
-    symmetric definite pencil sharing one vector.  A cluster that is exactly the
-    conjugate of the one before it takes its structure (:func:`conjugate_cluster`).
-    """
-    return analyse_clusters(problem, lam, fig, tolerances, mirrored)[:2]
-
-
-def analyse_clusters(
-    problem: QuadraticProblem, lam, fig: PairFigures, tolerances, mirrored: bool = False
-) -> tuple[list[Cluster], list[str], dict[int, int]]:
-    """:func:`cluster_structure` and the conjugate mates of :func:`cluster_figures` found on the way.
+    symmetric definite pencil sharing one vector.
 
     The members and vectors of each group are compared with those of the group before it
     once, for all groups together (:func:`_conjugate_groups`): the structure of a group of
@@ -160,7 +140,7 @@ def _conjugate_groups(lam: np.ndarray, fig: PairFigures, groups) -> tuple[np.nda
     return same_lam, same_all
 
 
-def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, mates: dict[int, int] | None = None):
+def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, mates: dict[int, int]):
     """Left vectors and the error model corrected for the clusters (defective members: kappa = inf, see Modes).
 
     A semisimple cluster gets left vectors biorthogonalized at its mean
@@ -169,7 +149,7 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
     (:class:`~pinlin.spectral.accuracy.DefectiveBound`, :func:`defective_scale`).
     A semisimple cluster whose members and vectors are exactly the conjugates of
     the previous cluster's takes the conjugates of its biorthogonalized vectors
-    (``mates`` as :func:`analyse_clusters` found them, else :func:`_conjugate_mates`).
+    (``mates`` as :func:`analyse_clusters` found them).
     """
     eta = np.maximum(fig.backward_error, ETA_FLOOR)
     if not clusters:  # the figures' own arrays (fresh from pair_figures, owned by this analysis)
@@ -179,8 +159,6 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
     sens = fig.sensitivity.copy()
     defective = []
     notes: list[str] = []
-    if mates is None:
-        mates = _conjugate_mates(fig, lam, clusters)
     done = set()  # the clusters biorthogonalized here
     for k, c in enumerate(clusters):
         if k in mates:
@@ -254,32 +232,6 @@ def _biorthogonalize(problem: QuadraticProblem, lam, fig: PairFigures, c: Cluste
     weight = problem.weight(lam[ii]) if fig.weight is None else fig.weight.take(ii)
     sens[ii] = weight * column_norms(Yn)
     return True
-
-
-def _conjugate_mates(fig: PairFigures, lam: np.ndarray, clusters) -> dict[int, int]:
-    """{k: k - 1} for the clusters k (chains of length one) whose eigenvalues, right and unit left vectors are
-    exactly the conjugates of those of cluster k - 1 (also of length one), member by member.
-
-    One comparison of each array for all candidates together (a clustered spectrum of a real problem has its
-    clusters in conjugate pairs next to each other).
-    """
-    cand = [
-        k for k in range(1, len(clusters))
-        if clusters[k].algebraic == clusters[k - 1].algebraic and clusters[k].index == 1 and clusters[k - 1].index == 1
-    ]
-    if not cand:
-        return {}
-    ii = [i for k in cand for i in clusters[k].indices]
-    pp = [i for k in cand for i in clusters[k - 1].indices]
-    same = lam.take(ii) == lam.take(pp).conj()
-    same &= (fig.right.take(ii, axis=1) == fig.right.take(pp, axis=1).conj()).all(axis=0)
-    same &= (fig.left_unit.take(ii, axis=1) == fig.left_unit.take(pp, axis=1).conj()).all(axis=0)
-    starts = np.cumsum([0] + [clusters[k].algebraic for k in cand[:-1]])
-    mates: dict[int, int] = {}
-    for k, ok in zip(cand, np.logical_and.reduceat(same, starts)):
-        if ok and k - 1 not in mates:
-            mates[k] = k - 1
-    return mates
 
 
 def _model(eta: np.ndarray, sensitivity: np.ndarray, defective: tuple) -> ErrorModel:
