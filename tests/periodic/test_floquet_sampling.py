@@ -253,3 +253,104 @@ def test_a_spinning_asymmetric_disk_is_decided_from_its_lagrangian_structure():
     damped = _spinning_disk(1e-9)
     flo_damped = pinlin.floquet_analysis(damped, pinlin.periodic_orbit(damped, damped.neutral()))
     assert not flo_damped.conservative
+
+
+# ----------------------------------------------------------------------------- thresholds at their boundaries
+
+
+def test_a_measured_error_counts_only_above_64_eps():
+    from pinlin.periodic.sampled import counted_errors
+    # 64 eps = 64 * 2^-52 = 1.4210854715202004e-14: the samples' own rounding, not counted; the next double is
+    assert_allclose(counted_errors(np.array([1.4210854715202004e-14, 1.4210854715202007e-14, 3e-9])),
+                    [0.0, 1.4210854715202007e-14, 3e-9], rtol=0, atol=0)
+
+
+def test_the_doubling_stalls_below_a_factor_8_from_64_samples():
+    from pinlin.periodic.sampling import stalled
+    assert not stalled([1e-3, 1.25e-4], 64)            # exactly 8 times lower: still converging
+    assert stalled([1e-3, 1.2500001e-4], 64)
+    assert not stalled([1e-3, 5e-4], 32)               # 16 against 16 fresh samples: too early to judge
+    assert stalled([1e-3, 5e-4], 64) and not stalled([1e-3], 64)
+
+
+def test_the_damping_scale_is_at_least_sqrt_m_k():
+    from pinlin.periodic.sampled import second_order_scales
+    samples = np.array([[[[4.0]], [[0.1]], [[9.0]]], [[[2.0]], [[-0.2]], [[1.0]]]])
+    assert_allclose(second_order_scales(samples), [4.0, 6.0, 9.0], rtol=1e-15)      # sqrt(4 * 9) = 6 > 0.2
+    samples[0, 1] = 10.0
+    assert_allclose(second_order_scales(samples), [4.0, 10.0, 9.0], rtol=1e-15)
+
+
+def test_block_errors_carry_the_measured_stiffness_error_through_the_mass():
+    from pinlin.periodic.sampled import block_errors, second_order_scales
+    from pinlin.periodic.second_order import first_order_stack
+
+    def triple(t):   # M = 2 and C = 0.05 constant (their errors are rounding), K = 2 + 0.3 exp(cos t)
+        return np.array([[[2.0]], [[0.05]], [[2.0 + 0.3 * np.exp(np.cos(t))]]])
+    samples = sample_periodic(triple, TWO_PI, tol=1e-7, scales=second_order_scales)
+    S = samples.samples
+    A = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * TWO_PI / S.shape[0])
+    # d(M^-1 K) = M^-1 dK with dK = (measured relative error) (largest |K| = 2 + 0.3 e) and ||M^-1|| = 1 / 2
+    expected = samples.error[2] * (2.0 + 0.3 * np.e) / 2.0
+    assert samples.error[2] > 1e-10
+    assert_allclose(block_errors(samples, A, 1), [[0.0, 0.0], [expected, 0.0]], rtol=1e-12, atol=0)
+
+
+def test_the_lagrangian_defect_is_the_larger_identity_defect():
+    from pinlin.periodic.second_order import lagrangian_defect
+    M, dM = np.eye(2)[None], np.zeros((1, 2, 2))
+    C, dC = np.array([[[0.0, 1.0], [-1.0, 0.0]]]), np.array([[[0.0, 2.0], [-2.0, 0.0]]])
+    K = np.array([[[3.0, 0.5], [-0.5, 3.0]]])
+    # sym(C) = M' holds; skew(K) - skew(C)' / 2 has entries 0.5 - 1: 0.5 over |K| + rate |C| = 3 + 2 * 1
+    assert_allclose(lagrangian_defect(M, C, K, dM, dC, 2.0), 0.1, rtol=1e-15)
+    K = np.array([[[3.0, 1.0], [-1.0, 3.0]]])
+    assert lagrangian_defect(M, C, K, dM, dC, 2.0) == 0.0
+
+
+@pytest.mark.parametrize("factor, conservative", [(0.99, False), (1.01, True)])
+def test_the_lagrangian_structure_is_decided_at_the_structure_tolerance(factor, conservative):
+    # a damping d = 1e-11 I breaks sym(C) = M' by d; over the 16 samples |C| <= 0.9 (0.7 cos t - 0.2 at t = pi)
+    # and |M| <= 2.5, the rate 16 / 2: the defect is 1e-11 / (0.9 + 8 * 2.5) in units of eps
+    defect = 1e-11 / (0.9 + 8 * 2.5) / np.finfo(float).eps
+    result = _lagrangian_analysis(damping=1e-11, structure_tolerance=factor * defect)
+    assert result.evaluations == 16 and result.conservative == conservative
+
+
+def test_max_samples_from_16():
+    with pytest.raises(ParameterError, match="max_samples: expected an int in 16..65536, got 15"):
+        floquet_analysis_matrices(*mathieu(1.3, 0.4), TWO_PI, max_samples=15)
+    assert floquet_analysis_matrices(*mathieu(1.3, 0.4), TWO_PI, max_samples=16).evaluations == 16
+
+
+def test_the_grid_counts_the_evaluations_it_makes():
+    def A_batch(times):
+        out = np.zeros((np.size(times), 2, 2))
+        out[:, 0, 1], out[:, 1, 0] = 1.0, -(2.0 + np.cos(np.asarray(times)))
+        return out
+    plain = integrate_on_grid(A_batch, TWO_PI, 2, second_order=True)
+    # A(0), the 64 probes, and 3 s = 18 nodes for each step taken (accepted or rejected)
+    assert plain.evaluations == 1 + 64 + 18 * (len(plain.steps) + plain.rejected)
+    given = integrate_on_grid(A_batch, TWO_PI, 2, second_order=True, A0=A_batch([0.0])[0],
+                              probe=A_batch(np.linspace(0, TWO_PI, 16, endpoint=False)))
+    assert given.evaluations == 18 * (len(given.steps) + given.rejected)
+
+
+def test_non_finite_samples_are_named():
+    from pinlin.periodic.sampled import second_order_transitions
+    options = dict(rtol=1e-13, stages=6, growth=1e3, max_steps=20000, max_time=600.0)
+
+    def triple(t):   # an unchecked coefficient function (a scene's) that breaks at t = pi / 2
+        return np.array([[[1.0]], [[0.0]], [[np.nan if abs(t - np.pi / 2) < 1e-12 else 2.0]]])
+    with pytest.raises(ParameterError, match="K: non-finite entries at t = 1.5708 s"):
+        second_order_transitions(triple, None, TWO_PI, 1, options, "spectral", 256, 1e-14)
+
+
+def test_the_grid_refuses_non_finite_coefficients():
+    from pinlin import IntegrationError
+
+    def A_batch(times):
+        out = np.zeros((np.size(times), 2, 2))
+        out[:, 0, 1], out[:, 1, 0] = 1.0, np.where(np.asarray(times) > 3.0, np.nan, -2.0)
+        return out
+    with pytest.raises(IntegrationError, match="not finite at t = 0 or at a probed time"):
+        integrate_on_grid(A_batch, TWO_PI, 2, second_order=True)

@@ -115,15 +115,17 @@ def integrate_on_grid(
     IntegrationBudgetError
         The next round would take the steps past ``max_steps`` (rounds are not split), or ``max_time`` spent.
     IntegrationError
-        A step below 1e-12 T, or a non-finite transition.
+        Coefficients not finite at t = 0 or at a probe, a step below 1e-12 T, or a non-finite transition.
     """
     start = time.perf_counter()
     c, a, b = gauss_legendre(stages)
     evaluations = (A0 is None) + (probe is None) * PROBES
     A0 = A(np.array([0.0]))[0] if A0 is None else A0
-    d, scaling = balancing(A0)
     if probe is None:
         probe = A(np.arange(PROBES) * period / PROBES)
+    if not (np.all(np.isfinite(A0)) and np.all(np.isfinite(probe))):
+        raise IntegrationError("the coefficients are not finite at t = 0 or at a probed time", 0.0)
+    d, scaling = balancing(A0)
     t0, h = _first_grid(probe, period, scaling, stages, rtol, max_step_norm)
     steps, rejected = [], 0
     while t0.size:

@@ -68,11 +68,15 @@ def second_order_scales(samples: np.ndarray) -> np.ndarray:
     return np.array([M, max(C, np.sqrt(M * K)), K])
 
 
-def _sample(F, T, rtol, sampling, max_samples, scales=group_norms) -> PeriodicSamples | None:
+def _sample(F, T, rtol, sampling, max_samples, names, scales=group_norms) -> PeriodicSamples | None:
     if sampling == "nodes":
         return None
     tol = max(rtol, SAMPLING_FLOOR * _EPS)
     samples = sample_periodic(F, T, tol=tol, max_samples=int(max_samples), scales=scales)
+    finite = np.isfinite(samples.samples).all(axis=(2, 3))                  # (N, groups)
+    if not finite.all():
+        j, g = np.argwhere(~finite)[0]
+        raise ParameterError(names[g], f"non-finite entries at t = {j * T / samples.samples.shape[0]:.6g} s")
     if not samples.converged and sampling == "spectral":
         raise SamplingError(
             f"sampling='spectral': the trigonometric interpolant of the coefficients did not reach the relative "
@@ -99,7 +103,7 @@ def _described(samples: PeriodicSamples, tr: Transitions) -> str:
 
 def first_order_transitions(func, T: float, m: int, options: dict, sampling: str, max_samples: int) -> Integrated:
     """The transitions of y' = A(t) y, A = ``func`` (checked callable)."""
-    samples = _sample(lambda t: func(t)[None], T, options["rtol"], sampling, max_samples)
+    samples = _sample(lambda t: func(t)[None], T, options["rtol"], sampling, max_samples, ("A",))
     if samples is None or not samples.converged:
         return _at_nodes(integrate_transitions(func, T, m, **options), samples, float("nan"))
     n = m // 2
@@ -148,7 +152,7 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
                              max_samples: int, give_up: float) -> Integrated:
     """The transitions of M x'' + C x' + K x = 0: ``triple(t)`` -> (3, n, n) stacked M, C, K (one evaluation);
     ``fallback()`` -> (fM, fC, fK) checked callables for the nodes (made only when they are needed)."""
-    samples = _sample(triple, T, options["rtol"], sampling, max_samples, second_order_scales)
+    samples = _sample(triple, T, options["rtol"], sampling, max_samples, ("M", "C", "K"), second_order_scales)
     if samples is None or not samples.converged:
         A = SecondOrderA(*fallback(), n, give_up)
         tr = integrate_transitions(A, T, 2 * n, **options)
