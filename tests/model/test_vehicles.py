@@ -152,6 +152,8 @@ def test_top():
     (lambda: rolling_disk_urdf(-0.3, 1.0), "radius: must be positive"),
     (lambda: rolling_disk_urdf(0.3, -1.0), "mass: must be positive"),
     (lambda: rolling_disk_urdf(None, 1.0), "radius: expected a real number, got None"),
+    (lambda: rolling_disk_urdf("0.3", 1.0), "radius: expected a real number, got '0.3'"),
+    (lambda: rolling_disk_urdf(0.3, True), "mass: expected a real number, got True"),
     (lambda: free_body_urdf(1.0, 1.0, 3.0, 1.0), r"I1/I2/I3: principal moments \(1.0, 1.0, 3.0\)"),
     (lambda: free_body_urdf(1.0, 2.0, 2.0, -2.0), "mass: must be positive"),
     (lambda: free_body_urdf(0.0, 2.0, 2.0, 1.0), "I1: must be positive"),
@@ -163,3 +165,8 @@ def test_top():
 def test_bad_parameters(call, match):
     with pytest.raises(pinlin.ParameterError, match=match):
         call()
+
+
+def test_whipple_parameters_are_keywords_only():
+    with pytest.raises(TypeError):
+        WhippleParameters(1.02)

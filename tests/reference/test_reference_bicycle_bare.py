@@ -25,7 +25,7 @@ from scipy.linalg import null_space
 from scipy.optimize import brentq
 
 from bicycle_cases import C1, CAPSIZE_SPEED, EIGENVALUES, G, K0, K2, M, WEAVE_SPEED
-from pinlin.model.vehicles import WhippleParameters, whipple_bicycle_urdf
+from pinlin.model.vehicles import WhippleParameters, rolling_disk_urdf, whipple_bicycle_urdf
 
 P = WhippleParameters()
 UP = np.array([0.0, 0.0, 1.0])
@@ -202,3 +202,39 @@ def test_gravity_stiffness_is_the_benchmark_K0(bike):
     for j in (1, 2):
         table = [(4**j * fine - coarse) / (4**j - 1) for coarse, fine in zip(table, table[1:])]
     assert_allclose(table[0], G * K0, rtol=1e-9)
+
+
+# ---------------------------------------------------------------- the same construction on a closed form
+
+def test_rolling_disk_constrained_mass_matrix_and_potential_by_hand():
+    """Upright rolling disk: B^T M B = diag(A + m r^2, A, C + m r^2) in (lean, heading, spin) rates,
+    and the potential m g r cos(lean) has the Hessian -m g r: the two constructions above on a case
+    whose answer is known in closed form (A = m r^2 / 4, C = m r^2 / 2)."""
+    r, m = 0.4, 3.0
+    model = pin.buildModelFromXML(rolling_disk_urdf(r, m))
+    data = model.createData()
+    fid = model.getFrameId("disk")
+    q = pin.neutral(model)
+    q[2] = r
+    pin.computeJointJacobians(model, data, q)
+    pin.framesForwardKinematics(model, data, q)
+    J = pin.getFrameJacobian(model, data, fid, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    c = contact_point(data, fid, r)
+    assert_allclose(c, 0.0, rtol=0, atol=1e-16)
+    N = null_space(J[:3] - pin.skew(c - data.oMf[fid].translation) @ J[3:])
+    B = N @ np.linalg.inv(N[[4, 3, 5]])  # v = (x, y, z, heading, lean, spin) rates
+    Mq = pin.crba(model, data, q)
+    A, C = m * r * r / 4, m * r * r / 2
+    assert_allclose(B.T @ (np.triu(Mq) + np.triu(Mq, 1).T) @ B, np.diag([A + m * r * r, A, C + m * r * r]),
+                    rtol=1e-15, atol=1e-16)
+
+    def V(lean):
+        q = pin.neutral(model)
+        q[4] = lean
+        pin.framesForwardKinematics(model, data, q)
+        q[2] = -contact_point(data, fid, r)[2]  # the centre's height that puts the rim on the ground
+        return m * P.g * pin.centerOfMass(model, data, q)[2]
+
+    h = 0.05
+    second = [(V(s) - 2 * V(0.0) + V(-s)) / s**2 for s in (h, h / 2)]
+    assert_allclose((4 * second[1] - second[0]) / 3, -m * P.g * r, rtol=1e-7)  # relative error h^4 / 1440

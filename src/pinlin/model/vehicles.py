@@ -9,16 +9,17 @@ Kinematics and inertia only (no meshes), like :mod:`.generators`.  Gravity along
 - :func:`free_body_urdf` -- one rigid body with given principal moments (for a free flyer);
 - :func:`top_urdf` -- a symmetric top on a fixed pivot with a free spin joint.
 
-"Massless" intermediate links (slides, hinges, gimbals) have no ``<inertial>`` element:
-Pinocchio gives them mass 0 and a zero tensor, which is valid for a link whose subtree
-carries mass (the mass matrix stays positive definite), and pinlin's inertia check
-accepts them.
+"Massless" intermediate links (slides, hinges, gimbals) have no ``<inertial>`` element, as
+in :mod:`.generators`: Pinocchio gives them mass 0 and a zero tensor, and pinlin's inertia
+check accepts them.  The mass matrix stays positive definite because the joints' motions
+move the massive body at the chain's end independently (the disk's six, the top's three).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, fields
+from numbers import Real
 
 from ..errors import ParameterError
 from .inertia import inertia_fault
@@ -33,10 +34,9 @@ def _num(x: float) -> str:
 
 
 def _finite(name: str, value) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, f"expected a real number, got {value!r}") from None
+    if not isinstance(value, Real) or isinstance(value, bool):
+        raise ParameterError(name, f"expected a real number, got {value!r}")
+    x = float(value)
     if not math.isfinite(x):
         raise ParameterError(name, f"must be finite, got {value!r}")
     return x
@@ -78,7 +78,7 @@ def _joint(name: str, kind: str, parent: str, child: str, axis, xyz=(0.0, 0.0, 0
     )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class WhippleParameters:
     """Parameters of the Whipple bicycle, named and valued as in the benchmark (Meijaard et al. 2007).
 
@@ -89,6 +89,7 @@ class WhippleParameters:
     ``mF``, ``IFxx``, ``IFyy``.  Rear frame with rider: ``xB``, ``zB``, ``mB``, ``IBxx``,
     ``IByy``, ``IBzz``, ``IBxz``; fork and handlebar: ``xH``, ``zH``, ``mH``, ``IHxx``,
     ``IHyy``, ``IHzz``, ``IHxz``.  Wheelbase ``w``, trail ``c``, steer axis tilt ``lam``.
+    Keywords only; :func:`dataclasses.replace` gives a variant.
 
     Raises
     ------
@@ -102,6 +103,8 @@ class WhippleParameters:
     >>> p = WhippleParameters()
     >>> print(p.mR + p.mB + p.mH + p.mF, p.w, p.c)
     94.0 1.02 0.08
+    >>> print(WhippleParameters(mB=60.0).mB)
+    60.0
     >>> WhippleParameters(rF=0.0)
     Traceback (most recent call last):
     ...
