@@ -149,7 +149,7 @@ def modal_analysis(
         freq, zeta = _frequency_damping(lam)
         bound = model.bound(0.0)
         # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
-        if np.isnan(np.add.reduce(bound) + np.add.reduce(fig.backward_error)):
+        if np.isnan(np.sum(bound) + np.sum(fig.backward_error)):
             raise ComputationError(
                 "an eigenvalue error figure is not a number: the coefficients (norms "
                 f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "

@@ -27,7 +27,6 @@ from ..numerics.accuracy import ETA_FLOOR
 from ..numerics.clustering import find_clusters
 from ..numerics.floating import EPS
 from ..numerics.norms import column_norms
-from ..numerics.small_linalg import singular_values, solve
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale
 from .multiplicity import Cluster, ClusterEvidence, analyse_cluster
 from .problem import QuadraticProblem
@@ -221,10 +220,10 @@ def _biorthogonalize(problem: QuadraticProblem, lam, fig: PairFigures, c: Cluste
     Y = fig.left_unit[:, ii]
     P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
     try:
-        sv = singular_values(P)
+        sv = np.linalg.svd(P, compute_uv=False)
         if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
             return False
-        Yn = solve(P, Y.T).T  # Yn^T Lp X = I
+        Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
     except np.linalg.LinAlgError:
         return False
     left[:, ii] = Yn
