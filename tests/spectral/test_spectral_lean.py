@@ -81,7 +81,7 @@ def test_ordering_with_pairs_out_of_place():
     rng = np.random.default_rng(0)
     X = rng.standard_normal((n, 6)) + 1j * rng.standard_normal((n, 6))
     P = np.stack([X, 2 * X, 3 * X, 4 * X])
-    raw = order_spectrum(RawSpectrum(lam, P, None, np.arange(6), np.arange(6.0)))
+    raw = order_spectrum(RawSpectrum(lam=lam, P=P, Y=None, block=np.arange(6), eta=np.arange(6.0)))
     assert_allclose(raw.lam, [0.5, -1.0, 1 + 1j, 1 - 1j, 2j, -2j], rtol=0)
     assert_allclose(raw.P[..., 3], np.conj(raw.P[..., 2]), rtol=0)
     assert_allclose(raw.P[..., 5], np.conj(raw.P[..., 4]), rtol=0)

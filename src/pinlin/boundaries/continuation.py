@@ -39,7 +39,7 @@ MIN_RELATIVE_SPREAD = 1e3 * EPS
 ON_ERROR = ("raise", "record")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class BoundaryFailure:
     """A point of the curve that could not be found (``on_error="record"``): its index, p1 and what was raised."""
 
@@ -48,7 +48,7 @@ class BoundaryFailure:
     message: str
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class StabilityBoundary(Result):
     """The boundary curve p2*(p1) (theory: boundaries).
 
@@ -198,21 +198,27 @@ def stability_boundary(
                 if hasattr(exc, "add_note"):  # Python >= 3.11
                     exc.add_note(f"stability_boundary: at point {i}, p1 = {p1!r}")
                 raise
-            failures.append(BoundaryFailure(i, p1, f"{type(exc).__name__}: {exc}"))
+            failures.append(BoundaryFailure(index=i, p1=p1, message=f"{type(exc).__name__}: {exc}"))
             points.append(None)
             continue
         done.append((p1, point.value, point.error_bound))
         points.append(point)
     found = np.array([p is not None for p in points])
     return StabilityBoundary(
-        readonly(p1s), readonly([p.value if p else np.nan for p in points]),
-        readonly([p.error_bound if p else np.inf for p in points]),
-        tuple(p.kind if p else "" for p in points), tuple(p.mechanism if p else "" for p in points),
-        readonly(np.array([p.eigenvalue if p else np.nan for p in points], dtype=complex)), readonly(found),
-        tuple(points), tuple(failures), sum(p.evaluations for p in points if p),
-        sum(p.function_calls for p in points if p),
-        "continuation: extrapolated predictor, bracket around it, critical_parameter as corrector",
-        time.perf_counter() - t0)
+        p1=readonly(p1s),
+        p2=readonly([p.value if p else np.nan for p in points]),
+        error_bound=readonly([p.error_bound if p else np.inf for p in points]),
+        kind=tuple(p.kind if p else "" for p in points),
+        mechanism=tuple(p.mechanism if p else "" for p in points),
+        eigenvalue=readonly(np.array([p.eigenvalue if p else np.nan for p in points], dtype=complex)),
+        found=readonly(found),
+        points=tuple(points),
+        failures=tuple(failures),
+        evaluations=sum(p.evaluations for p in points if p),
+        function_calls=sum(p.function_calls for p in points if p),
+        method="continuation: extrapolated predictor, bracket around it, critical_parameter as corrector",
+        elapsed=time.perf_counter() - t0,
+    )
 
 
 def _corrector(func, deriv, p1, done, bracket, tol, verify_result, max_evaluations, modal_options):

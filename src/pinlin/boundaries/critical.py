@@ -206,9 +206,11 @@ def critical_parameter(
         mechanism, value, bound, lam, steps, how, verified = _search(
             ev, br, tol_abs, derivative, max_evaluations, verify_result, modal_options, notes)
     return CriticalParameter(
-        float(value), _boundary_kind(br), mechanism, complex(lam), float(bound), (br.lo, br.hi),
-        (br.kind_lo, br.kind_hi), verified, ev.analyses, ev.calls, tuple(steps), how, time.perf_counter() - t0,
-        tuple(notes))
+        value=float(value), kind=_boundary_kind(br), mechanism=mechanism, eigenvalue=complex(lam),
+        error_bound=float(bound), bracket=(br.lo, br.hi), verdicts=(br.kind_lo, br.kind_hi), verified=verified,
+        evaluations=ev.analyses, function_calls=ev.calls, steps=tuple(steps), method=how,
+        elapsed=time.perf_counter() - t0, notes=tuple(notes),
+    )
 
 
 def _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0) -> CriticalParameter:
@@ -220,12 +222,15 @@ def _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0) 
         return dataclasses.replace(res, elapsed=time.perf_counter() - t0, notes=res.notes + (
             "vanishing damping of the given shape stabilizes up to the undamped flutter point: the limit is it",))
     return CriticalParameter(
-        lim.value, "flutter", "vanishing damping", lim.eigenvalue, lim.error_bound, lim.bracket,
-        ("asymptotically_stable", "flutter"), False, lim.evaluations, lim.function_calls, lim.steps,
-        "the root of the first-order rate g(p) = max d Re lam / d eps of the axis eigenvalues for D = eps D1 "
-        "(the limit problem of vanishing damping; Brent's method)", time.perf_counter() - t0,
-        ("verdicts: of func(p) with D = eps D1 for small eps > 0, to first order in eps (not computed at a "
-         "finite eps)",))
+        value=lim.value, kind="flutter", mechanism="vanishing damping", eigenvalue=lim.eigenvalue,
+        error_bound=lim.error_bound, bracket=lim.bracket, verdicts=("asymptotically_stable", "flutter"),
+        verified=False, evaluations=lim.evaluations, function_calls=lim.function_calls, steps=lim.steps,
+        method="the root of the first-order rate g(p) = max d Re lam / d eps of the axis eigenvalues for "
+               "D = eps D1 (the limit problem of vanishing damping; Brent's method)",
+        elapsed=time.perf_counter() - t0,
+        notes=("verdicts: of func(p) with D = eps D1 for small eps > 0, to first order in eps (not computed at "
+               "a finite eps)",),
+    )
 
 
 def _search(ev, br, tol, derivative, max_evaluations, verify_result, modal_options, notes):

@@ -9,7 +9,7 @@ from ..results import Result
 __all__ = ["CriticalParameter"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class CriticalParameter(Result):
     """A stability boundary p* of a one-parameter family (theory: boundaries).
 

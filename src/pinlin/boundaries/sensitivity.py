@@ -158,7 +158,7 @@ def eigen_derivatives(modes: Modes, dL: MatrixDerivatives, *, puiseux: bool = Tr
     return EigenDerivatives(der, err, ok, tuple(status), tuple(series))
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class EigenvalueSensitivity(Result):
     """d lam / dp of every eigenvalue of ``func(p)`` (theory: boundaries).
 
@@ -300,8 +300,19 @@ def eigenvalue_sensitivity(
     if not np.all(result.differentiable):
         notes.append(f"{int(np.sum(~result.differentiable))} eigenvalue(s) not differentiable (see status)")
     return EigenvalueSensitivity(
-        p, readonly(modes.eigenvalues), readonly(result.derivatives), readonly(result.error),
-        readonly(result.differentiable), result.status, result.puiseux, readonly(dL.stack), readonly(dL.error),
-        ev.calls, ev.analyses, modes, f"{dL.method}; d lam/dp = -y^T L_p x / (y^T L' x)", time.perf_counter() - t0,
-        tuple(notes),
+        parameter=p,
+        eigenvalues=readonly(modes.eigenvalues),
+        derivatives=readonly(result.derivatives),
+        derivative_error=readonly(result.error),
+        differentiable=readonly(result.differentiable),
+        status=result.status,
+        puiseux=result.puiseux,
+        matrix_derivatives=readonly(dL.stack),
+        matrix_error=readonly(dL.error),
+        evaluations=ev.calls,
+        analyses=ev.analyses,
+        modes=modes,
+        method=f"{dL.method}; d lam/dp = -y^T L_p x / (y^T L' x)",
+        elapsed=time.perf_counter() - t0,
+        notes=tuple(notes),
     )

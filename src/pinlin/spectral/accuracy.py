@@ -50,7 +50,7 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class PairFigures:
     """Normalized vectors and the accuracy figures of a set of eigenpairs.
 
@@ -138,7 +138,10 @@ def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=Non
             sens = np.where(ok, weight / np.where(ok, size, 1.0), np.inf)
         left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
     bound = np.maximum(eta, ETA_FLOOR) * sens
-    return PairFigures(X, left, ok, deriv, eta, bound, sens, Y, yP, quad, weight)
+    return PairFigures(
+        right=X, left=left, left_normalized=ok, derivative=deriv, backward_error=eta, error_bound=bound,
+        sensitivity=sens, left_unit=Y, products=yP, quadratic=quad, weight=weight,
+    )
 
 
 @dataclass(frozen=True)

@@ -59,7 +59,7 @@ _CHAINS_METHOD = (
 )
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class JordanChains(Result):
     """Jordan chains of L at lam0; behaves as a list of chains (each a list of vectors).
 
@@ -259,8 +259,9 @@ def jordan_chains(sys, lam0, *, rank_tol: float = RANK_TOL, max_length: int | No
     chains = [tuple(v / gamma**i for i, v in enumerate(c)) for c in scaled]
     residuals = tuple(chain_residuals(problem.M, problem.C, problem.K, lam0, c) for c in chains)
     result = JordanChains(
-        lam0, tuple(chains), tuple(len(c) for c in chains), residuals, dims, rank_tol,
-        time.perf_counter() - t0, expected, tuple(notes),
+        lam0=lam0, chains=tuple(chains), partial=tuple(len(c) for c in chains), residuals=residuals,
+        kernel_dims=dims, rank_tol=rank_tol, elapsed=time.perf_counter() - t0, expected=expected,
+        notes=tuple(notes),
     )
     if notes:
         warnings.warn(f"jordan_chains at lam0 = {lam0:.6g}: " + "; ".join(notes), AccuracyWarning, stacklevel=2)

@@ -104,10 +104,9 @@ class Evidence:
 
     def at(self, kind: str, reason: str, i: int | None = None, theorem=None, bounded=None) -> Stability:
         """The verdict, with eigenvalue i and its bound attached (when given)."""
-        if i is None:
-            return Stability(kind, reason, theorem, None, None, bounded, self.safety, uncertainty=self.uncertainty)
         return Stability(
-            kind, reason, theorem, complex(self.lam[i]), float(self.r[i]), bounded, self.safety,
+            kind=kind, reason=reason, theorem=theorem, eigenvalue=None if i is None else complex(self.lam[i]),
+            error_bound=None if i is None else float(self.r[i]), bounded=bounded, safety=self.safety,
             uncertainty=self.uncertainty,
         )
 
