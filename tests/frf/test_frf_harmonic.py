@@ -172,7 +172,7 @@ def test_bad_inputs_raise(F, omega, kwargs, match):
 def test_defect_above_tol_warns():
     sys = SYSTEMS["turntable (G)"]
     with pytest.warns(pinlin.AccuracyWarning, match="defect"):
-        X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0], tol=1e-300)
+        X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0], error_tol=1e-300)
     assert np.max(X.defects) > 1e-300 and X.error == np.max(X.defects)
     with pytest.warns(DeprecationWarning, match="defects"):
         assert np.array_equal(X.defect, X.defects)  # the 0.1 name, for one release

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import BracketError, ParameterError, PinlinError
+from ..errors.deprecated import renamed_keywords
 from ..numerics.arrays import readonly
 from ..results import Result
 from .critical import MAX_EVALUATIONS, CriticalParameter, critical_parameter
@@ -132,12 +133,13 @@ def _brackets(p1, done, bracket):
     yield (lo, hi), "given"
 
 
+@renamed_keywords(tol="atol")
 def stability_boundary(
     func2: Callable[[float, float], Any],
     p1_values,
     bracket,
     *,
-    tol: float | None = None,
+    atol: float | None = None,
     derivative: Callable[[float, float], Any] | None = None,
     on_error: str = "raise",
     verify_result: bool = True,
@@ -155,8 +157,9 @@ def stability_boundary(
     bracket : (float, float)
         A p2 bracket of the boundary valid at every p1 (used for the first point,
         and whenever a predicted bracket fails).
-    tol, verify_result, max_evaluations, modal_options
-        As :func:`~pinlin.boundaries.critical_parameter`, per point.
+    atol, verify_result, max_evaluations, modal_options
+        As :func:`~pinlin.boundaries.critical_parameter`, per point (``tol`` is the
+        deprecated spelling of ``atol``).
     derivative : callable, optional
         ``derivative(p1, p2) -> (dM, dC, dK)``, exact derivatives in p2.
     on_error : {"raise", "record"}
@@ -192,7 +195,7 @@ def stability_boundary(
 
         deriv = None if derivative is None else (lambda p2, p1=p1: derivative(p1, p2))
         try:
-            point = _corrector(func, deriv, p1, done, bracket, tol, verify_result, max_evaluations, modal_options)
+            point = _corrector(func, deriv, p1, done, bracket, atol, verify_result, max_evaluations, modal_options)
         except PinlinError as exc:
             if on_error == "raise":
                 if hasattr(exc, "add_note"):  # Python >= 3.11
@@ -221,13 +224,13 @@ def stability_boundary(
     )
 
 
-def _corrector(func, deriv, p1, done, bracket, tol, verify_result, max_evaluations, modal_options):
+def _corrector(func, deriv, p1, done, bracket, atol, verify_result, max_evaluations, modal_options):
     """critical_parameter at one p1, on the predicted brackets first; analyses of failed brackets counted."""
     spent, calls = 0, 0
     last = None
     for br, origin in _brackets(p1, done, bracket):
         try:
-            point = critical_parameter(func, br, tol=tol, derivative=deriv, verify_result=verify_result,
+            point = critical_parameter(func, br, atol=atol, derivative=deriv, verify_result=verify_result,
                                        max_evaluations=max_evaluations, modal_options=modal_options)
         except BracketError as exc:
             spent += 2 if exc.verdicts else 0

@@ -90,7 +90,7 @@ class VanishingLimit:
     elapsed: float
 
 
-def vanishing_damping_limit(func, bracket, damping, *, tol: float | None = None, max_evaluations: int = 80,
+def vanishing_damping_limit(func, bracket, damping, *, atol: float | None = None, max_evaluations: int = 80,
                             modal_options=None) -> VanishingLimit:
     """The limit p_d of the flutter boundary for D = eps D1, eps -> 0 (module doc).
 
@@ -146,7 +146,7 @@ def vanishing_damping_limit(func, bracket, damping, *, tol: float | None = None,
             raise ConvergenceError(f"func({p!r}) is not marginally stable inside the rate's bracket", steps)
         return value[0]
 
-    xtol = 2 * np.finfo(float).eps * max(abs(a), abs(b), 1.0) if tol is None else float(tol)
+    xtol = 2 * np.finfo(float).eps * max(abs(a), abs(b), 1.0) if atol is None else float(atol)
     value, info = brentq(g, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps, full_output=True)
     steps.append(f"Brent on g in [{a:.15g}, {b:.15g}]: {info.iterations} iterations")
     h = SLOPE_STEP * max(abs(value), 1.0)

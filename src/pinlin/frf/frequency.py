@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors.deprecated import renamed_keywords
 from ..extras import import_pandas
 from ..linearization.system import check_system
 from ..numerics import check_tolerance, dof_indices
@@ -144,6 +145,7 @@ class FrequencyResponse(Result):
         )
 
 
+@renamed_keywords(tol="error_tol")
 def frequency_response(
     sys,
     omega,
@@ -153,7 +155,7 @@ def frequency_response(
     method: str = DEFAULT_METHOD,
     modes=None,
     check: bool = True,
-    tol: float = DEFAULT_TOL,
+    error_tol: float = DEFAULT_TOL,
 ) -> FrequencyResponse:
     """Frequency response ``H(i omega) = L(i omega)^-1`` from ``inputs`` to ``outputs`` (theory: responses).
 
@@ -181,8 +183,9 @@ def frequency_response(
     check : bool
         Compute the relative defect per frequency (costs O(n^2) per input and
         frequency; on by default).
-    tol : float
-        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it.
+    error_tol : float
+        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it
+        (``tol`` is its deprecated spelling).
 
     Returns
     -------
@@ -192,7 +195,7 @@ def frequency_response(
     ------
     ParameterError
         ``omega`` not a finite real scalar or 1-D array, unknown inputs or
-        outputs, bad method, modes or tol, a frequency at an eigenvalue on the
+        outputs, bad method, modes or error_tol, a frequency at an eigenvalue on the
         imaginary axis (an undamped resonance: a pole of H).
     ComputationError
         L(i omega) overflows; the modal expansion does not apply to these modes.
@@ -202,11 +205,11 @@ def frequency_response(
     w, _ = real_frequencies(omega)
     ins = dof_indices(sys, inputs, "inputs")
     outs = dof_indices(sys, outputs, "outputs")
-    tol = check_tolerance(tol, "tol")
+    error_tol = check_tolerance(error_tol, "error_tol")
     out = solve(sys, 1j * w, np.eye(sys.n)[:, ins], method=method, modes=modes, rows=outs, check=check,
                 label="omega", values=w)
     name = method if out.expansion is None else out.expansion.method
-    warn_inaccurate("frequency_response", name, out.defects, tol, "omega", w, exact=out.exact)
+    warn_inaccurate("frequency_response", name, out.defects, error_tol, "omega", w, exact=out.exact)
     notes = []
     if out.expansion is not None:
         notes.append(f"modes from {getattr(out.expansion.modes, 'method', 'modal_analysis')!s}")
