@@ -1,4 +1,4 @@
-"""The characteristic differential equation p(d/dt) x_i = 0 (paper Sec. 7; issue 4, part 4).
+"""The characteristic differential equation p(d/dt) x_i = 0 (paper Sec. 7).
 
 Free responses are computed independently here, with scipy's matrix exponential
 of the first-order state matrix A = [[0, I], [-M^-1 K, -M^-1 C]]; their exact

@@ -1,4 +1,4 @@
-"""critical_parameter: how it searches, what it reports, and every bad-input path (issue 15 parts 2 and 5).
+"""critical_parameter: how it searches, what it reports, and every bad-input path.
 
 The accuracy against closed forms is in tests/reference/test_reference_boundaries.py; here the same families
 (boundary_cases) exercise the mechanisms, the counts, the re-planning and the errors.

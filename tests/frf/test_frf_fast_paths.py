@@ -1,4 +1,4 @@
-"""The fast paths of the H(s) engine (issue 14): the Schur form for many points, the sampled modal check.
+"""The fast paths of the H(s) engine: the Schur form for many points, the sampled modal check.
 
 References are independent: numpy's dense solve of L(s) X = B at every point, and
 the exact relative defect ||L X - B|| / (||L|| ||X|| + ||B||) recomputed here.

@@ -1,4 +1,4 @@
-"""The result convention of the frequency-domain results and the one H(s) engine behind them (issue 10).
+"""The result convention of the frequency-domain results and the one H(s) engine behind them.
 
 Each result is built on a small system; ``json.dumps(to_dict())`` must work, and
 ``error``, ``method`` and ``elapsed`` must mean what the docstrings say: the
@@ -163,7 +163,7 @@ def test_bad_inputs_name_the_parameter():
 
 
 def test_overflow_is_an_error_not_nan():
-    """issue 13 item 3: omega = 1e300 used to give NaN with error 0."""
+    """omega = 1e300 used to give NaN with error 0."""
     with pytest.raises(pinlin.ComputationError, match=r"overflows double precision at omega\[1\]"):
         pinlin.harmonic_response(DAMPED, [1.0, 0.0], [1.0, 1e300])
     with pytest.raises(pinlin.ComputationError, match="overflows"):

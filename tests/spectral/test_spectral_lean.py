@@ -1,4 +1,4 @@
-"""The lean modal analysis (issue 14): what is deferred, and the vectorized pieces, tested against definitions.
+"""The lean modal analysis: what is deferred, and the vectorized pieces, tested against definitions.
 
 - the stability margin is computed on first access (the verdict itself costs one
   pass through the rules), cached, the same from every thread and after pickling;
@@ -49,7 +49,7 @@ def test_margin_is_computed_on_first_access_and_kept():
 
 def test_a_lazy_margin_survives_pickling_and_to_dict():
     modes = pinlin.modal_analysis(double_pendulum(P=4.0, c=0.05))
-    # the verdict is itself formed on first access (issue 14): formed here, pickled with its margin still lazy
+    # the verdict is itself formed on first access: formed here, pickled with its margin still lazy
     assert modes.stability.__dict__["_margin"] is None
     copy = pickle.loads(pickle.dumps(modes))
     assert copy.stability.__dict__["_margin"] is None

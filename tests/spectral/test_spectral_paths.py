@@ -1,4 +1,4 @@
-"""The structured solver paths agree with the general path (issue 3 part 2).
+"""The structured solver paths agree with the general path.
 
 Agreement is measured against the error bounds both paths report; the paths'
 eigenvalues are also checked against closed forms where one exists.

@@ -1,4 +1,4 @@
-"""Each rule of the stability verdict, directly (issue 16; theory: stability).
+"""Each rule of the stability verdict, directly (theory: stability).
 
 The rules of :data:`pinlin.spectral.stability.rules.RULES` are called one by
 one on hand-made evidence: structural facts of small hand systems, and

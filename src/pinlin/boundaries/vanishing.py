@@ -1,4 +1,4 @@
-"""The limit of a flutter boundary as damping of a given shape vanishes (theory: stability, issue 25).
+"""The limit of a flutter boundary as damping of a given shape vanishes (theory: stability).
 
 For D = eps D1(p) added to a family whose undamped systems func(p) are
 marginally stable, the first-order rate of the axis eigenvalues is

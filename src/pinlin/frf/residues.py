@@ -17,7 +17,7 @@ like ``(r_in / r)^N + (r / r_out)^N`` for a cluster inside ``r_in`` and the next
 eigenvalue beyond ``r_out``; both ratios are kept at most 1/2).  For one pole
 outside at q r the N-point rule's error is exactly q^(N/2) times the difference
 between the N/2- and N-point rules: the error bounds use that difference times
-x >= |q|^(N/2) from the geometry (issue 16: an estimate from the difference alone
+x >= |q|^(N/2) from the geometry (an estimate from the difference alone
 is not a bound).  A computed multiple root is a cluster of nearby
 eigenvalues (a double root splits by about sqrt(eps)); the contour integral sees
 the whole cluster and is insensitive to the splitting, which is why it is

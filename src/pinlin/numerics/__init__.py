@@ -1,4 +1,4 @@
-"""Numerics shared by the analyses, each written once (issue 10).
+"""Numerics shared by the analyses, each written once.
 
 - :mod:`.checks` -- input checks: ``check_tolerance(value, label, upper=None)``,
   ``check_uncertainty``, ``check_integer``, ``check_radii``, ``complex_scalar``, ``complex_points``,

@@ -6,7 +6,7 @@ re-exported here, its home in pinlin 0.2).
 One decision for every user: ``modes.structure``, the stability theorems and
 the command-line report all call :func:`definiteness`, so they cannot
 disagree.  The decision says what the floating-point data prove, not what a
-fixed eigenvalue ratio suggests (issue 16):
+fixed eigenvalue ratio suggests:
 
 * LAPACK's symmetric eigensolver behind ``eigvalsh`` is backward stable: the
   computed eigenvalues w_i are the exact eigenvalues of A + E with

@@ -130,7 +130,7 @@ def modal_analysis(
             "uncertainty the definiteness decisions hold against)", DeprecationWarning, stacklevel=2,
         )
         uncertainty = definiteness_tol
-    with small_kernels(problem.n):  # issue 27: one BLAS thread for a small problem's kernels
+    with small_kernels(problem.n):  # one BLAS thread for a small problem's kernels
         tolerances = _check_options(
             method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
             uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,

@@ -1,4 +1,4 @@
-"""Where a mode keeps its energy: the share of each body, element and damper (issue 26 part 3).
+"""Where a mode keeps its energy: the share of each body, element and damper.
 
 :func:`mode_energy` (also :meth:`pinlin.Modes.energy`) splits the period-mean energies
 of mode k, the motion Re(x exp(lam t)) of its eigenvector x at its eigenvalue lam,

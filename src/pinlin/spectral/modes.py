@@ -248,7 +248,7 @@ class Modes(Result):
     def participation(self) -> np.ndarray:
         """(n, 2n) share of each coordinate in each mode's kinetic plus potential energy (columns sum to 1).
 
-        See :func:`participation` (issue 17 part 3); for tuple input M and K enter
+        See :func:`participation`; for tuple input M and K enter
         by their symmetric parts.
         """
         M, _, K = self.matrices

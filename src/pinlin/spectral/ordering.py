@@ -167,7 +167,7 @@ def mode_kinds(
     "rigid_body": |lam| <= r; "unstable": Re lam > r; "underdamped": |Im lam| > r;
     "overdamped" otherwise (theory: stability).  With ``undamped`` (D = 0 and G = 0 or
     N = 0 exactly: the spectrum is symmetric in the imaginary axis) an oscillating
-    eigenvalue with |Re lam| <= r is "undamped": its damping is none, not small (issue 25).
+    eigenvalue with |Re lam| <= r is "undamped": its damping is none, not small.
     """
     typical = lam
     if clusters:

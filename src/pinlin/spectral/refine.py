@@ -21,7 +21,7 @@ backward error of every pair is measured after each step, not assumed.
 Column j of the update needs only column j of E, hence columns j of R and T
 (symmetrized with their rows j) and the diagonal estimates w~: a step is taken
 on the pairs whose backward error is still above the tolerance, the others are
-kept (issue 14: eigh leaves about 40 % of the pairs of a hanging chain above
+kept (eigh leaves about 40 % of the pairs of a hanging chain above
 1e-15 and one step all but a few).  With more than :data:`REFINE_PARTIAL` of
 the pairs to refine the full step is cheaper (its products are shared).
 

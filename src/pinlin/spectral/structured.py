@@ -1,4 +1,4 @@
-"""Cheaper exact solver paths for structured mechanical systems (issue 3 part 2).
+"""Cheaper exact solver paths for structured mechanical systems.
 
 Each path solves an n-size problem instead of the 2n-size companion pencil
 and returns the same :class:`~pinlin.spectral.qep.RawSpectrum`; the backward
@@ -141,8 +141,7 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     if nd == 0 or ns == 0:
         return 0.0
     factor = sla.cho_factor(sys.M, check_finite=False)  # M is validated finite; a failure raises LinAlgError
-    MiS = sla.cho_solve(factor, S, check_finite=False)
-    MiD = sla.cho_solve(factor, D, check_finite=False)
+    MiS, MiD = np.split(sla.cho_solve(factor, np.hstack((S, D)), check_finite=False), 2, axis=1)
     comm = D @ MiS - S @ MiD
     inv_norm = 1.0 / np.linalg.eigvalsh(sys.M)[0]
     return float(frobenius(comm) / nd / ns / inv_norm)

@@ -1,4 +1,4 @@
-"""Which small damping moves an eigenvalue off the imaginary axis, and which way (theory: stability, issue 25).
+"""Which small damping moves an eigenvalue off the imaginary axis, and which way (theory: stability).
 
 For D = eps D1 added to a system with a simple eigenvalue lam on the imaginary
 axis, right vector x and left vector y (y^T L(lam) = 0) normalized so that
@@ -199,7 +199,7 @@ def _worst(forms, lam, idx, facts) -> DissipationRow:
 
 
 def named_shapes(matrices, system) -> list[tuple[str, np.ndarray]]:
-    """The named damping shapes of issue 25 in the system's coordinates."""
+    """The named damping shapes in the system's coordinates."""
     M = np.asarray(matrices[0], dtype=float)
     n = M.shape[0]
     shapes = []

@@ -112,7 +112,7 @@ class Evidence:
 
     def quoted(self, i: int) -> str:
         """The bound r_i as the verdict quotes it, with the safety factor and the bound it multiplies named
-        (the bound of ``Modes.error_bound`` and the table's column when the uncertainty is 0; issue 25)."""
+        (the bound of ``Modes.error_bound`` and the table's column when the uncertainty is 0)."""
         r, s = float(self.r[i]), self.safety
         at = f" at the data uncertainty {self.uncertainty:g}" if self.uncertainty else ""
         if s == 1.0:

@@ -309,7 +309,7 @@ def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) ->
 
     Every theorem of theory: stability assumes M > 0, and a rounding-level change of
     such an M makes it singular (an infinite eigenvalue) or indefinite: the data
-    decide nothing (issue 13).
+    decide nothing.
     """
     on_M = facts.definiteness_M
     if on_M is None:
