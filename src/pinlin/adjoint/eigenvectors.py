@@ -189,6 +189,14 @@ def adjugate_eigenvectors(
     NotSimpleError
         The adjugate does not have rank one (geometric multiplicity >= 2): its
         columns do not determine an eigenvector.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> lam = pinlin.modal_analysis(sys).eigenvalues[0]
+    >>> vectors = pinlin.adjugate_eigenvectors(sys, lam)
+    >>> vectors.is_simple
+    True
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

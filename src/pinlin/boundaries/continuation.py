@@ -42,7 +42,21 @@ ON_ERROR = ("raise", "record")
 
 @dataclass(frozen=True, kw_only=True)
 class BoundaryFailure:
-    """A point of the curve that could not be found (``on_error="record"``): its index, p1 and what was raised."""
+    """A point of the curve that could not be found (``on_error="record"``): its index, p1 and what was raised.
+
+    Examples
+    --------
+    A point whose system cannot be built is recorded with ``on_error="record"``:
+
+    >>> def family(c, p):
+    ...     if c == 2.0:
+    ...         raise pinlin.ParameterError("c", "no model here")
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[c - p]])
+    >>> curve = pinlin.stability_boundary(family, [1.0, 2.0], (0.0, 3.0), on_error="record")
+    >>> failure = curve.failures[0]
+    >>> failure.index, failure.p1
+    (1, 2.0)
+    """
 
     index: int
     p1: float
@@ -78,6 +92,14 @@ class StabilityBoundary(Result):
         Largest ``error_bound`` of the points found (absolute, unit of p2; inf if none).
     elapsed : float
         Seconds [s].
+
+    Examples
+    --------
+    >>> def family(c, p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[c - p]])
+    >>> curve = pinlin.stability_boundary(family, [1.0, 2.0], (0.0, 3.0))
+    >>> curve.kind, curve.found.tolist()
+    (('divergence', 'divergence'), [True, True])
     """
 
     p1: np.ndarray
@@ -176,6 +198,16 @@ def stability_boundary(
     PinlinError
         Any error of :func:`~pinlin.boundaries.critical_parameter` at a point
         (with ``on_error="raise"``), the point named in the message.
+
+    Examples
+    --------
+    The stiffness c - p vanishes at p = c:
+
+    >>> def family(c, p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[c - p]])
+    >>> curve = pinlin.stability_boundary(family, [1.0, 2.0], (0.0, 3.0))
+    >>> np.round(curve.p2, 12)
+    array([1., 2.])
     """
     t0 = time.perf_counter()
     if on_error not in ON_ERROR:

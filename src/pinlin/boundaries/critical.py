@@ -183,6 +183,16 @@ def critical_parameter(
         More than ``max_evaluations`` modal analyses.
     ParameterError
         Bad ``atol``, ``method`` or ``max_evaluations``.
+
+    Examples
+    --------
+    The stiffness 1 - p vanishes at p = 1: divergence:
+
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> crit = pinlin.critical_parameter(family, (0.0, 2.0))
+    >>> round(crit.value, 12), crit.kind
+    (1.0, 'divergence')
     """
     t0 = time.perf_counter()
     if method not in METHODS:

@@ -201,6 +201,16 @@ class EigenvalueSensitivity(Result):
     elapsed : float
         Seconds [s].
     notes : tuple of str
+
+    Examples
+    --------
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> sens = pinlin.eigenvalue_sensitivity(family, 0.5)
+    >>> sens.parameter, sens.differentiable.tolist()
+    (0.5, [True, True])
+    >>> bool(np.allclose(sens.derivatives, 1 / (2 * sens.eigenvalues + 0.1), rtol=1e-9))
+    True
     """
 
     parameter: float
@@ -282,6 +292,16 @@ def eigenvalue_sensitivity(
     SystemFunctionError
         ``func`` or ``derivative`` raised, or returned a wrong value, or systems of
         different sizes.
+
+    Examples
+    --------
+    lam^2 + 0.1 lam + 1 - p = 0, so d lam / dp = 1 / (2 lam + 0.1):
+
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> sens = pinlin.eigenvalue_sensitivity(family, 0.5)
+    >>> np.round(sens.derivatives, 6)
+    array([...-0.708881j, ...+0.708881j])
     """
     t0 = time.perf_counter()
     p = check_parameter(p, "p")

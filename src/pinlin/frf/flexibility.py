@@ -64,6 +64,13 @@ class FlexibilityArray(ResultArray):
         Seconds.
     residual
         Deprecated alias of ``defects`` (pinlin 0.1).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> H = pinlin.flexibility(sys, [0.5j, 1.0j, 2.0j])
+    >>> H.shape, H.method, bool(H.error < 1e-12)
+    ((3, 2, 2), 'direct', True)
     """
 
     _fields = ("s", "defects", "distance", "method", "error", "elapsed")
@@ -134,6 +141,14 @@ def flexibility(
         or a point at an eigenvalue (a pole of H).
     ComputationError
         L(s) overflows; the modal expansion does not apply to these modes.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> H = pinlin.flexibility(sys, 1.0j)
+    >>> np.round(np.asarray(H), 6)
+    array([[ 0.249377-5.012469j, -0.249377-4.987531j],
+           [-0.249377-4.987531j,  0.249377-5.012469j]])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

@@ -65,6 +65,13 @@ class FrequencyResponse(Result):
     notes : tuple of str
     residual
         Deprecated alias of ``defects`` (pinlin 0.1).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> resp = pinlin.frequency_response(sys, [0.5, 1.0, 2.0], inputs=[0], outputs=[1])
+    >>> resp.response.shape, resp.method
+    ((1, 1, 3), 'direct')
     """
 
     response: np.ndarray
@@ -199,6 +206,15 @@ def frequency_response(
         imaginary axis (an undamped resonance: a pole of H).
     ComputationError
         L(i omega) overflows; the modal expansion does not apply to these modes.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> resp = pinlin.frequency_response(sys, [0.5, 1.0, 2.0])
+    >>> resp.response.shape
+    (2, 2, 3)
+    >>> np.round(resp.response[0, 0], 6)
+    array([ 0.845475-0.047552j,  0.249377-5.012469j, -0.646698-0.107216j])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

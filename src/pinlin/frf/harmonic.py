@@ -52,6 +52,13 @@ class HarmonicResponse(ResultArray):
         Seconds.
     defect
         Deprecated alias of ``defects`` (pinlin 0.1).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> X = pinlin.harmonic_response(sys, [1.0, 0.0], 1.0)
+    >>> X.shape, bool(X.error < 1e-12)
+    ((2,), True)
     """
 
     _fields = ("omega", "defects", "distance", "projection_residual", "method", "error", "elapsed", "modes")
@@ -116,6 +123,16 @@ def harmonic_response(
         resonance: L(i omega) is singular, the steady state does not exist).
     ComputationError
         L(i omega) overflows; the modal expansion does not apply to these modes.
+
+    Examples
+    --------
+    A unit force on the first mass at 0.5 and 1 rad/s: one amplitude vector per frequency:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0])
+    >>> np.round(np.asarray(X), 6)
+    array([[ 0.845475-0.047552j,  0.481959-0.040943j],
+           [ 0.249377-5.012469j, -0.249377-4.987531j]])
     """
     t_start = time.perf_counter()
     sys = check_system(sys)

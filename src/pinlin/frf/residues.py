@@ -115,6 +115,13 @@ class Residues(list, Result):
         Seconds.
 
     ``to_dict()`` gives these and the residues themselves (``"residues"``).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> R = pinlin.residues(sys, pinlin.modal_analysis(sys).eigenvalues[0])
+    >>> R.order, bool(R.error < 1e-10)
+    (1, True)
     """
 
     _meta = (
@@ -321,6 +328,17 @@ def residues(
         No eigenvalue within ``cluster_tol`` of lam0.
     EigenvalueNotIsolatedError
         Another eigenvalue lies within ``GROWTH`` r_in: no contour separates the root.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> lam = pinlin.modal_analysis(sys).eigenvalues[0]
+    >>> R = pinlin.residues(sys, lam)
+    >>> len(R), R.multiplicity
+    (1, 1)
+    >>> np.round(np.asarray(R[0]), 6)
+    array([[0.-0.250313j, 0.-0.250313j],
+           [0.-0.250313j, 0.-0.250313j]])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

@@ -121,6 +121,17 @@ def modal_analysis(
     ComputationError
         QZ failed, or the problem's eigenvalue scale or an eigenvalue is outside
         the double range its error figures need.
+
+    Examples
+    --------
+    Two equal masses coupled by springs, lightly damped:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> modes = pinlin.modal_analysis(sys)
+    >>> np.round(modes.eigenvalues, 6)
+    array([-0.05+0.998749j, -0.05-0.998749j, -0.05+1.731329j, -0.05-1.731329j])
+    >>> modes.stability.kind
+    'asymptotically_stable'
     """
     t0 = time.perf_counter()
     problem = as_problem(sys)

@@ -81,6 +81,17 @@ class ModeEnergy(Result):
     elapsed : float
         Seconds.
     notes : tuple of str
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring(j, 10.0) for j in robot.joint_names])
+    >>> modes = pinlin.modal_analysis(pinlin.linearize(scene, robot.neutral()))
+    >>> energy = modes.energy(0, scene)
+    >>> {body: round(share, 6) for body, share in energy.kinetic.items()}
+    {'link1': 0.18182, 'link2': 0.81818}
+    >>> energy.by, round(sum(energy.strain.values()), 6)
+    ('bodies', 1.0)
     """
 
     index: int

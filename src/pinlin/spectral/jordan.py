@@ -92,6 +92,15 @@ class JordanChains(Result):
     error : float
         The largest relative chain residual (``max_residual``): the backward
         error of the chain equations.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[2.0]], [[1.0]])
+    >>> chains = pinlin.jordan_chains(sys, -1.0)
+    >>> len(chains), [len(chain) for chain in chains]
+    (1, [2])
+    >>> np.round(chains.chains[0][0], 6)
+    array([1.+0.j])
     """
 
     lam0: complex
@@ -231,6 +240,15 @@ def jordan_chains(sys, lam0, *, rank_tol: float = RANK_TOL, max_length: int | No
         L(lam0) is nonsingular at ``rank_tol``: lam0 is no eigenvalue.  The
         message gives the nearest eigenvalue and the distance to it;
         ``distance`` is that distance relative to max(|lam0|, gamma).
+
+    Examples
+    --------
+    A critically damped oscillator, lam^2 + 2 lam + 1 = 0: lam = -1 is a double root with one eigenvector:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[2.0]], [[1.0]])
+    >>> chains = pinlin.jordan_chains(sys, -1.0)
+    >>> chains.partial, bool(chains.max_residual < 1e-12)
+    ((2,), True)
     """
     t0 = time.perf_counter()
     problem = as_problem(sys)

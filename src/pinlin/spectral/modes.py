@@ -168,6 +168,19 @@ class Modes(Result):
     thread they are read, and a pickled result forms them the same way.  Every
     check that can raise runs in :func:`~pinlin.spectral.modal_analysis` itself.
     ``elapsed`` is the time of the call, without the parts formed later.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> modes = pinlin.modal_analysis(sys)
+    >>> modes.n, len(modes), modes.method.name
+    (2, 4, 'proportional')
+    >>> np.round(modes.natural_frequency, 6)
+    array([1.      , 1.      , 1.732051, 1.732051])
+    >>> np.round(modes.damping_ratio, 6)
+    array([0.05    , 0.05    , 0.028868, 0.028868])
+    >>> modes.kind[0], bool(modes.error < 1e-14)
+    ('underdamped', True)
     """
 
     _dict_exclude = ("system", "matrices", "deferred", "verdict")
@@ -280,6 +293,12 @@ class Modes(Result):
         ------
         ParameterError
             ``share`` not in (0, 1], or ``count`` not a positive integer.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> pinlin.modal_analysis(sys).dominant()[0]
+        [('x1', 0.5), ('x2', 0.5)]
         """
         if not isinstance(share, (int, float, np.floating)) or isinstance(share, bool) or not 0 < share <= 1:
             raise ParameterError("share", f"expected a share in (0, 1], got {share!r}")
@@ -305,7 +324,14 @@ class Modes(Result):
 
     @property
     def is_semisimple(self) -> np.ndarray:
-        """(2n,) bool: the eigenvalue (or its cluster) has only chains of length one."""
+        """(2n,) bool: the eigenvalue (or its cluster) has only chains of length one.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> pinlin.modal_analysis(sys).is_semisimple
+        array([ True,  True,  True,  True])
+        """
         out = np.ones(len(self), dtype=bool)
         for c in self.clusters:
             out[list(c.indices)] = c.semisimple
@@ -323,7 +349,15 @@ class Modes(Result):
     def to_dict(self) -> dict:
         """JSON-serializable data: every field but ``system`` and ``matrices``; ``condition``, ``constants``,
         ``participation`` (n, 2n), ``dominant`` (per mode, the coordinates of :meth:`dominant` with their
-        shares), ``method_reason`` and ``dof_names`` added."""
+        shares), ``method_reason`` and ``dof_names`` added.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> data = pinlin.modal_analysis(sys).to_dict()
+        >>> data["method"]["name"] if isinstance(data["method"], dict) else data["method"]
+        'proportional'
+        """
         dominant = [[{"name": name, "share": p} for name, p in row] for row in self.dominant()]
         return super().to_dict(extra={"condition": self.condition, "constants": self.constants, "participation":
                                       self.participation, "dominant": dominant, "method_reason": self.method.reason,
@@ -331,7 +365,14 @@ class Modes(Result):
 
     @property
     def frequency_hz(self) -> np.ndarray:
-        """|lam| / (2 pi) [Hz]."""
+        """|lam| / (2 pi) [Hz].
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> np.round(pinlin.modal_analysis(sys).frequency_hz, 6)
+        array([0.159155, 0.159155, 0.275664, 0.275664])
+        """
         return self.natural_frequency / (2 * np.pi)
 
     # ------------------------------------------------------------------ text
@@ -346,6 +387,16 @@ class Modes(Result):
         ----------
         max_rows : int or None
             Show at most this many eigenvalues (the lowest frequencies); None for all.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> print(pinlin.modal_analysis(sys).table(max_rows=2))
+        Modal analysis: n = 2, 4 eigenvalues, method proportional: ...
+           #   Re lam [1/s] Im lam [rad/s] |lam| [rad/s]      f [Hz] ...
+        ...
+           1          -0.05       0.998749             1    0.159155 ...
+        ...
         """
         k = len(self)
         rows = range(k) if max_rows is None else range(min(k, max_rows))
@@ -381,11 +432,31 @@ class Modes(Result):
     summary = table
 
     def to_pandas(self):
-        """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`)."""
+        """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`).
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> frame = pinlin.modal_analysis(sys).to_pandas()
+        >>> frame.shape
+        (4, 11)
+        >>> list(frame.columns[:3])
+        ['eigenvalue_re', 'eigenvalue_im', 'natural_frequency']
+        """
         return modes_frame(self)
 
     def energy(self, k: int, scene=None):
-        """Mode k's energy per body and element (:func:`pinlin.spectral.energy.mode_energy`)."""
+        """Mode k's energy per body and element (:func:`pinlin.spectral.energy.mode_energy`).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> scene = pinlin.Scene(robot, [pinlin.JointSpring(j, 10.0) for j in robot.joint_names])
+        >>> modes = pinlin.modal_analysis(pinlin.linearize(scene, robot.neutral()))
+        >>> energy = modes.energy(0, scene)
+        >>> {body: round(share, 6) for body, share in energy.kinetic.items()}
+        {'link1': 0.18182, 'link2': 0.81818}
+        """
         return mode_energy(self, k, scene)
 
     def __repr__(self) -> str:

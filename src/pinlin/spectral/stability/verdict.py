@@ -101,6 +101,15 @@ class Stability(Result):
         least the unit of rounding eps) as a share of the perturbation the
         verdict survives (relative; below 1 the verdict holds beyond the
         uncertainty of the data, 1 for "undecided", whose margin is 0).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> verdict = pinlin.modal_analysis(sys).stability
+    >>> verdict.kind, verdict.theorem, verdict.bounded
+    ('asymptotically_stable', 'Thomson-Tait-Chetaev', True)
+    >>> bool(verdict.margin > 0.1)
+    True
     """
 
     _dict_fields = (
