@@ -25,7 +25,6 @@ well L is symmetric and the right eigenvector is also the left one.
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 
 from ..errors import ComputationError
 from ..numerics.norms import frobenius
@@ -140,8 +139,7 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     nd, ns = frobenius(D), frobenius(S)
     if nd == 0 or ns == 0:
         return 0.0
-    factor = sla.cho_factor(sys.M, check_finite=False)  # M is validated finite; a failure raises LinAlgError
-    MiS, MiD = np.split(sla.cho_solve(factor, np.hstack((S, D)), check_finite=False), 2, axis=1)
+    MiS, MiD = np.split(np.linalg.solve(sys.M, np.hstack((S, D))), 2, axis=1)
     comm = D @ MiS - S @ MiD
     inv_norm = 1.0 / np.linalg.eigvalsh(sys.M)[0]
     return float(frobenius(comm) / nd / ns / inv_norm)
