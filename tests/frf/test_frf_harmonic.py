@@ -160,7 +160,7 @@ def test_computed_natural_frequency_is_a_pole_for_both_methods():
         ([1.0, 0.0], [], {}, "non-empty"),
         ([1.0, 0.0], "fast", {}, "omega"),
         ([1.0, 0.0], 1.0, {"method": "fft"}, "method"),
-        ([1.0, 0.0], 1.0, {"tol": 0.0}, "tol"),
+        ([1.0, 0.0], 1.0, {"error_tol": 0.0}, "tol"),
     ],
 )
 def test_bad_inputs_raise(F, omega, kwargs, match):

@@ -171,7 +171,7 @@ def expol_basis(t: np.ndarray, roots, *, cluster_tol: float = ROOT_CLUSTER_TOL) 
     return np.column_stack(cols) if cols else np.zeros((t.size, 0), dtype=complex)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class CDECheck(Result):
     """How well a sampled trajectory satisfies ``p(d/dt) x_i = 0``.
 

@@ -75,7 +75,7 @@ def backward_error(sys, lam: complex, x: np.ndarray, *, left: bool = False) -> f
     return accuracy.backward_error(sys.M, sys.C, sys.K, lam, x, left=left)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class AdjugateEigenvectors(Result):
     """Eigenvectors at a root read off ``adj L(lam)`` (paper Sec. 8).
 
@@ -285,7 +285,7 @@ def chain_residual(sys, lam0, vectors) -> float:
     return max(accuracy.chain_residuals(sys.M, sys.C, sys.K, lam0, vectors), default=0.0)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class AdjugateChain(Result):
     """A Jordan chain ``x_0, ..., x_{r-1}`` at lam0 from the adjugate's Taylor coefficients (Sec. 9).
 

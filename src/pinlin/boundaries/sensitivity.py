@@ -51,7 +51,7 @@ FORMULA_ROUNDING = 4.0
 _SIMPLE = "simple"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class EigenDerivatives:
     """d lam / dp for every eigenvalue of one modal analysis (see :func:`eigen_derivatives`)."""
 
@@ -155,7 +155,9 @@ def eigen_derivatives(modes: Modes, dL: MatrixDerivatives, *, puiseux: bool = Tr
     for k in np.flatnonzero(~in_cluster):
         der[k], err[k] = simple_derivative(modes, int(k), dL, gaps[k])
         ok[k] = True
-    return EigenDerivatives(der, err, ok, tuple(status), tuple(series))
+    return EigenDerivatives(
+        derivatives=der, error=err, differentiable=ok, status=tuple(status), puiseux=tuple(series),
+    )
 
 
 @dataclass(frozen=True, repr=False, eq=False, kw_only=True)

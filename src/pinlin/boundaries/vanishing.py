@@ -72,7 +72,7 @@ def _rate(ev: Evaluator, shape, p: float):
     return row.rate, row.rate_error, row.eigenvalue
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class VanishingLimit:
     """What :func:`vanishing_damping_limit` found; :func:`pinlin.critical_parameter` makes it a result.
 
@@ -126,8 +126,10 @@ def vanishing_damping_limit(func, bracket, damping, *, atol: float | None = None
             raise ConvergenceError(f"vanishing-damping limit: more than {max_evaluations} modal analyses", steps)
         if abs(b - a) <= 4 * np.finfo(float).eps * max(abs(a), abs(b)):
             steps.append("g < 0 up to where the undamped eigenvalues meet: the limit is the coalescence")
-            return VanishingLimit(None, 0j, np.inf, (a, b), ev.analyses, ev.calls, tuple(steps),
-                                  time.perf_counter() - t0)
+            return VanishingLimit(
+                value=None, eigenvalue=0j, error_bound=np.inf, bracket=(a, b), evaluations=ev.analyses,
+                function_calls=ev.calls, steps=tuple(steps), elapsed=time.perf_counter() - t0,
+            )
         mid = 0.5 * (a + b)
         at_mid = _rate(ev, shape, mid)
         steps.append(f"g({mid:.6g}) = {'not marginal' if at_mid is None else f'{at_mid[0]:.3e}'}")
@@ -153,5 +155,8 @@ def vanishing_damping_limit(func, bracket, damping, *, atol: float | None = None
     slope = abs(g(value + h) - g(value - h)) / (2 * h)
     _, err, lam = _rate(ev, shape, value)
     bound = xtol + 4.0 * err / slope if slope > 0 else np.inf
-    return VanishingLimit(float(value), complex(lam), float(bound), (a, b), ev.analyses, ev.calls, tuple(steps),
-                          time.perf_counter() - t0)
+    return VanishingLimit(
+        value=float(value), eigenvalue=complex(lam), error_bound=float(bound), bracket=(a, b),
+        evaluations=ev.analyses, function_calls=ev.calls, steps=tuple(steps),
+        elapsed=time.perf_counter() - t0,
+    )

@@ -26,7 +26,7 @@ from .engine import DEFAULT_METHOD, DEFAULT_TOL, solve, warn_inaccurate
 __all__ = ["FrequencyResponse", "frequency_response"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class FrequencyResponse(Result):
     """``H(i omega)`` for chosen outputs and inputs, in python-control's axis order.
 

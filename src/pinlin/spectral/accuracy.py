@@ -144,7 +144,7 @@ def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=Non
     )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class DefectiveBound:
     """The error bound of the members of a defective cluster (chains of length p > 1).
 
@@ -188,7 +188,7 @@ def defective_scale(problem: QuadraticProblem, center: complex, p: int) -> float
     return float(s * (w / (s * s * problem.norm_M)) ** (1.0 / p))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ErrorModel:
     """First-order error bounds of computed eigenvalues as functions of a relative data perturbation delta.
 

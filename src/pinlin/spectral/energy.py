@@ -55,7 +55,7 @@ ENERGY_ROUNDING = 1e3
 SCENE_MATCH_TOL = 1e-8
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class ModeEnergy(Result):
     """The energy distribution of one mode (see :mod:`pinlin.spectral.energy`).
 

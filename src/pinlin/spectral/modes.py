@@ -56,7 +56,7 @@ class Method(str):
         return (Method, (self.name, self.reason))
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
 class Modes(Result):
     """Eigenvalues and eigenvectors of L(lam) = lam^2 M + lam C + K with their error figures.
 

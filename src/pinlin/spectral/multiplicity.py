@@ -101,7 +101,7 @@ CERTIFICATE_MARGIN = 10.0
 INDEPENDENCE_TOL = 1e-3
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Cluster(Result):
     """A group of computed eigenvalues taken as one multiple eigenvalue.
 
@@ -162,7 +162,7 @@ class Cluster(Result):
         )
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ClusterEvidence:
     """What the computed spectrum already says about its clusters (input of :func:`semisimple_certificate`).
 
@@ -371,13 +371,14 @@ def analyse_cluster(
     )
     if how is not None:
         return Cluster(
-            tuple(indices), center, m, m, (1,) * m, True, (m,), error=spread, method=how,
-            elapsed=time.perf_counter() - t0,
+            indices=tuple(indices), center=center, algebraic=m, geometric=m, partial=(1,) * m,
+            consistent=True, kernel_dims=(m,), error=spread, method=how, elapsed=time.perf_counter() - t0,
         )
     projected = None if evidence is None else _projected(problem, lam, indices, center, evidence, rank_tol)
     if projected is not None:
         return Cluster(
-            tuple(indices), center, m, projected[1][0], projected[0], True, projected[1], error=spread,
+            indices=tuple(indices), center=center, algebraic=m, geometric=projected[1][0],
+            partial=projected[0], consistent=True, kernel_dims=projected[1], error=spread,
             method=_PROJECTED_METHOD, elapsed=time.perf_counter() - t0,
         )
     partial, dims = partial_multiplicities(problem, center, max_length=m + 1, rank_tol=rank_tol, max_total=m)
@@ -391,6 +392,6 @@ def analyse_cluster(
             f"{m} clustered eigenvalues"
         )
     return Cluster(
-        tuple(indices), center, m, geometric, partial, consistent, dims, note,
-        error=spread, elapsed=time.perf_counter() - t0,
+        indices=tuple(indices), center=center, algebraic=m, geometric=geometric, partial=partial,
+        consistent=consistent, kernel_dims=dims, note=note, error=spread, elapsed=time.perf_counter() - t0,
     )
