@@ -4,7 +4,7 @@ For each boundary, in one process:
 
 - fast: ``pinlin.critical_parameter(func, bracket)`` at its default tolerance (as accurate as rounding
   allows), with the verdicts beside the value checked (``verify_result=True``, two more modal analyses);
-- bisection: ``pinlin.critical_parameter(func, bracket, method="bisection", atol=1e-12 |p*|)``, halving the
+- bisection: ``pinlin.critical_parameter(func, bracket, method="bisection", tol=1e-12 |p*|)``, halving the
   bracket on ``modes.stability.kind`` alone (the way the notebooks found boundaries before).
 
 Counted: modal analyses ("evaluations", the issue's measure) and calls of ``func``; timed: the median wall
@@ -141,10 +141,10 @@ def _precision_series(func, bracket, reference):
     fast, slow = [], []
     for rtol in (1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12, None):
         tol = None if rtol is None else rtol * reference
-        a = pinlin.critical_parameter(func, bracket, atol=tol)
+        a = pinlin.critical_parameter(func, bracket, tol=tol)
         fast.append((a.evaluations, abs(a.value - reference) / reference))
         if rtol is not None:
-            b = pinlin.critical_parameter(func, bracket, atol=tol, method="bisection")
+            b = pinlin.critical_parameter(func, bracket, tol=tol, method="bisection")
             slow.append((b.evaluations, abs(b.value - reference) / reference))
     return {"critical_parameter": fast, "bisection on the verdict": slow}
 
@@ -165,7 +165,7 @@ def run(quick: bool = False) -> Report:
         fast, t_fast = _timed(lambda func=func, bracket=bracket: pinlin.critical_parameter(func, bracket), repeats)
         scale = reference if reference is not None else fast.value
         slow, t_slow = _timed(lambda func=func, bracket=bracket, scale=scale: pinlin.critical_parameter(
-            func, bracket, method="bisection", atol=BISECTION_RTOL * abs(scale)), repeats)
+            func, bracket, method="bisection", tol=BISECTION_RTOL * abs(scale)), repeats)
         ref = reference if reference is not None else slow.value
         e_fast, e_slow = abs(fast.value - ref) / abs(ref), abs(slow.value - ref) / abs(ref)
         if reference is None:  # no closed form: the two methods against each other
