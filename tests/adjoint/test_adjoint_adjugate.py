@@ -1,4 +1,4 @@
-"""The adjugate adj L(lam) (theory: adjoint; issue 4, parts 2 and 3).
+"""The adjugate adj L(lam) (theory: adjoint).
 
 References: cofactors as 50-digit mpmath determinants, LU determinants
 (numpy), the spectral module's eigenvectors (a QEP solver) and hand algebra.

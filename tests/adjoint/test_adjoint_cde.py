@@ -1,4 +1,4 @@
-"""The characteristic differential equation p(d/dt) x_i = 0 (paper Sec. 7; issue 4, part 4).
+"""The characteristic differential equation p(d/dt) x_i = 0 (paper Sec. 7).
 
 Free responses are computed independently here, with scipy's matrix exponential
 of the first-order state matrix A = [[0, I], [-M^-1 K, -M^-1 C]]; their exact
@@ -98,9 +98,19 @@ def test_bad_input():
     with pytest.raises(pinlin.ParameterError, match="4 finite roots"):
         check_free_response(sys, t, x, roots=[1.0, 2.0])
     with pytest.raises(pinlin.ParameterError, match="tol"):
-        check_free_response(sys, t, x, tol=-1.0)
+        check_free_response(sys, t, x, defect_tol=-1.0)
     cde = characteristic_differential_equation(sys)
     with pytest.raises(pinlin.ParameterError, match="orders 0 ... 4"):
         cde.apply(np.zeros((3, 2)))
     with pytest.raises(pinlin.ParameterError, match="finite"):
         cde.defect(np.full(5, np.inf))
+
+
+def test_tol_is_the_deprecated_spelling_of_defect_tol():
+    sys = double_pendulum()
+    t = np.linspace(0.0, 3.0, 181)
+    z = _free_response(sys, np.array([0.1, -0.2, 0.0, 0.3]), t)
+    new = check_free_response(sys, t, z[:, :2], defect_tol=1e-6)
+    with pytest.warns(DeprecationWarning, match=r"check_free_response\(tol=\.\.\.\) is deprecated .* defect_tol"):
+        old = check_free_response(sys, t, z[:, :2], tol=1e-6)
+    assert old.passed and old.max_defect == new.max_defect and old.tol == new.tol == 1e-6

@@ -1,4 +1,4 @@
-"""Eigenvectors, p'(lam_k) and Jordan chains read off the adjugate (paper Sec. 8, 9; issue 4, part 3).
+"""Eigenvectors, p'(lam_k) and Jordan chains read off the adjugate (paper Sec. 8, 9).
 
 References: the spectral module (QEP solver), 50-digit polynomial coefficients,
 and hand-derived vectors for M = I, K = [[3, 1], [-1, 1]] (a double root at

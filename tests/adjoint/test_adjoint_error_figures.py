@@ -1,4 +1,4 @@
-"""Every error figure of the adjoint results, tested from both sides (issue 16; theory: adjoint, error figures).
+"""Every error figure of the adjoint results, tested from both sides (theory: adjoint, error figures).
 
 A figure checked only from above ("residual < 1e-12") passes when it is
 reported as 0.  Each figure here is compared with its true value -- residuals

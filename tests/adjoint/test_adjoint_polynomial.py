@@ -1,4 +1,4 @@
-"""Characteristic polynomial p(lam) = det L(lam) (theory: adjoint; issue 4, part 1).
+"""Characteristic polynomial p(lam) = det L(lam) (theory: adjoint).
 
 References: mpmath determinants at 50 digits, and det M prod (lam - lam_k) with
 the eigenvalues of the 50-digit companion matrix (not interpolation) or of the

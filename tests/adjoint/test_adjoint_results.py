@@ -1,4 +1,4 @@
-"""The result convention (issue 10) for the adjoint results.
+"""The result convention for the adjoint results.
 
 CharacteristicPolynomial, AdjugateMatrix, AdjugatePolynomial, AdjugateTaylor,
 AdjugateEigenvectors, AdjugateChain, CharacteristicDifferentialEquation and

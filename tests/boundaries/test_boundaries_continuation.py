@@ -1,4 +1,4 @@
-"""stability_boundary: continuation of a boundary curve p2*(p1) (issue 15 part 3).
+"""stability_boundary: continuation of a boundary curve p2*(p1).
 
 Reference: the damped flutter load of the double pendulum (theory: double pendulum) with equal joint dampers c, the smallest
 positive root of the Routh-Hurwitz determinant (boundary_cases.damped_flutter_load); the curve over c is

@@ -1,4 +1,4 @@
-"""Eigenvalue sensitivities d lambda / dp (issue 15 part 1; theory: boundaries).
+"""Eigenvalue sensitivities d lambda / dp (theory: boundaries).
 
 References: the double pendulum's quadratic in mu = lam^2 (closed form, boundary_cases); a symmetric pencil
 with a double eigenvalue (closed form lam = i sqrt(1 + p kappa_j)); central differences of eigenvalues on the

@@ -1,4 +1,4 @@
-"""stability_map: verdicts over a grid and the exact boundary over them (issue 15 part 3)."""
+"""stability_map: verdicts over a grid and the exact boundary over them."""
 
 from __future__ import annotations
 

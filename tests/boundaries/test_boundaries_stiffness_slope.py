@@ -1,4 +1,4 @@
-"""The divergence tracker's slope when M depends on the parameter (issue 25 part 6 (vii); theory: boundaries).
+"""The divergence tracker's slope when M depends on the parameter (theory: boundaries).
 
 For the largest real eigenvalue mu of the pencil (-K, M), (K + mu M) x = 0 gives
 d mu / dp = -y^T (dK + mu dM) x / (y^T M x).  With M = diag(exp(3p), 1), K = diag(1 - p, 2) (divergence at

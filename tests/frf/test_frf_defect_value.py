@@ -1,4 +1,4 @@
-"""The frequency response's relative defect is its documented formula, by value (issue 25 part 6 (i); theory: error figures).
+"""The frequency response's relative defect is its documented formula, by value (theory: error figures).
 
 ``FrequencyResponse.defects`` is documented as eta(s) = ||L(s) X - B||_F / (||L(s)||_F ||X||_F + ||B||_F)
 (Rigal and Gaches 1967) of the X returned (B = I: all coordinates).  The residual of that very X is computed

@@ -1,4 +1,4 @@
-"""The fast paths of the H(s) engine (issue 14): the Schur form for many points, the sampled modal check.
+"""The fast paths of the H(s) engine: the Schur form for many points, the sampled modal check.
 
 References are independent: numpy's dense solve of L(s) X = B at every point, and
 the exact relative defect ||L X - B|| / (||L|| ||X|| + ||B||) recomputed here.
@@ -124,7 +124,7 @@ def test_inaccurate_modal_bound_says_it_is_a_bound():
     w = w[np.min(np.abs(1j * w[:, None] - modes.eigenvalues[None, :]), axis=1) > 1e-3]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        resp = pinlin.frequency_response(sys, w, inputs=[0], outputs=[29], method="modal", modes=modes, tol=1e-300)
+        resp = pinlin.frequency_response(sys, w, inputs=[0], outputs=[29], method="modal", modes=modes, error_tol=1e-300)
     text = str(caught[-1].message)
     assert issubclass(caught[-1].category, pinlin.AccuracyWarning)
     k = int(np.argmax(resp.defects))

@@ -1,4 +1,4 @@
-"""Dynamic flexibility H = L^-1, its modal form and frequency responses (paper Sec. 10, 12; issue 4, part 5).
+"""Dynamic flexibility H = L^-1, its modal form and frequency responses (paper Sec. 10, 12).
 
 References: the direct LU inverse against the modal sum built on the spectral
 module (two independent methods), and 50-digit mpmath inverses.

@@ -1,4 +1,4 @@
-"""Harmonic forcing (issue 5 part 2, theory: responses): X = H(i omega) F.
+"""Harmonic forcing (theory: responses): X = H(i omega) F.
 
 Reference: a direct solve of L(i omega) X = F with ``numpy.linalg.solve`` in the
 test (acceptance: 1e-10 relative).  The resonance test shows the growth
@@ -57,7 +57,7 @@ def test_modal_amplitude_matches_direct_solve(name):
     exact = np.array([np.linalg.norm(Lk @ x - F) / (np.linalg.norm(Lk) * np.linalg.norm(x) + np.linalg.norm(F))
                       for Lk, x in zip(L, np.asarray(X))])
     assert np.max(exact) < 1e-12
-    # the modal method's check: exact at CHECK_SAMPLES points, an upper bound at the others (issue 14),
+    # the modal method's check: exact at CHECK_SAMPLES points, an upper bound at the others,
     # which stays within a few hundred rounding units of the exact defect here
     assert np.all(X.defects >= exact * (1 - 1e-6) - 4 * np.finfo(float).eps)
     assert np.max(X.defects) < 1e-11 and X.error == np.max(X.defects)
@@ -136,7 +136,7 @@ def test_undamped_resonance_raises_the_same_error_everywhere(method):
 
 
 def test_computed_natural_frequency_is_a_pole_for_both_methods():
-    """issue 13 item 3: at the computed natural frequency of the undamped double pendulum L(i omega) is
+    """At the computed natural frequency of the undamped double pendulum L(i omega) is
     singular to working precision; the direct method used to return |H| ~ 1e15 silently."""
     sys = pinlin.linearize(double_pendulum(P=4.0), np.zeros(2))
     modes = pinlin.modal_analysis(sys)
@@ -160,7 +160,7 @@ def test_computed_natural_frequency_is_a_pole_for_both_methods():
         ([1.0, 0.0], [], {}, "non-empty"),
         ([1.0, 0.0], "fast", {}, "omega"),
         ([1.0, 0.0], 1.0, {"method": "fft"}, "method"),
-        ([1.0, 0.0], 1.0, {"tol": 0.0}, "tol"),
+        ([1.0, 0.0], 1.0, {"error_tol": 0.0}, "tol"),
     ],
 )
 def test_bad_inputs_raise(F, omega, kwargs, match):
@@ -172,7 +172,7 @@ def test_bad_inputs_raise(F, omega, kwargs, match):
 def test_defect_above_tol_warns():
     sys = SYSTEMS["turntable (G)"]
     with pytest.warns(pinlin.AccuracyWarning, match="defect"):
-        X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0], tol=1e-300)
+        X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0], error_tol=1e-300)
     assert np.max(X.defects) > 1e-300 and X.error == np.max(X.defects)
     with pytest.warns(DeprecationWarning, match="defects"):
         assert np.array_equal(X.defect, X.defects)  # the 0.1 name, for one release

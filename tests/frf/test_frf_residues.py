@@ -1,4 +1,4 @@
-"""Residues of H = L^-1 at roots of any multiplicity (paper Theorem 10.2; issue 4, part 5).
+"""Residues of H = L^-1 at roots of any multiplicity (paper Theorem 10.2).
 
 Closed forms derived by hand (partial fractions of adj L / p), the spectral
 module's Lancaster-normalized modes, and 50-digit mpmath inverses for the
@@ -190,7 +190,7 @@ def test_errors():
         res.principal_part(res.center)
 
 
-# ------------------------------------------------------------------ the error bound from both sides (issues 14, 16)
+# ------------------------------------------------------------------ the error bound from both sides
 
 #: x'' + x = 0: H(s) = 1 / (s^2 + 1), residue 1 / (2i) at lam = i; the other pole, -i, lies at distance 2.
 OSCILLATOR = pinlin.LinearizedSystem.from_matrices(np.eye(1), None, np.eye(1))

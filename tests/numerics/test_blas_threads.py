@@ -1,4 +1,4 @@
-"""One BLAS thread for small kernels (issue 27): the limit is set, counted and restored; results unchanged."""
+"""One BLAS thread for small kernels: the limit is set, counted and restored; results unchanged."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""pinlin.numerics.definiteness: decisions against the rounding bound of the data (issue 16, theory: stability).
+"""pinlin.numerics.definiteness: decisions against the rounding bound of the data (theory: stability).
 
 References are hand values (diagonal matrices, whose computed eigenvalues are
 exact) and mpmath's symmetric eigensolver at 40 digits on the stored matrices.

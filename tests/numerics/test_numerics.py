@@ -106,7 +106,7 @@ def test_fan_lin_van_dooren_and_scales_by_hand():
 
 
 def test_norms_and_scaling_of_extreme_data():
-    """Issue 13 item 6: coefficients anywhere in double range give finite parameters or a clear error."""
+    """Coefficients anywhere in double range give finite parameters or a clear error."""
     assert nm.frobenius(1e-300 * np.eye(4)) == 2e-300  # numpy's norm squares the entries to 0
     assert nm.frobenius(1e300 * np.ones((2, 2))) == 2e300  # ... or to inf
     assert nm.frobenius(np.zeros((2, 2))) == 0.0

@@ -1,4 +1,4 @@
-"""Energy distribution per mode (issue 26 part 3): ``modes.energy(k, scene)`` against closed forms.
+"""Energy distribution per mode: ``modes.energy(k, scene)`` against closed forms.
 
 - A two-mass chain on prismatic joints (m1 = 2, m2 = 1 kg; springs k1 = 3 N/m ground-m1 and
   k2 = 1 N/m m1-m2, URDF below): omega^2 = (3 -+ sqrt 3) / 2 and the absolute amplitudes

@@ -1,4 +1,4 @@
-"""Every error figure of the spectral results, tested from both sides (issue 16; theory: spectrum, stability, error figures).
+"""Every error figure of the spectral results, tested from both sides (theory: spectrum, stability, error figures).
 
 A figure checked only from above ("error <= tol") passes when it is reported as
 0.  Here each figure is compared with its true value -- exact residuals of the

@@ -1,4 +1,4 @@
-"""The semisimple certificate against the block Toeplitz ranks (issue 27).
+"""The semisimple certificate against the block Toeplitz ranks.
 
 ``modal_analysis`` decides a cluster it can certify semisimple without an SVD
 (:func:`pinlin.spectral.multiplicity.semisimple_certificate`); every other

@@ -1,4 +1,4 @@
-"""The projected pencil's Jordan structure against the block Toeplitz ranks (issue 27).
+"""The projected pencil's Jordan structure against the block Toeplitz ranks.
 
 ``modal_analysis`` decides a cluster it cannot certify semisimple from the m x m
 pencil projected on the cluster's deflating subspace

@@ -1,4 +1,4 @@
-"""Backward errors and normalizations on hard cases (issue 3 acceptance, theory: spectrum, error figures).
+"""Backward errors and normalizations on hard cases (theory: spectrum, error figures).
 
 Backward errors are recomputed here from their definition (Frobenius norms),
 never read from the result alone.  Cases: a 200-link hanging chain with joint

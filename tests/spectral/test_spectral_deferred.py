@@ -1,4 +1,4 @@
-"""The parts of Modes formed on first access, and the lean pieces of issue 14, tested against definitions.
+"""The parts of Modes formed on first access, and the lean pieces, tested against definitions.
 
 - the structural facts, the verdict and the notes are formed on first access: equal
   to what the eager functions give for the same inputs, the same whichever part is

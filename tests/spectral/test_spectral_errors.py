@@ -87,7 +87,7 @@ def test_mass_rcond_is_adjustable():
 
 
 def test_complex_input_is_refused_on_both_paths():
-    """Issue 13 item 5: numpy would drop the imaginary part with a ComplexWarning."""
+    """Numpy would drop the imaginary part with a ComplexWarning."""
     with pytest.raises(ParameterError, match="K: expected a real matrix, got complex entries"):
         LinearizedSystem.from_matrices(I2, Z2, I2 * (1 + 1e-3j))
     with pytest.raises(ParameterError, match="C: expected a real matrix, got complex entries"):

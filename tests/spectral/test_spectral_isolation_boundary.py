@@ -1,4 +1,4 @@
-"""The reflection-symmetry rule at a hard-coded boundary case (issue 25 part 6 (iv); theory: stability).
+"""The reflection-symmetry rule at a hard-coded boundary case (theory: stability).
 
 A simple eigenvalue lam near the imaginary axis (D = G = 0) is placed on it by symmetry only when no other
 computed eigenvalue lies within 3 r_lam + r_other of it: its mirror image -conj(lam) lies within 2 r of lam

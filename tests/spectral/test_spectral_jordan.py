@@ -136,7 +136,7 @@ def test_block_toeplitz_kernel_dimensions():
 
 
 def test_jordan_chains_at_a_regular_point_are_refused_with_the_distance():
-    """Issue 13 item 4: not an eigenvalue is an error (as for residues), naming the nearest eigenvalue."""
+    """Not an eigenvalue is an error (as for residues), naming the nearest eigenvalue."""
     sys = LinearizedSystem.from_matrices([[1.0]], [[0.0]], [[4.0]])  # lam = +-2i; gamma = 2
     with pytest.raises(NotAnEigenvalueError, match=r"lam0 = 1\+0j is not an eigenvalue: .* nearest eigenvalue is "
                        r"0\+2j, at distance 2\.236e\+00") as info:

@@ -1,4 +1,4 @@
-"""The lean modal analysis (issue 14): what is deferred, and the vectorized pieces, tested against definitions.
+"""The lean modal analysis: what is deferred, and the vectorized pieces, tested against definitions.
 
 - the stability margin is computed on first access (the verdict itself costs one
   pass through the rules), cached, the same from every thread and after pickling;
@@ -49,7 +49,7 @@ def test_margin_is_computed_on_first_access_and_kept():
 
 def test_a_lazy_margin_survives_pickling_and_to_dict():
     modes = pinlin.modal_analysis(double_pendulum(P=4.0, c=0.05))
-    # the verdict is itself formed on first access (issue 14): formed here, pickled with its margin still lazy
+    # the verdict is itself formed on first access: formed here, pickled with its margin still lazy
     assert modes.stability.__dict__["_margin"] is None
     copy = pickle.loads(pickle.dumps(modes))
     assert copy.stability.__dict__["_margin"] is None
@@ -81,7 +81,7 @@ def test_ordering_with_pairs_out_of_place():
     rng = np.random.default_rng(0)
     X = rng.standard_normal((n, 6)) + 1j * rng.standard_normal((n, 6))
     P = np.stack([X, 2 * X, 3 * X, 4 * X])
-    raw = order_spectrum(RawSpectrum(lam, P, None, np.arange(6), np.arange(6.0)))
+    raw = order_spectrum(RawSpectrum(lam=lam, P=P, Y=None, block=np.arange(6), eta=np.arange(6.0)))
     assert_allclose(raw.lam, [0.5, -1.0, 1 + 1j, 1 - 1j, 2j, -2j], rtol=0)
     assert_allclose(raw.P[..., 3], np.conj(raw.P[..., 2]), rtol=0)
     assert_allclose(raw.P[..., 5], np.conj(raw.P[..., 4]), rtol=0)

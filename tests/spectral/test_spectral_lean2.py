@@ -1,4 +1,4 @@
-"""Issue 14, second round: M factorized once on the symmetric paths, and leaner decisions.
+"""M factorized once on the symmetric paths, and leaner decisions.
 
 - :func:`pinlin.spectral.refine.mass_factor`: the Cholesky factor of M and LAPACK's
   condition estimate (exact for diagonal M, inf when M is not positive definite);

@@ -1,4 +1,4 @@
-"""The Modes result object: order, normalizations, derived fields, table (issue 3 part 3)."""
+"""The Modes result object: order, normalizations, derived fields, table."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Which coordinates take part in each mode (issue 17 part 3): energy shares, hand-derived.
+"""Which coordinates take part in each mode: energy shares, hand-derived.
 
 A decoupled system's modes each live on their own coordinate; for a coupled
 2-DOF system with a diagonal M the share of coordinate i is m_i x_i^2 /

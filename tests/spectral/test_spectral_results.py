@@ -1,4 +1,4 @@
-"""The result convention (issue 10) for the spectral results: Modes, Stability, Cluster, JordanChains.
+"""The result convention for the spectral results: Modes, Stability, Cluster, JordanChains.
 
 Every result has ``elapsed`` [s], ``method``, ``error`` (one float with the
 meaning its docstring gives) and a JSON-serializable ``to_dict()``; the figures

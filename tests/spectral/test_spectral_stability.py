@@ -1,4 +1,4 @@
-"""The honest stability verdict (theory: stability, conventions, issue 3 part 6).
+"""The honest stability verdict (theory: stability, conventions).
 
 Reference cases: the paper's damped double pendulum (theory: double pendulum), the rotating
 ring (theory: rotating ring: undamped marginally stable for Omega != sqrt(k/m), damped
@@ -164,7 +164,7 @@ def test_theorems_decide_without_the_spectrum():
 
 
 def test_mass_matrix_positive_definite_only_within_rounding_is_said_in_figures_and_verdict():
-    """Issue 13 item 2: M = [[1, 1], [1, 1 + 4 eps]] is positive definite as stored, but a perturbation
+    """M = [[1, 1], [1, 1 + 4 eps]] is positive definite as stored, but a perturbation
     of its rounding size makes it singular: one eigenvalue is about -1.9e14, with a bound beyond it."""
     eps = np.finfo(float).eps
     M = np.array([[1.0, 1.0], [1.0, 1.0 + 4 * eps]])

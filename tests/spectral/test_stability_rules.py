@@ -1,4 +1,4 @@
-"""Each rule of the stability verdict, directly (issue 16; theory: stability).
+"""Each rule of the stability verdict, directly (theory: stability).
 
 The rules of :data:`pinlin.spectral.stability.rules.RULES` are called one by
 one on hand-made evidence: structural facts of small hand systems, and
@@ -148,13 +148,22 @@ def test_certainly_asymptotic_uses_the_safety_factor_and_names_the_closest_call(
 def test_defective_on_axis_is_a_boundary_unless_the_drift_is_exact():
     sym = facts(N=0.0 * SKEW, S=I2)  # D = G = N = 0: reflection symmetric
     lam = [1j + 1e-9, 1j - 1e-9, -1j + 1e-9, -1j - 1e-9]
-    clusters = (Cluster((0, 1), 1j, 2, 1, (2,), True, (1, 2)), Cluster((2, 3), -1j, 2, 1, (2,), True, (1, 2)))
+    clusters = (Cluster(
+        indices=(0, 1), center=1j, algebraic=2, geometric=1, partial=(2,), consistent=True,
+        kernel_dims=(1, 2),
+    ), Cluster(
+        indices=(2, 3), center=-1j, algebraic=2, geometric=1, partial=(2,), consistent=True,
+        kernel_dims=(1, 2),
+    ))
     v = rules.defective_on_axis(evidence(sym, lam, [1e-8] * 4, clusters=clusters, safety=1.0))
     assert v.kind == "undecided" and "flutter onset" in v.reason and v.error_bound == 1e-8
     # a defective zero eigenvalue with K = C = 0 on a coordinate: x = t e_j exactly, divergence
     zero = facts(S=Z2)
     lam0 = [0.0, 1e-9, -1e-9, 0.0]
-    c0 = (Cluster((0, 1, 2, 3), 0j, 4, 2, (2, 2), True, (2, 4)),)
+    c0 = (Cluster(
+        indices=(0, 1, 2, 3), center=0j, algebraic=4, geometric=2, partial=(2, 2), consistent=True,
+        kernel_dims=(2, 4),
+    ),)
     v = rules.defective_on_axis(evidence(zero, lam0, [1e-8] * 4, clusters=c0, K_is_zero=True, exact_drift=True))
     assert v.kind == "divergence" and v.theorem == "Jordan structure + exact drift" and v.bounded is False
     # outside its bound of the axis the cluster is not this rule's business
@@ -188,7 +197,10 @@ def test_reflection_symmetry_is_never_claimed_with_damping_or_with_both_G_and_N(
 def test_semisimple_zero_with_every_other_eigenvalue_certainly_left():
     f = facts(D=I2, S=Z2)
     lam = [0.0, 0.0, -1.0, -1.0]
-    c = (Cluster((0, 1), 0j, 2, 2, (1, 1), True, (2,)),)
+    c = (Cluster(
+        indices=(0, 1), center=0j, algebraic=2, geometric=2, partial=(1, 1), consistent=True,
+        kernel_dims=(2,),
+    ),)
     v = rules.semisimple_zero(evidence(f, lam, [1e-3] * 4, clusters=c, K_is_zero=True, safety=10.0))
     assert v.kind == "marginally_stable" and v.theorem == "Jordan structure" and v.error_bound == 1e-2
     # the safety factor brings the others' bounds to the axis: not decided
@@ -209,7 +221,7 @@ def test_decide_stability_reports_the_margin_it_found():
     """For certainly_asymptotic with simple eigenvalues the margin is known in closed form:
     r_k(delta) = (eta_k + delta) s_k reaches |Re lam_k| / safety at delta = |Re lam_k| / (safety s_k) - eta_k."""
     lam = np.array([-0.5 + 1j, -0.5 - 1j, -2.0, -3.0])
-    model = ErrorModel(np.full(4, EPS), np.array([1.0, 1.0, 40.0, 3.0]))
+    model = ErrorModel(eta=np.full(4, EPS), sensitivity=np.array([1.0, 1.0, 40.0, 3.0]))
     v = decide_stability(GENERAL, lam, model, (), safety=10.0)
     expected = min(0.5 / 10 - EPS, 2.0 / 400 - EPS, 3.0 / 30 - EPS)  # the real eigenvalue -2 decides
     assert v.kind == "asymptotically_stable" and v.theorem is None
@@ -221,6 +233,9 @@ def test_decide_stability_reports_the_margin_it_found():
 
 
 def test_defective_bounds_grow_with_the_root_of_the_uncertainty():
-    model = ErrorModel(np.full(2, EPS), np.array([np.inf, np.inf]), (DefectiveBound((0, 1), 1e-9, 2.0, EPS, 2),))
+    model = ErrorModel(
+        eta=np.full(2, EPS), sensitivity=np.array([np.inf, np.inf]),
+        defective=(DefectiveBound(indices=(0, 1), spread=1e-9, scale=2.0, eta=EPS, index=2),),
+    )
     assert model.bound(0.0) == pytest.approx(1e-9 + 2 * np.sqrt(EPS))
     assert model.bound(1e-6) == pytest.approx(1e-9 + 2 * np.sqrt(EPS + 1e-6))

@@ -97,6 +97,13 @@ class AdjugateMatrix(ResultArray):
         Seconds [s].
     error : float
         The relative residual of the defining identity (``residual``).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> A = pinlin.adjugate(sys, 1.0j)
+    >>> A.shape, complex(np.round(A.det, 6))
+    ((2, 2), (-0.01+0.2j))
     """
 
     _fields = (
@@ -153,6 +160,16 @@ def adjugate(sys, lam, *, scaled: bool = False) -> AdjugateMatrix:
         ``sys`` is not a LinearizedSystem, ``lam`` not a finite scalar.
     ComputationError
         The adjugate over- or underflows double precision (and ``scaled`` is False).
+
+    Examples
+    --------
+    For n = 2, adj [[a, b], [c, d]] = [[d, -b], [-c, a]]:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> A = pinlin.adjugate(sys, 1.0j)
+    >>> np.round(np.asarray(A), 6)
+    array([[1.+0.1j, 1.+0.j ],
+           [1.+0.j , 1.+0.1j]])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

@@ -68,7 +68,7 @@ def _relative(coef: np.ndarray, coef_error: np.ndarray) -> float:
     return float(np.linalg.norm(coef_error) / total) if total > 0 else float("inf")
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class AdjugatePolynomial(Result):
     """``adj L(lam) = sum_k A_k (lam - center)^k`` as a matrix polynomial of degree 2n - 2.
 
@@ -131,12 +131,15 @@ class AdjugatePolynomial(Result):
         method = self.method + f"; derivative {m}"
         if m > d:
             zero = np.zeros((1,) + self.coef.shape[1:], dtype=self.coef.dtype)
-            return AdjugatePolynomial(zero, np.zeros(1), self.center, self.radius[:1], self.evaluations, method,
-                                      self.elapsed)
+            return AdjugatePolynomial(
+                coef=zero, coef_error=np.zeros(1), center=self.center, radius=self.radius[:1],
+                evaluations=self.evaluations, method=method, elapsed=self.elapsed,
+            )
         factor = np.array([math.perm(int(j), m) for j in range(m, d + 1)], dtype=float)
         return AdjugatePolynomial(
-            self.coef[m:] * factor[:, None, None], self.coef_error[m:] * factor, self.center, self.radius[m:],
-            self.evaluations, method, self.elapsed,
+            coef=self.coef[m:] * factor[:, None, None], coef_error=self.coef_error[m:] * factor,
+            center=self.center, radius=self.radius[m:], evaluations=self.evaluations, method=method,
+            elapsed=self.elapsed,
         )
 
     def __repr__(self) -> str:
@@ -181,17 +184,13 @@ def adjugate_polynomial(sys, *, radii=None, n_points: int | None = None) -> Adju
     fit, coef, err, N = _fit_adjugate(sys, 0.0, radii, n_points)
     err = np.maximum(err, np.linalg.norm(coef.imag.reshape(len(coef), -1), axis=1))
     return AdjugatePolynomial(
-        coef.real.copy(),
-        err,
-        0.0j,
-        fit.radius,
-        fit.evaluations,
-        f"SVD-form adjugates on {len(fit.radii)} circle(s) of {N} points, FFT interpolation",
-        time.perf_counter() - t0,
+        coef=coef.real.copy(), coef_error=err, center=0.0j, radius=fit.radius, evaluations=fit.evaluations,
+        method=f"SVD-form adjugates on {len(fit.radii)} circle(s) of {N} points, FFT interpolation",
+        elapsed=time.perf_counter() - t0,
     )
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class AdjugateTaylor(Result):
     """Taylor coefficients ``adj L(lam) = sum_j T_j (lam - lam0)^j`` at ``lam0``.
 
@@ -301,4 +300,7 @@ def adjugate_taylor(sys, lam0, order: int = 1, *, radii=None, n_points: int | No
         coef = np.concatenate([coef, np.zeros((extra,) + coef.shape[1:], dtype=complex)])
         err = np.concatenate([err, np.zeros(extra)])
         rad = np.concatenate([rad, np.zeros(extra)])
-    return AdjugateTaylor(lam0, coef[:m], err[:m], rad[:m], fit.evaluations, time.perf_counter() - t0)
+    return AdjugateTaylor(
+        lam0=lam0, coef=coef[:m], coef_error=err[:m], radius=rad[:m], evaluations=fit.evaluations,
+        elapsed=time.perf_counter() - t0,
+    )

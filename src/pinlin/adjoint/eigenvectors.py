@@ -75,7 +75,7 @@ def backward_error(sys, lam: complex, x: np.ndarray, *, left: bool = False) -> f
     return accuracy.backward_error(sys.M, sys.C, sys.K, lam, x, left=left)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class AdjugateEigenvectors(Result):
     """Eigenvectors at a root read off ``adj L(lam)`` (paper Sec. 8).
 
@@ -189,6 +189,14 @@ def adjugate_eigenvectors(
     NotSimpleError
         The adjugate does not have rank one (geometric multiplicity >= 2): its
         columns do not determine an eigenvector.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> lam = pinlin.modal_analysis(sys).eigenvalues[0]
+    >>> vectors = pinlin.adjugate_eigenvectors(sys, lam)
+    >>> vectors.is_simple
+    True
     """
     t0 = time.perf_counter()
     sys = check_system(sys)
@@ -277,7 +285,7 @@ def chain_residual(sys, lam0, vectors) -> float:
     return max(accuracy.chain_residuals(sys.M, sys.C, sys.K, lam0, vectors), default=0.0)
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class AdjugateChain(Result):
     """A Jordan chain ``x_0, ..., x_{r-1}`` at lam0 from the adjugate's Taylor coefficients (Sec. 9).
 

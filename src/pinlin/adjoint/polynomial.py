@@ -61,6 +61,15 @@ class CharacteristicPolynomial(Polynomial, Result):
         How the coefficients were computed.
     elapsed : float
         Seconds.
+
+    Examples
+    --------
+    det L(lam) as a numpy Polynomial (coefficients in ascending powers); p(0) = det K:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> p = pinlin.characteristic_polynomial(sys)
+    >>> round(float(np.real(p(0.0))), 6)
+    3.0
     """
 
     _meta = ("coef_error", "error", "radius", "evaluations", "method", "elapsed")
@@ -180,6 +189,13 @@ def characteristic_polynomial(
     ComputationError
         A coefficient over- or underflows double precision (large n in
         unsuitable units: ``det M`` of a 100-link chain is about 1e-620).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> p = pinlin.characteristic_polynomial(sys)
+    >>> p.degree(), np.round(p.coef, 6)
+    (4, array([3.  , 0.4 , 4.01, 0.2 , 1.  ]))
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

@@ -23,7 +23,7 @@ from ..errors import ComputationError
 __all__ = ["SvdAdjugate", "svd_adjugate", "residual_scaled", "det_over_scale"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SvdAdjugate:
     """Batched SVD-form adjugates: ``adj = scaled * exp(log_scale)``, ``det = phase * exp(log_det)``."""
 
@@ -76,7 +76,10 @@ def svd_adjugate(L: np.ndarray) -> SvdAdjugate:
     elif np.any(zero):
         scaled[zero] = 0.0
         log_scale = np.where(zero, -np.inf, log_scale)
-    return SvdAdjugate(scaled, log_scale, phase, log_det, s * safe[:, None], log_norm)
+    return SvdAdjugate(
+        scaled=scaled, log_scale=log_scale, phase=phase, log_det=log_det, singular_values=s * safe[:, None],
+        log_norm=log_norm,
+    )
 
 
 def residual_scaled(L: np.ndarray, A: np.ndarray, p_over_scale: complex) -> float:

@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import BracketError, ParameterError, PinlinError
+from ..errors.deprecated import renamed_keywords
 from ..numerics.arrays import readonly
 from ..results import Result
 from .critical import MAX_EVALUATIONS, CriticalParameter, critical_parameter
@@ -39,16 +40,30 @@ MIN_RELATIVE_SPREAD = 1e3 * EPS
 ON_ERROR = ("raise", "record")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class BoundaryFailure:
-    """A point of the curve that could not be found (``on_error="record"``): its index, p1 and what was raised."""
+    """A point of the curve that could not be found (``on_error="record"``): its index, p1 and what was raised.
+
+    Examples
+    --------
+    A point whose system cannot be built is recorded with ``on_error="record"``:
+
+    >>> def family(c, p):
+    ...     if c == 2.0:
+    ...         raise pinlin.ParameterError("c", "no model here")
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[c - p]])
+    >>> curve = pinlin.stability_boundary(family, [1.0, 2.0], (0.0, 3.0), on_error="record")
+    >>> failure = curve.failures[0]
+    >>> failure.index, failure.p1
+    (1, 2.0)
+    """
 
     index: int
     p1: float
     message: str
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class StabilityBoundary(Result):
     """The boundary curve p2*(p1) (theory: boundaries).
 
@@ -77,6 +92,14 @@ class StabilityBoundary(Result):
         Largest ``error_bound`` of the points found (absolute, unit of p2; inf if none).
     elapsed : float
         Seconds [s].
+
+    Examples
+    --------
+    >>> def family(c, p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[c - p]])
+    >>> curve = pinlin.stability_boundary(family, [1.0, 2.0], (0.0, 3.0))
+    >>> curve.kind, curve.found.tolist()
+    (('divergence', 'divergence'), [True, True])
     """
 
     p1: np.ndarray
@@ -132,12 +155,13 @@ def _brackets(p1, done, bracket):
     yield (lo, hi), "given"
 
 
+@renamed_keywords(tol="atol")
 def stability_boundary(
     func2: Callable[[float, float], Any],
     p1_values,
     bracket,
     *,
-    tol: float | None = None,
+    atol: float | None = None,
     derivative: Callable[[float, float], Any] | None = None,
     on_error: str = "raise",
     verify_result: bool = True,
@@ -155,8 +179,9 @@ def stability_boundary(
     bracket : (float, float)
         A p2 bracket of the boundary valid at every p1 (used for the first point,
         and whenever a predicted bracket fails).
-    tol, verify_result, max_evaluations, modal_options
-        As :func:`~pinlin.boundaries.critical_parameter`, per point.
+    atol, verify_result, max_evaluations, modal_options
+        As :func:`~pinlin.boundaries.critical_parameter`, per point (``tol`` is the
+        deprecated spelling of ``atol``).
     derivative : callable, optional
         ``derivative(p1, p2) -> (dM, dC, dK)``, exact derivatives in p2.
     on_error : {"raise", "record"}
@@ -173,6 +198,16 @@ def stability_boundary(
     PinlinError
         Any error of :func:`~pinlin.boundaries.critical_parameter` at a point
         (with ``on_error="raise"``), the point named in the message.
+
+    Examples
+    --------
+    The stiffness c - p vanishes at p = c:
+
+    >>> def family(c, p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[c - p]])
+    >>> curve = pinlin.stability_boundary(family, [1.0, 2.0], (0.0, 3.0))
+    >>> np.round(curve.p2, 12)
+    array([1., 2.])
     """
     t0 = time.perf_counter()
     if on_error not in ON_ERROR:
@@ -192,36 +227,42 @@ def stability_boundary(
 
         deriv = None if derivative is None else (lambda p2, p1=p1: derivative(p1, p2))
         try:
-            point = _corrector(func, deriv, p1, done, bracket, tol, verify_result, max_evaluations, modal_options)
+            point = _corrector(func, deriv, p1, done, bracket, atol, verify_result, max_evaluations, modal_options)
         except PinlinError as exc:
             if on_error == "raise":
                 if hasattr(exc, "add_note"):  # Python >= 3.11
                     exc.add_note(f"stability_boundary: at point {i}, p1 = {p1!r}")
                 raise
-            failures.append(BoundaryFailure(i, p1, f"{type(exc).__name__}: {exc}"))
+            failures.append(BoundaryFailure(index=i, p1=p1, message=f"{type(exc).__name__}: {exc}"))
             points.append(None)
             continue
         done.append((p1, point.value, point.error_bound))
         points.append(point)
     found = np.array([p is not None for p in points])
     return StabilityBoundary(
-        readonly(p1s), readonly([p.value if p else np.nan for p in points]),
-        readonly([p.error_bound if p else np.inf for p in points]),
-        tuple(p.kind if p else "" for p in points), tuple(p.mechanism if p else "" for p in points),
-        readonly(np.array([p.eigenvalue if p else np.nan for p in points], dtype=complex)), readonly(found),
-        tuple(points), tuple(failures), sum(p.evaluations for p in points if p),
-        sum(p.function_calls for p in points if p),
-        "continuation: extrapolated predictor, bracket around it, critical_parameter as corrector",
-        time.perf_counter() - t0)
+        p1=readonly(p1s),
+        p2=readonly([p.value if p else np.nan for p in points]),
+        error_bound=readonly([p.error_bound if p else np.inf for p in points]),
+        kind=tuple(p.kind if p else "" for p in points),
+        mechanism=tuple(p.mechanism if p else "" for p in points),
+        eigenvalue=readonly(np.array([p.eigenvalue if p else np.nan for p in points], dtype=complex)),
+        found=readonly(found),
+        points=tuple(points),
+        failures=tuple(failures),
+        evaluations=sum(p.evaluations for p in points if p),
+        function_calls=sum(p.function_calls for p in points if p),
+        method="continuation: extrapolated predictor, bracket around it, critical_parameter as corrector",
+        elapsed=time.perf_counter() - t0,
+    )
 
 
-def _corrector(func, deriv, p1, done, bracket, tol, verify_result, max_evaluations, modal_options):
+def _corrector(func, deriv, p1, done, bracket, atol, verify_result, max_evaluations, modal_options):
     """critical_parameter at one p1, on the predicted brackets first; analyses of failed brackets counted."""
     spent, calls = 0, 0
     last = None
     for br, origin in _brackets(p1, done, bracket):
         try:
-            point = critical_parameter(func, br, tol=tol, derivative=deriv, verify_result=verify_result,
+            point = critical_parameter(func, br, atol=atol, derivative=deriv, verify_result=verify_result,
                                        max_evaluations=max_evaluations, modal_options=modal_options)
         except BracketError as exc:
             spent += 2 if exc.verdicts else 0

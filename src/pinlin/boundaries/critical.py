@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConvergenceError, ParameterError
+from ..errors.deprecated import renamed_keywords
 from ..spectral import STABILITY_SAFETY
 from .bracket import Bracket, BracketChanged, PlanMismatch, open_bracket
 from .critical_result import CriticalParameter
@@ -112,11 +113,12 @@ def _lam_of(s: complex, squared: bool) -> complex:
     return complex(np.sqrt(complex(s))) if squared else complex(s)
 
 
+@renamed_keywords(tol="atol")
 def critical_parameter(
     func: Callable[[float], Any],
     bracket,
     *,
-    tol: float | None = None,
+    atol: float | None = None,
     derivative: Callable[[float], Any] | None = None,
     method: str = "auto",
     verify_result: bool = True,
@@ -135,9 +137,10 @@ def critical_parameter(
     bracket : (float, float)
         Two parameter values whose verdicts (``modes.stability.kind``) differ in
         class: stable (asymptotically or marginally), divergence, flutter.
-    tol : float, optional
-        Absolute tolerance on p* [unit of p]; default: as accurately as rounding
+    atol : float, optional
+        Absolute accuracy aimed at on p* [unit of p]; default: as accurately as rounding
         allows (the Newton correction below the root's rounding-level uncertainty).
+        ``tol`` is its deprecated spelling.
     derivative : callable, optional
         ``derivative(p) -> (dM, dC, dK)``, exact; otherwise secants between the
         evaluated systems choose the Newton steps (exact for matrices affine in
@@ -179,25 +182,35 @@ def critical_parameter(
     ConvergenceError
         More than ``max_evaluations`` modal analyses.
     ParameterError
-        Bad ``tol``, ``method`` or ``max_evaluations``.
+        Bad ``atol``, ``method`` or ``max_evaluations``.
+
+    Examples
+    --------
+    The stiffness 1 - p vanishes at p = 1: divergence:
+
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> crit = pinlin.critical_parameter(family, (0.0, 2.0))
+    >>> round(crit.value, 12), crit.kind
+    (1.0, 'divergence')
     """
     t0 = time.perf_counter()
     if method not in METHODS:
         raise ParameterError("method", f"expected one of {METHODS}, got {method!r}")
-    if tol is not None and not (np.isfinite(tol) and tol > 0):
-        raise ParameterError("tol", f"expected a positive absolute tolerance or None, got {tol!r}")
+    if atol is not None and not (np.isfinite(atol) and atol > 0):
+        raise ParameterError("atol", f"expected a positive absolute tolerance or None, got {atol!r}")
     if (isinstance(max_evaluations, (bool, np.bool_)) or not isinstance(max_evaluations, (int, float, np.integer, np.floating))
             or not np.isfinite(max_evaluations) or int(max_evaluations) != max_evaluations or max_evaluations < 3):
         raise ParameterError("max_evaluations", f"expected an integer >= 3, got {max_evaluations!r}")
     if damping is not None:
-        return _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0)
+        return _vanishing(func, bracket, damping, atol, max_evaluations, modal_options, t0)
     ev = Evaluator(func, modal_options)
     try:
         br = open_bracket(ev, bracket)
     except PeriodicFamily as found:  # func(p) -> FloquetAnalysis: the multipliers' boundary
-        return periodic_critical_parameter(func, bracket, tol=tol, max_evaluations=max_evaluations,
+        return periodic_critical_parameter(func, bracket, tol=atol, max_evaluations=max_evaluations,
                                            first=(found.p, found.value))
-    tol_abs = 0.0 if tol is None else float(tol)
+    tol_abs = 0.0 if atol is None else float(atol)
     notes: list[str] = []
     if method == "bisection":
         value, bound, lam, steps = bisect(ev, br, tol_abs, max_evaluations)
@@ -206,26 +219,31 @@ def critical_parameter(
         mechanism, value, bound, lam, steps, how, verified = _search(
             ev, br, tol_abs, derivative, max_evaluations, verify_result, modal_options, notes)
     return CriticalParameter(
-        float(value), _boundary_kind(br), mechanism, complex(lam), float(bound), (br.lo, br.hi),
-        (br.kind_lo, br.kind_hi), verified, ev.analyses, ev.calls, tuple(steps), how, time.perf_counter() - t0,
-        tuple(notes))
+        value=float(value), kind=_boundary_kind(br), mechanism=mechanism, eigenvalue=complex(lam),
+        error_bound=float(bound), bracket=(br.lo, br.hi), verdicts=(br.kind_lo, br.kind_hi), verified=verified,
+        evaluations=ev.analyses, function_calls=ev.calls, steps=tuple(steps), method=how,
+        elapsed=time.perf_counter() - t0, notes=tuple(notes),
+    )
 
 
-def _vanishing(func, bracket, damping, tol, max_evaluations, modal_options, t0) -> CriticalParameter:
+def _vanishing(func, bracket, damping, atol, max_evaluations, modal_options, t0) -> CriticalParameter:
     """``critical_parameter(..., damping=D1)``: the vanishing-damping limit, or the coalescence it reaches."""
-    lim = vanishing_damping_limit(func, bracket, damping, tol=tol, max_evaluations=max_evaluations,
+    lim = vanishing_damping_limit(func, bracket, damping, atol=atol, max_evaluations=max_evaluations,
                                   modal_options=modal_options)
     if lim.value is None:
-        res = critical_parameter(func, bracket, tol=tol, max_evaluations=max_evaluations, modal_options=modal_options)
+        res = critical_parameter(func, bracket, atol=atol, max_evaluations=max_evaluations, modal_options=modal_options)
         return dataclasses.replace(res, elapsed=time.perf_counter() - t0, notes=res.notes + (
             "vanishing damping of the given shape stabilizes up to the undamped flutter point: the limit is it",))
     return CriticalParameter(
-        lim.value, "flutter", "vanishing damping", lim.eigenvalue, lim.error_bound, lim.bracket,
-        ("asymptotically_stable", "flutter"), False, lim.evaluations, lim.function_calls, lim.steps,
-        "the root of the first-order rate g(p) = max d Re lam / d eps of the axis eigenvalues for D = eps D1 "
-        "(the limit problem of vanishing damping; Brent's method)", time.perf_counter() - t0,
-        ("verdicts: of func(p) with D = eps D1 for small eps > 0, to first order in eps (not computed at a "
-         "finite eps)",))
+        value=lim.value, kind="flutter", mechanism="vanishing damping", eigenvalue=lim.eigenvalue,
+        error_bound=lim.error_bound, bracket=lim.bracket, verdicts=("asymptotically_stable", "flutter"),
+        verified=False, evaluations=lim.evaluations, function_calls=lim.function_calls, steps=lim.steps,
+        method="the root of the first-order rate g(p) = max d Re lam / d eps of the axis eigenvalues for "
+               "D = eps D1 (the limit problem of vanishing damping; Brent's method)",
+        elapsed=time.perf_counter() - t0,
+        notes=("verdicts: of func(p) with D = eps D1 for small eps > 0, to first order in eps (not computed at "
+               "a finite eps)",),
+    )
 
 
 def _search(ev, br, tol, derivative, max_evaluations, verify_result, modal_options, notes):

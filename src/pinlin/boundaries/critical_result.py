@@ -9,7 +9,7 @@ from ..results import Result
 __all__ = ["CriticalParameter"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class CriticalParameter(Result):
     """A stability boundary p* of a one-parameter family (theory: boundaries).
 
@@ -51,6 +51,14 @@ class CriticalParameter(Result):
     elapsed : float
         Seconds [s].
     notes : tuple of str
+
+    Examples
+    --------
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> crit = pinlin.critical_parameter(family, (0.0, 2.0))
+    >>> crit.mechanism, crit.verdicts, crit.verified
+    ('crossing', ('asymptotically_stable', 'divergence'), True)
     """
 
     value: float

@@ -60,7 +60,7 @@ ROUNDING_FACTOR = 8.0
 _NAMES = ("M", "C", "K")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class MatrixDerivatives:
     """dM/dp, dC/dp, dK/dp at one parameter value, with absolute error estimates.
 
@@ -118,7 +118,7 @@ def exact_derivatives(derivative: Callable, p: float, n: int) -> MatrixDerivativ
     if not np.all(np.isfinite(stack)):
         raise SystemFunctionError(f"derivative({p!r}) returned non-finite entries", p)
     norms = np.linalg.norm(stack, axis=(1, 2))
-    return MatrixDerivatives(stack, EPS * norms, "exact (user derivative)")
+    return MatrixDerivatives(stack=stack, error=EPS * norms, method="exact (user derivative)")
 
 
 def richardson_derivatives(evaluator: Evaluator, p: float, step: float, levels: int = RICHARDSON_LEVELS
@@ -175,8 +175,11 @@ def richardson_derivatives(evaluator: Evaluator, p: float, step: float, levels: 
                 if err[k] < best_err[k]:
                     best_err[k] = err[k]
                     best[k] = table[i][j][k]
-    return MatrixDerivatives(best, best_err, f"central differences, Richardson ({levels} steps from h = {step:.3g})",
-                             evaluator.calls - calls0, step)
+    return MatrixDerivatives(
+        stack=best, error=best_err,
+        method=f"central differences, Richardson ({levels} steps from h = {step:.3g})",
+        calls=evaluator.calls - calls0, step=step,
+    )
 
 
 def secant_derivatives(X_a: np.ndarray, p_a: float, X_b: np.ndarray, p_b: float) -> MatrixDerivatives:
@@ -187,4 +190,4 @@ def secant_derivatives(X_a: np.ndarray, p_a: float, X_b: np.ndarray, p_b: float)
     secants only to choose their steps, never to bound a result.
     """
     stack = (np.asarray(X_b) - np.asarray(X_a)) / (p_b - p_a)
-    return MatrixDerivatives(stack, np.full(3, np.nan), "secant")
+    return MatrixDerivatives(stack=stack, error=np.full(3, np.nan), method="secant")

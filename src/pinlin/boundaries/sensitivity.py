@@ -51,7 +51,7 @@ FORMULA_ROUNDING = 4.0
 _SIMPLE = "simple"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class EigenDerivatives:
     """d lam / dp for every eigenvalue of one modal analysis (see :func:`eigen_derivatives`)."""
 
@@ -155,10 +155,12 @@ def eigen_derivatives(modes: Modes, dL: MatrixDerivatives, *, puiseux: bool = Tr
     for k in np.flatnonzero(~in_cluster):
         der[k], err[k] = simple_derivative(modes, int(k), dL, gaps[k])
         ok[k] = True
-    return EigenDerivatives(der, err, ok, tuple(status), tuple(series))
+    return EigenDerivatives(
+        derivatives=der, error=err, differentiable=ok, status=tuple(status), puiseux=tuple(series),
+    )
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class EigenvalueSensitivity(Result):
     """d lam / dp of every eigenvalue of ``func(p)`` (theory: boundaries).
 
@@ -201,6 +203,16 @@ class EigenvalueSensitivity(Result):
     elapsed : float
         Seconds [s].
     notes : tuple of str
+
+    Examples
+    --------
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> sens = pinlin.eigenvalue_sensitivity(family, 0.5)
+    >>> sens.parameter, sens.differentiable.tolist()
+    (0.5, [True, True])
+    >>> bool(np.allclose(sens.derivatives, 1 / (2 * sens.eigenvalues + 0.1), rtol=1e-9))
+    True
     """
 
     parameter: float
@@ -282,6 +294,16 @@ def eigenvalue_sensitivity(
     SystemFunctionError
         ``func`` or ``derivative`` raised, or returned a wrong value, or systems of
         different sizes.
+
+    Examples
+    --------
+    lam^2 + 0.1 lam + 1 - p = 0, so d lam / dp = 1 / (2 lam + 0.1):
+
+    >>> def family(p):
+    ...     return pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.1]], [[1.0 - p]])
+    >>> sens = pinlin.eigenvalue_sensitivity(family, 0.5)
+    >>> np.round(sens.derivatives, 6)
+    array([...-0.708881j, ...+0.708881j])
     """
     t0 = time.perf_counter()
     p = check_parameter(p, "p")
@@ -300,8 +322,19 @@ def eigenvalue_sensitivity(
     if not np.all(result.differentiable):
         notes.append(f"{int(np.sum(~result.differentiable))} eigenvalue(s) not differentiable (see status)")
     return EigenvalueSensitivity(
-        p, readonly(modes.eigenvalues), readonly(result.derivatives), readonly(result.error),
-        readonly(result.differentiable), result.status, result.puiseux, readonly(dL.stack), readonly(dL.error),
-        ev.calls, ev.analyses, modes, f"{dL.method}; d lam/dp = -y^T L_p x / (y^T L' x)", time.perf_counter() - t0,
-        tuple(notes),
+        parameter=p,
+        eigenvalues=readonly(modes.eigenvalues),
+        derivatives=readonly(result.derivatives),
+        derivative_error=readonly(result.error),
+        differentiable=readonly(result.differentiable),
+        status=result.status,
+        puiseux=result.puiseux,
+        matrix_derivatives=readonly(dL.stack),
+        matrix_error=readonly(dL.error),
+        evaluations=ev.calls,
+        analyses=ev.analyses,
+        modes=modes,
+        method=f"{dL.method}; d lam/dp = -y^T L_p x / (y^T L' x)",
+        elapsed=time.perf_counter() - t0,
+        notes=tuple(notes),
     )

@@ -1,4 +1,4 @@
-"""The limit of a flutter boundary as damping of a given shape vanishes (theory: stability, issue 25).
+"""The limit of a flutter boundary as damping of a given shape vanishes (theory: stability).
 
 For D = eps D1(p) added to a family whose undamped systems func(p) are
 marginally stable, the first-order rate of the axis eigenvalues is
@@ -72,7 +72,7 @@ def _rate(ev: Evaluator, shape, p: float):
     return row.rate, row.rate_error, row.eigenvalue
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class VanishingLimit:
     """What :func:`vanishing_damping_limit` found; :func:`pinlin.critical_parameter` makes it a result.
 
@@ -90,7 +90,7 @@ class VanishingLimit:
     elapsed: float
 
 
-def vanishing_damping_limit(func, bracket, damping, *, tol: float | None = None, max_evaluations: int = 80,
+def vanishing_damping_limit(func, bracket, damping, *, atol: float | None = None, max_evaluations: int = 80,
                             modal_options=None) -> VanishingLimit:
     """The limit p_d of the flutter boundary for D = eps D1, eps -> 0 (module doc).
 
@@ -126,8 +126,10 @@ def vanishing_damping_limit(func, bracket, damping, *, tol: float | None = None,
             raise ConvergenceError(f"vanishing-damping limit: more than {max_evaluations} modal analyses", steps)
         if abs(b - a) <= 4 * np.finfo(float).eps * max(abs(a), abs(b)):
             steps.append("g < 0 up to where the undamped eigenvalues meet: the limit is the coalescence")
-            return VanishingLimit(None, 0j, np.inf, (a, b), ev.analyses, ev.calls, tuple(steps),
-                                  time.perf_counter() - t0)
+            return VanishingLimit(
+                value=None, eigenvalue=0j, error_bound=np.inf, bracket=(a, b), evaluations=ev.analyses,
+                function_calls=ev.calls, steps=tuple(steps), elapsed=time.perf_counter() - t0,
+            )
         mid = 0.5 * (a + b)
         at_mid = _rate(ev, shape, mid)
         steps.append(f"g({mid:.6g}) = {'not marginal' if at_mid is None else f'{at_mid[0]:.3e}'}")
@@ -146,12 +148,15 @@ def vanishing_damping_limit(func, bracket, damping, *, tol: float | None = None,
             raise ConvergenceError(f"func({p!r}) is not marginally stable inside the rate's bracket", steps)
         return value[0]
 
-    xtol = 2 * np.finfo(float).eps * max(abs(a), abs(b), 1.0) if tol is None else float(tol)
+    xtol = 2 * np.finfo(float).eps * max(abs(a), abs(b), 1.0) if atol is None else float(atol)
     value, info = brentq(g, a, b, xtol=xtol, rtol=4 * np.finfo(float).eps, full_output=True)
     steps.append(f"Brent on g in [{a:.15g}, {b:.15g}]: {info.iterations} iterations")
     h = SLOPE_STEP * max(abs(value), 1.0)
     slope = abs(g(value + h) - g(value - h)) / (2 * h)
     _, err, lam = _rate(ev, shape, value)
     bound = xtol + 4.0 * err / slope if slope > 0 else np.inf
-    return VanishingLimit(float(value), complex(lam), float(bound), (a, b), ev.analyses, ev.calls, tuple(steps),
-                          time.perf_counter() - t0)
+    return VanishingLimit(
+        value=float(value), eigenvalue=complex(lam), error_bound=float(bound), bracket=(a, b),
+        evaluations=ev.analyses, function_calls=ev.calls, steps=tuple(steps),
+        elapsed=time.perf_counter() - t0,
+    )

@@ -1,4 +1,4 @@
-"""pinlin's frequency responses as python-control data (issue 17).
+"""pinlin's frequency responses as python-control data.
 
 python-control is an optional extra (``pip install 'pinlin[control]'``), imported
 only when a conversion is asked for (:func:`pinlin.extras.import_control`).

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..adjoint.adjugate import AdjugateMatrix, adjugate_residual
 from ..errors import NotSimpleError
+from ..errors.deprecated import renamed_keywords
 from ..linearization.system import check_system
 from ..numerics import (
     LOG_MAX,
@@ -63,6 +64,13 @@ class FlexibilityArray(ResultArray):
         Seconds.
     residual
         Deprecated alias of ``defects`` (pinlin 0.1).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> H = pinlin.flexibility(sys, [0.5j, 1.0j, 2.0j])
+    >>> H.shape, H.method, bool(H.error < 1e-12)
+    ((3, 2, 2), 'direct', True)
     """
 
     _fields = ("s", "defects", "distance", "method", "error", "elapsed")
@@ -94,7 +102,10 @@ def flexibility_columns(sys, s, *, rows=None, cols=None, method: str = DEFAULT_M
     return out.X, out.defects
 
 
-def flexibility(sys, s, *, method: str = DEFAULT_METHOD, modes=None, tol: float = DEFAULT_TOL) -> FlexibilityArray:
+@renamed_keywords(tol="error_tol")
+def flexibility(
+    sys, s, *, method: str = DEFAULT_METHOD, modes=None, error_tol: float = DEFAULT_TOL
+) -> FlexibilityArray:
     """The dynamic flexibility ``H(s) = L(s)^-1`` [rad/(N m), m/N], vectorized over s (theory: flexibility).
 
     .. math::  H(s) = (s^2 M + s C + K)^{-1} = \\sum_k \\frac{x_k y_k^T}{s - \\lambda_k}
@@ -113,8 +124,9 @@ def flexibility(sys, s, *, method: str = DEFAULT_METHOD, modes=None, tol: float 
     modes : Modes, optional
         Result of :func:`pinlin.modal_analysis` (computed for ``method="modal"``
         when omitted; with "direct" it only gives ``distance``).
-    tol : float
-        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it.
+    error_tol : float
+        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it
+        (``tol`` is its deprecated spelling).
 
     Returns
     -------
@@ -125,17 +137,25 @@ def flexibility(sys, s, *, method: str = DEFAULT_METHOD, modes=None, tol: float 
     Raises
     ------
     ParameterError
-        Bad ``sys``, ``s`` (shape, non-finite), ``method``, ``modes`` or ``tol``,
+        Bad ``sys``, ``s`` (shape, non-finite), ``method``, ``modes`` or ``error_tol``,
         or a point at an eigenvalue (a pole of H).
     ComputationError
         L(s) overflows; the modal expansion does not apply to these modes.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> H = pinlin.flexibility(sys, 1.0j)
+    >>> np.round(np.asarray(H), 6)
+    array([[ 0.249377-5.012469j, -0.249377-4.987531j],
+           [-0.249377-4.987531j,  0.249377-5.012469j]])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)
     pts, scalar = complex_points(s, "s")
-    tol = check_tolerance(tol, "tol")
+    error_tol = check_tolerance(error_tol, "error_tol")
     out = solve(sys, pts, np.eye(sys.n), method=method, modes=modes)
-    warn_inaccurate("flexibility", method, out.defects, tol, "s", pts, exact=out.exact)
+    warn_inaccurate("flexibility", method, out.defects, error_tol, "s", pts, exact=out.exact)
     return FlexibilityArray(
         out.X[0] if scalar else out.X,
         s=per_point(pts, scalar),

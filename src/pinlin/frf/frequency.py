@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors.deprecated import renamed_keywords
 from ..extras import import_pandas
 from ..linearization.system import check_system
 from ..numerics import check_tolerance, dof_indices
@@ -25,7 +26,7 @@ from .engine import DEFAULT_METHOD, DEFAULT_TOL, solve, warn_inaccurate
 __all__ = ["FrequencyResponse", "frequency_response"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class FrequencyResponse(Result):
     """``H(i omega)`` for chosen outputs and inputs, in python-control's axis order.
 
@@ -64,6 +65,13 @@ class FrequencyResponse(Result):
     notes : tuple of str
     residual
         Deprecated alias of ``defects`` (pinlin 0.1).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> resp = pinlin.frequency_response(sys, [0.5, 1.0, 2.0], inputs=[0], outputs=[1])
+    >>> resp.response.shape, resp.method
+    ((1, 1, 3), 'direct')
     """
 
     response: np.ndarray
@@ -144,6 +152,7 @@ class FrequencyResponse(Result):
         )
 
 
+@renamed_keywords(tol="error_tol")
 def frequency_response(
     sys,
     omega,
@@ -153,7 +162,7 @@ def frequency_response(
     method: str = DEFAULT_METHOD,
     modes=None,
     check: bool = True,
-    tol: float = DEFAULT_TOL,
+    error_tol: float = DEFAULT_TOL,
 ) -> FrequencyResponse:
     """Frequency response ``H(i omega) = L(i omega)^-1`` from ``inputs`` to ``outputs`` (theory: responses).
 
@@ -181,8 +190,9 @@ def frequency_response(
     check : bool
         Compute the relative defect per frequency (costs O(n^2) per input and
         frequency; on by default).
-    tol : float
-        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it.
+    error_tol : float
+        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it
+        (``tol`` is its deprecated spelling).
 
     Returns
     -------
@@ -192,21 +202,30 @@ def frequency_response(
     ------
     ParameterError
         ``omega`` not a finite real scalar or 1-D array, unknown inputs or
-        outputs, bad method, modes or tol, a frequency at an eigenvalue on the
+        outputs, bad method, modes or error_tol, a frequency at an eigenvalue on the
         imaginary axis (an undamped resonance: a pole of H).
     ComputationError
         L(i omega) overflows; the modal expansion does not apply to these modes.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> resp = pinlin.frequency_response(sys, [0.5, 1.0, 2.0])
+    >>> resp.response.shape
+    (2, 2, 3)
+    >>> np.round(resp.response[0, 0], 6)
+    array([ 0.845475-0.047552j,  0.249377-5.012469j, -0.646698-0.107216j])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)
     w, _ = real_frequencies(omega)
     ins = dof_indices(sys, inputs, "inputs")
     outs = dof_indices(sys, outputs, "outputs")
-    tol = check_tolerance(tol, "tol")
+    error_tol = check_tolerance(error_tol, "error_tol")
     out = solve(sys, 1j * w, np.eye(sys.n)[:, ins], method=method, modes=modes, rows=outs, check=check,
                 label="omega", values=w)
     name = method if out.expansion is None else out.expansion.method
-    warn_inaccurate("frequency_response", name, out.defects, tol, "omega", w, exact=out.exact)
+    warn_inaccurate("frequency_response", name, out.defects, error_tol, "omega", w, exact=out.exact)
     notes = []
     if out.expansion is not None:
         notes.append(f"modes from {getattr(out.expansion.modes, 'method', 'modal_analysis')!s}")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import time
 import warnings
 
+from ..errors.deprecated import renamed_keywords
 from ..linearization.system import check_system
 from ..numerics import check_tolerance
 from ..numerics.arrays import check_vector
@@ -51,6 +52,13 @@ class HarmonicResponse(ResultArray):
         Seconds.
     defect
         Deprecated alias of ``defects`` (pinlin 0.1).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> X = pinlin.harmonic_response(sys, [1.0, 0.0], 1.0)
+    >>> X.shape, bool(X.error < 1e-12)
+    ((2,), True)
     """
 
     _fields = ("omega", "defects", "distance", "projection_residual", "method", "error", "elapsed", "modes")
@@ -62,6 +70,7 @@ class HarmonicResponse(ResultArray):
         return self.defects
 
 
+@renamed_keywords(tol="error_tol")
 def harmonic_response(
     sys,
     F,
@@ -69,7 +78,7 @@ def harmonic_response(
     *,
     method: str = DEFAULT_METHOD,
     modes=None,
-    tol: float = DEFAULT_TOL,
+    error_tol: float = DEFAULT_TOL,
 ) -> HarmonicResponse:
     """Steady-state amplitude of M x'' + C x' + K x = Re(F exp(i omega t)) (theory: responses).
 
@@ -97,8 +106,9 @@ def harmonic_response(
     modes : Modes, optional
         A modal analysis of ``sys`` to reuse (modal method; with "direct" it
         only gives ``distance``).
-    tol : float
-        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it.
+    error_tol : float
+        An :class:`~pinlin.AccuracyWarning` is issued when ``error`` exceeds it
+        (``tol`` is its deprecated spelling).
 
     Returns
     -------
@@ -108,20 +118,30 @@ def harmonic_response(
     Raises
     ------
     ParameterError
-        Wrong shapes, non-finite values, unknown method, bad modes or tol, or a
+        Wrong shapes, non-finite values, unknown method, bad modes or error_tol, or a
         frequency at an eigenvalue on the imaginary axis (an undamped
         resonance: L(i omega) is singular, the steady state does not exist).
     ComputationError
         L(i omega) overflows; the modal expansion does not apply to these modes.
+
+    Examples
+    --------
+    A unit force on the first mass at 0.5 and 1 rad/s: one amplitude vector per frequency:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> X = pinlin.harmonic_response(sys, [1.0, 0.0], [0.5, 1.0])
+    >>> np.round(np.asarray(X), 6)
+    array([[ 0.845475-0.047552j,  0.481959-0.040943j],
+           [ 0.249377-5.012469j, -0.249377-4.987531j]])
     """
     t_start = time.perf_counter()
     sys = check_system(sys)
     F = check_vector(F, sys.n, "F", complex_ok=True, allow_none=False)
     w, scalar = real_frequencies(omega)
-    tol = check_tolerance(tol, "tol")
+    error_tol = check_tolerance(error_tol, "error_tol")
     out = solve(sys, 1j * w, F[:, None], method=method, modes=modes, label="omega", values=w)
     name = method if out.expansion is None else out.expansion.method
-    warn_inaccurate("harmonic_response", name, out.defects, tol, "omega", w, exact=out.exact)
+    warn_inaccurate("harmonic_response", name, out.defects, error_tol, "omega", w, exact=out.exact)
     X = out.X[:, :, 0]
 
     used = out.expansion.modes if out.expansion is not None else modes

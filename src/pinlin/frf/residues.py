@@ -17,7 +17,7 @@ like ``(r_in / r)^N + (r / r_out)^N`` for a cluster inside ``r_in`` and the next
 eigenvalue beyond ``r_out``; both ratios are kept at most 1/2).  For one pole
 outside at q r the N-point rule's error is exactly q^(N/2) times the difference
 between the N/2- and N-point rules: the error bounds use that difference times
-x >= |q|^(N/2) from the geometry (issue 16: an estimate from the difference alone
+x >= |q|^(N/2) from the geometry (an estimate from the difference alone
 is not a bound).  A computed multiple root is a cluster of nearby
 eigenvalues (a double root splits by about sqrt(eps)); the contour integral sees
 the whole cluster and is insensitive to the splitting, which is why it is
@@ -115,6 +115,13 @@ class Residues(list, Result):
         Seconds.
 
     ``to_dict()`` gives these and the residues themselves (``"residues"``).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> R = pinlin.residues(sys, pinlin.modal_analysis(sys).eigenvalues[0])
+    >>> R.order, bool(R.error < 1e-10)
+    (1, True)
     """
 
     _meta = (
@@ -321,6 +328,17 @@ def residues(
         No eigenvalue within ``cluster_tol`` of lam0.
     EigenvalueNotIsolatedError
         Another eigenvalue lies within ``GROWTH`` r_in: no contour separates the root.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> lam = pinlin.modal_analysis(sys).eigenvalues[0]
+    >>> R = pinlin.residues(sys, lam)
+    >>> len(R), R.multiplicity
+    (1, 1)
+    >>> np.round(np.asarray(R[0]), 6)
+    array([[0.-0.250313j, 0.-0.250313j],
+           [0.-0.250313j, 0.-0.250313j]])
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

@@ -1,4 +1,4 @@
-"""Numerics shared by the analyses, each written once (issue 10).
+"""Numerics shared by the analyses, each written once.
 
 - :mod:`.checks` -- input checks: ``check_tolerance(value, label, upper=None)``,
   ``check_uncertainty``, ``check_integer``, ``check_radii``, ``complex_scalar``, ``complex_points``,
@@ -18,8 +18,6 @@
 - :mod:`.determinant` -- ``nonsingularity`` and ``det_sign``, decided the same way;
 - :mod:`.rank` -- the two rank tolerances (Jordan structure, adjugate rank one) and rank helpers;
 - :mod:`.threads` -- ``small_kernels``: one BLAS thread for the dense kernels of a small problem;
-- :mod:`.small_linalg` -- ``eigvalsh``, ``singular_values``, ``solve``: numpy.linalg's LAPACK calls on
-  double matrices without the wrappers' Python (the same numbers).
 
 """
 

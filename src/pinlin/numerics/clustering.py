@@ -69,13 +69,13 @@ def find_clusters(
     a = np.abs(lam)
     # candidates only: |lam_i - lam_j| >= ||lam_i| - |lam_j||, so linked eigenvalues have moduli within
     # cluster_tol max(|lam_j|, scale) of each other; sorted by modulus, each is compared with those in that window
-    order = a.argsort(kind="stable")  # (the array methods: numpy's function wrappers cost a call each)
+    order = np.argsort(a, kind="stable")
     sa = a[order]
     with np.errstate(divide="ignore", invalid="ignore"):
         reach = sa + cluster_tol * np.maximum(sa, scale) / (1.0 - cluster_tol)
     hi = sa.searchsorted(reach, side="right")
     counts = np.maximum(hi - np.arange(k) - 1, 0)
-    total = int(np.add.reduce(counts))
+    total = int(counts.sum())
     if total == 0:
         return [(i,) for i in range(k)] if singletons else []
     first = np.arange(k).repeat(counts)
@@ -111,7 +111,7 @@ def _components(k: int, first: np.ndarray, second: np.ndarray, singletons: bool)
         np.minimum.at(new, first, low)
         np.minimum.at(new, second, low)
         new = new[new]
-        if not np.count_nonzero(new != label):  # np.array_equal's test, without its wrapper
+        if np.array_equal(new, label):
             break
         label = new
     if singletons:
@@ -152,8 +152,7 @@ def _far_apart(lam: np.ndarray, cluster_tol: float, scale: float) -> bool:
         return False
     w = lam[im >= 0]
     size = np.abs(w)
-    a = size.copy()
-    a.sort()  # np.sort's copy and sort, without its wrapper
+    a = np.sort(size)
     if a.size == 0 or not math.isfinite(a[-1]):
         return False
     limit = (cluster_tol * _FAR_MARGIN) * np.maximum(a, scale)  # at least |lam_i - lam_j| for every candidate pair

@@ -6,7 +6,7 @@ re-exported here, its home in pinlin 0.2).
 One decision for every user: ``modes.structure``, the stability theorems and
 the command-line report all call :func:`definiteness`, so they cannot
 disagree.  The decision says what the floating-point data prove, not what a
-fixed eigenvalue ratio suggests (issue 16):
+fixed eigenvalue ratio suggests:
 
 * LAPACK's symmetric eigensolver behind ``eigvalsh`` is backward stable: the
   computed eigenvalues w_i are the exact eigenvalues of A + E with
@@ -90,7 +90,7 @@ def rounding_bound(n: int, norm: float, factor: float = EIGENVALUE_ROUNDING) -> 
 
 
 @persistent
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Definiteness:
     """The definiteness of a symmetric matrix and the numbers behind the decision.
 
@@ -231,7 +231,9 @@ def _decide(w: np.ndarray, norm: float, rounding: float, u: float, chol: float |
             pos, zero, certificate = n, 0, "Cholesky"
     margin = max(gap / norm, 0.0) if zero == 0 else 0.0
     out = Definiteness(
-        _kind(neg, zero, pos), neg, zero, pos, lo, hi, rounding + u, thr, norm, rounding, u, margin, certificate,
+        kind=_kind(neg, zero, pos), negative=neg, zero=zero, positive=pos, min_eigenvalue=lo,
+        max_eigenvalue=hi, tol=rounding + u, threshold=thr, norm=norm, rounding=rounding, uncertainty=u,
+        margin=margin, certificate=certificate,
     )
     object.__setattr__(out, "_eigenvalues", w)
     object.__setattr__(out, "_cholesky_lower", chol)
@@ -352,7 +354,11 @@ def symmetric_definiteness(A: np.ndarray, u: float, rounding_factor: float = EIG
     rounding = float(rounding_factor * n * EPS)
     if not np.count_nonzero(A):
         return _with_block(
-            Definiteness("zero", 0, n, 0, 0.0, 0.0, rounding + u, 0.0, 0.0, rounding, u, 0.0, "exactly zero"), None
+            Definiteness(
+                kind="zero", negative=0, zero=n, positive=0, min_eigenvalue=0.0, max_eigenvalue=0.0,
+                tol=rounding + u, threshold=0.0, norm=0.0, rounding=rounding, uncertainty=u, margin=0.0,
+                certificate="exactly zero",
+            ), None
         )
     w, _, info = _dsyevd(A, compute_v=0, lower=1)
     if info != 0:  # LAPACK's divide and conquer did not converge: numpy's driver instead (it raises if that fails too)

@@ -22,7 +22,7 @@ from .floating import EPS
 __all__ = ["Nonsingularity", "nonsingularity", "validated_nonsingularity", "det_sign"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Nonsingularity:
     """Whether a square matrix is certainly nonsingular, and the sign of its determinant.
 
@@ -54,7 +54,10 @@ class Nonsingularity:
             ``uncertainty`` not in [0, 1).
         """
         u = check_uncertainty(uncertainty)
-        return Nonsingularity(self.computed_sign if self.margin > u else 0, self.margin, u, self.computed_sign)
+        return Nonsingularity(
+            sign=self.computed_sign if self.margin > u else 0, margin=self.margin, uncertainty=u,
+            computed_sign=self.computed_sign,
+        )
 
 
 def nonsingularity(
@@ -83,13 +86,13 @@ def validated_nonsingularity(A: np.ndarray, u: float, rounding_factor: float = E
     """
     n = A.shape[0]
     if not A.any():
-        return Nonsingularity(0, 0.0, u, 0)
+        return Nonsingularity(sign=0, margin=0.0, uncertainty=u, computed_sign=0)
     U, s, Vh, info = _dgesdd(A)
     if info != 0:  # LAPACK's divide and conquer did not converge: numpy's driver (it raises if that fails too)
         U, s, Vh = np.linalg.svd(A)
     margin = max(float((s[-1] - rounding_factor * n * EPS * s[0]) / s[0]), 0.0)
     sign = _orthogonal_sign(U) * _orthogonal_sign(Vh)
-    return Nonsingularity(sign if margin > u else 0, margin, u, sign)
+    return Nonsingularity(sign=sign if margin > u else 0, margin=margin, uncertainty=u, computed_sign=sign)
 
 
 def _orthogonal_sign(Q: np.ndarray) -> int:

@@ -1,4 +1,4 @@
-"""One BLAS thread for small dense kernels (issue 27).
+"""One BLAS thread for small dense kernels.
 
 OpenBLAS starts as many threads as there are cores and uses them from small
 sizes on.  For the matrices of a modal analysis of a robot (n up to a few

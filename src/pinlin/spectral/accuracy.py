@@ -50,7 +50,7 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class PairFigures:
     """Normalized vectors and the accuracy figures of a set of eigenpairs.
 
@@ -138,10 +138,13 @@ def pair_figures(problem: QuadraticProblem, lam, P, Y=None, eta=None, norm_x=Non
             sens = np.where(ok, weight / np.where(ok, size, 1.0), np.inf)
         left = np.where(ok, Y / np.where(ok, deriv, 1.0), Y)
     bound = np.maximum(eta, ETA_FLOOR) * sens
-    return PairFigures(X, left, ok, deriv, eta, bound, sens, Y, yP, quad, weight)
+    return PairFigures(
+        right=X, left=left, left_normalized=ok, derivative=deriv, backward_error=eta, error_bound=bound,
+        sensitivity=sens, left_unit=Y, products=yP, quadratic=quad, weight=weight,
+    )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class DefectiveBound:
     """The error bound of the members of a defective cluster (chains of length p > 1).
 
@@ -185,7 +188,7 @@ def defective_scale(problem: QuadraticProblem, center: complex, p: int) -> float
     return float(s * (w / (s * s * problem.norm_M)) ** (1.0 / p))
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ErrorModel:
     """First-order error bounds of computed eigenvalues as functions of a relative data perturbation delta.
 

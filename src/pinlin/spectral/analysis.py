@@ -121,6 +121,17 @@ def modal_analysis(
     ComputationError
         QZ failed, or the problem's eigenvalue scale or an eigenvalue is outside
         the double range its error figures need.
+
+    Examples
+    --------
+    Two equal masses coupled by springs, lightly damped:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> modes = pinlin.modal_analysis(sys)
+    >>> np.round(modes.eigenvalues, 6)
+    array([-0.05+0.998749j, -0.05-0.998749j, -0.05+1.731329j, -0.05-1.731329j])
+    >>> modes.stability.kind
+    'asymptotically_stable'
     """
     t0 = time.perf_counter()
     problem = as_problem(sys)
@@ -130,7 +141,7 @@ def modal_analysis(
             "uncertainty the definiteness decisions hold against)", DeprecationWarning, stacklevel=2,
         )
         uncertainty = definiteness_tol
-    with small_kernels(problem.n):  # issue 27: one BLAS thread for a small problem's kernels
+    with small_kernels(problem.n):  # one BLAS thread for a small problem's kernels
         tolerances = _check_options(
             method, scaling, cluster_tol=cluster_tol, rank_tol=rank_tol, structure_tol=structure_tol,
             uncertainty=uncertainty, safety=safety, eigh_tol=eigh_tol,
@@ -149,7 +160,7 @@ def modal_analysis(
         freq, zeta = _frequency_damping(lam)
         bound = model.bound(0.0)
         # bounds and backward errors are >= 0 or NaN: a sum is NaN exactly when some term is
-        if np.isnan(np.add.reduce(bound) + np.add.reduce(fig.backward_error)):
+        if np.isnan(np.sum(bound) + np.sum(fig.backward_error)):
             raise ComputationError(
                 "an eigenvalue error figure is not a number: the coefficients (norms "
                 f"{problem.norm_M:.3g}, {problem.norm_C:.3g}, {problem.norm_K:.3g}) span more of double range than the "

@@ -27,7 +27,6 @@ from ..numerics.accuracy import ETA_FLOOR
 from ..numerics.clustering import find_clusters
 from ..numerics.floating import EPS
 from ..numerics.norms import column_norms
-from ..numerics.small_linalg import singular_values, solve
 from .accuracy import DefectiveBound, ErrorModel, PairFigures, defective_scale
 from .multiplicity import Cluster, ClusterEvidence, analyse_cluster
 from .problem import QuadraticProblem
@@ -53,8 +52,9 @@ def _taken_from(partner: Cluster, indices: tuple[int, ...]) -> Cluster | None:
     method = partner.method if partner.method.endswith(_CONJUGATE_METHOD) else partner.method + _CONJUGATE_METHOD
     p = partner
     return Cluster(
-        tuple(indices), p.center.conjugate(), p.algebraic, p.geometric, p.partial, p.consistent, p.kernel_dims,
-        p.note, error=p.error, method=method, elapsed=time.perf_counter() - t0,
+        indices=tuple(indices), center=p.center.conjugate(), algebraic=p.algebraic, geometric=p.geometric,
+        partial=p.partial, consistent=p.consistent, kernel_dims=p.kernel_dims, note=p.note, error=p.error,
+        method=method, elapsed=time.perf_counter() - t0,
     )
 
 
@@ -86,7 +86,10 @@ def analyse_clusters(
     if weight is None:
         with np.errstate(over="ignore", invalid="ignore"):
             weight = problem.weight(lam)
-    evidence = ClusterEvidence(fig.right, fig.sensitivity, fig.error_bound, fig.backward_error, weight, mirrored)
+    evidence = ClusterEvidence(
+        right=fig.right, sensitivity=fig.sensitivity, bound=fig.error_bound,
+        backward_error=fig.backward_error, weight=weight, mirrored=mirrored,
+    )
     same_lam, same_all = _conjugate_groups(lam, fig, groups)
     c = None
     origin: list[int] = []
@@ -175,7 +178,10 @@ def cluster_figures(problem: QuadraticProblem, lam, fig: PairFigures, clusters, 
             sens[ii] = np.inf
             spread = float(np.max(np.abs(lam[ii] - c.center)))
             scale = defective_scale(problem, c.center, c.index)
-            defective.append(DefectiveBound(tuple(c.indices), spread, scale, float(np.max(eta[ii])), c.index))
+            defective.append(DefectiveBound(
+                indices=tuple(c.indices), spread=spread, scale=scale, eta=float(np.max(eta[ii])),
+                index=c.index,
+            ))
     if mates:
         _take_mates(problem, lam, fig, clusters, mates, done, (left, left_ok, sens), notes)
     return left, left_ok, _model(eta, sens, tuple(defective)), notes
@@ -221,10 +227,10 @@ def _biorthogonalize(problem: QuadraticProblem, lam, fig: PairFigures, c: Cluste
     Y = fig.left_unit[:, ii]
     P = Y.T @ (2 * c.center * problem.M + problem.C) @ fig.right[:, ii]
     try:
-        sv = singular_values(P)
+        sv = np.linalg.svd(P, compute_uv=False)
         if sv[0] == 0 or sv[-1] <= BIORTHOGONAL_RCOND * sv[0]:
             return False
-        Yn = solve(P, Y.T).T  # Yn^T Lp X = I
+        Yn = np.linalg.solve(P, Y.T).T  # Yn^T Lp X = I
     except np.linalg.LinAlgError:
         return False
     left[:, ii] = Yn
@@ -238,4 +244,4 @@ def _model(eta: np.ndarray, sensitivity: np.ndarray, defective: tuple) -> ErrorM
     """The error model with its arrays made read-only (the verdict formed later reads them; nobody writes them)."""
     eta.flags.writeable = False
     sensitivity.flags.writeable = False
-    return ErrorModel(eta, sensitivity, defective)
+    return ErrorModel(eta=eta, sensitivity=sensitivity, defective=defective)

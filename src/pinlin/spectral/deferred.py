@@ -1,4 +1,4 @@
-"""What :class:`~pinlin.spectral.modes.Modes` keeps to form some of its parts on first access (issue 14).
+"""What :class:`~pinlin.spectral.modes.Modes` keeps to form some of its parts on first access.
 
 :func:`~pinlin.spectral.modal_analysis` computes eagerly what every caller
 reads and what can fail: the eigenvalues, both sets of vectors, the backward
@@ -79,7 +79,7 @@ class DeferredVerdict:
         biorthogonalization), in the order the analysis found them.
     vectors : (X, Y, left_normalized) or None
         The right and left vectors (read-only), for the verdict's dissipation
-        table and unstructured margin (issue 25).
+        table and unstructured margin.
     """
 
     problem: QuadraticProblem
@@ -120,7 +120,7 @@ class DeferredVerdict:
 
 
 def mass_notes(facts: StructuralFacts, lam: np.ndarray, bound: np.ndarray) -> list[str]:
-    """Issue 13: an M positive definite only within rounding is said, with the eigenvalues it spoils."""
+    """An M positive definite only within rounding is said, with the eigenvalues it spoils."""
     on_M = facts.definiteness_M
     if on_M is None or on_M.kind == "positive_definite":
         return []
@@ -136,7 +136,7 @@ def mass_notes(facts: StructuralFacts, lam: np.ndarray, bound: np.ndarray) -> li
 def with_contact_notes(stability: Stability, system) -> Stability:
     """The verdict's reason quotes a contact that the equilibrium violates (the ground would have to pull, or
     friction exceed mu): the linearization treats contacts as bilateral, so such a verdict holds only while
-    the contact is held (theory: constraints, issue 11)."""
+    the contact is held (theory: constraints)."""
     notes = [n for n in getattr(system, "notes", ()) if n.startswith("contact '")]
     if not notes:
         return stability

@@ -1,4 +1,4 @@
-"""Where a mode keeps its energy: the share of each body, element and damper (issue 26 part 3).
+"""Where a mode keeps its energy: the share of each body, element and damper.
 
 :func:`mode_energy` (also :meth:`pinlin.Modes.energy`) splits the period-mean energies
 of mode k, the motion Re(x exp(lam t)) of its eigenvector x at its eigenvalue lam,
@@ -55,7 +55,7 @@ ENERGY_ROUNDING = 1e3
 SCENE_MATCH_TOL = 1e-8
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class ModeEnergy(Result):
     """The energy distribution of one mode (see :mod:`pinlin.spectral.energy`).
 
@@ -81,6 +81,17 @@ class ModeEnergy(Result):
     elapsed : float
         Seconds.
     notes : tuple of str
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring(j, 10.0) for j in robot.joint_names])
+    >>> modes = pinlin.modal_analysis(pinlin.linearize(scene, robot.neutral()))
+    >>> energy = modes.energy(0, scene)
+    >>> {body: round(share, 6) for body, share in energy.kinetic.items()}
+    {'link1': 0.18182, 'link2': 0.81818}
+    >>> energy.by, round(sum(energy.strain.values()), 6)
+    ('bodies', 1.0)
     """
 
     index: int

@@ -59,7 +59,7 @@ _CHAINS_METHOD = (
 )
 
 
-@dataclass(frozen=True, repr=False)
+@dataclass(frozen=True, repr=False, kw_only=True)
 class JordanChains(Result):
     """Jordan chains of L at lam0; behaves as a list of chains (each a list of vectors).
 
@@ -92,6 +92,15 @@ class JordanChains(Result):
     error : float
         The largest relative chain residual (``max_residual``): the backward
         error of the chain equations.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[2.0]], [[1.0]])
+    >>> chains = pinlin.jordan_chains(sys, -1.0)
+    >>> len(chains), [len(chain) for chain in chains]
+    (1, [2])
+    >>> np.round(chains.chains[0][0], 6)
+    array([1.+0.j])
     """
 
     lam0: complex
@@ -231,6 +240,15 @@ def jordan_chains(sys, lam0, *, rank_tol: float = RANK_TOL, max_length: int | No
         L(lam0) is nonsingular at ``rank_tol``: lam0 is no eigenvalue.  The
         message gives the nearest eigenvalue and the distance to it;
         ``distance`` is that distance relative to max(|lam0|, gamma).
+
+    Examples
+    --------
+    A critically damped oscillator, lam^2 + 2 lam + 1 = 0: lam = -1 is a double root with one eigenvector:
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[2.0]], [[1.0]])
+    >>> chains = pinlin.jordan_chains(sys, -1.0)
+    >>> chains.partial, bool(chains.max_residual < 1e-12)
+    ((2,), True)
     """
     t0 = time.perf_counter()
     problem = as_problem(sys)
@@ -259,8 +277,9 @@ def jordan_chains(sys, lam0, *, rank_tol: float = RANK_TOL, max_length: int | No
     chains = [tuple(v / gamma**i for i, v in enumerate(c)) for c in scaled]
     residuals = tuple(chain_residuals(problem.M, problem.C, problem.K, lam0, c) for c in chains)
     result = JordanChains(
-        lam0, tuple(chains), tuple(len(c) for c in chains), residuals, dims, rank_tol,
-        time.perf_counter() - t0, expected, tuple(notes),
+        lam0=lam0, chains=tuple(chains), partial=tuple(len(c) for c in chains), residuals=residuals,
+        kernel_dims=dims, rank_tol=rank_tol, elapsed=time.perf_counter() - t0, expected=expected,
+        notes=tuple(notes),
     )
     if notes:
         warnings.warn(f"jordan_chains at lam0 = {lam0:.6g}: " + "; ".join(notes), AccuracyWarning, stacklevel=2)

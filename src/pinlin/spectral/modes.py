@@ -56,13 +56,15 @@ class Method(str):
         return (Method, (self.name, self.reason))
 
 
-@dataclass(frozen=True, eq=False, repr=False)
+@dataclass(frozen=True, eq=False, repr=False, kw_only=True)
 class Modes(Result):
     """Eigenvalues and eigenvectors of L(lam) = lam^2 M + lam C + K with their error figures.
 
-    Order: ascending natural frequency |lam|; a complex conjugate pair is
-    adjacent, the member with Im lam > 0 first; among equal |lam| the smaller
-    real part comes first (so a real pair -a, +a is listed as -a, +a).
+    Order: ascending |lam|; a conjugate pair adjacent, Im lam > 0 first; among equal |lam| the
+    smaller real part first (docs/conventions.md).  The parts marked "on first access" are pure
+    functions of data the result keeps (:mod:`pinlin.spectral.deferred`): their values do not
+    depend on when or from which thread they are read.  Every check that can raise runs in
+    :func:`~pinlin.spectral.modal_analysis` itself.
 
     Attributes
     ----------
@@ -71,103 +73,62 @@ class Modes(Result):
     right : (n, 2n) complex
         Right eigenvectors x_k (columns), unit 2-norm: L(lam_k) x_k = 0.
     left : (n, 2n) complex
-        Left eigenvectors y_k (plain transpose: y_k^T L(lam_k) = 0), scaled so
-        that y_k^T L'(lam_k) x_k = 1 with L'(lam) = 2 lam M + C (Lancaster's
-        normalization, so that L(s)^-1 = sum_k x_k y_k^T / (s - lam_k) when L
-        is simple).  For a semisimple multiple eigenvalue the cluster's left
-        vectors are biorthogonalized: Y_c^T L'(lam_c) X_c = I at the cluster
-        mean lam_c.  For a defective eigenvalue no such scaling exists: y_k has
-        unit 2-norm and ``left_normalized[k]`` is False.
+        Left eigenvectors y_k (y_k^T L(lam_k) = 0) with y_k^T L'(lam_k) x_k = 1 (biorthogonalized
+        within a semisimple cluster); unit 2-norm where ``left_normalized[k]`` is False (defective).
     left_normalized : (2n,) bool
     backward_error : (2n,) float
         eta of (lam_k, x_k), Frobenius norms (theory: spectrum).
     condition : (2n,) float
-        kappa of lam_k in the homogeneous form (theory: spectrum); inf for a
-        defective eigenvalue.  Formed on first access from products kept by the
-        analysis (the verdict does not need it).
+        kappa of lam_k in the homogeneous form; inf when defective.  On first access.
     error_bound : (2n,) float
-        First-order absolute error estimate of lam_k [rad/s]: eta times
-        Tisseur's absolute condition number (theory: stability's kappa eta |lam|),
-        with eta at least machine epsilon.
-        For a defective cluster: the spread of the cluster plus
-        c eta^(1/p), p the longest chain and c of
-        :func:`pinlin.spectral.accuracy.defective_scale` (about max(|lam_c|, gamma)).
-    natural_frequency : (2n,) float
-        |lam_k| [rad/s].
-    damping_ratio : (2n,) float
-        -Re lam_k / |lam_k|; NaN for lam_k = 0 exactly (undefined; the kind is
-        then "rigid_body").
+        First-order absolute error estimate of lam_k [rad/s] (theory: error figures).
+    natural_frequency, damping_ratio : (2n,) float
+        |lam_k| [rad/s] and -Re lam_k / |lam_k| (NaN for lam_k = 0).
     kind : tuple of str
-        Per eigenvalue, one of :data:`MODE_KINDS`: "rigid_body" (|lam| within
-        its error bound of 0), "unstable" (Re lam above its error bound),
-        "underdamped" (|Im lam| above its error bound), "undamped" (oscillating, |Re lam|
-        within its bound, of a system with D = 0 and G = 0 or N = 0: on the axis), "overdamped" (real,
-        negative; critically damped included).  Bounds at the data uncertainty, times ``safety``;
-        members of a cluster are classified by the cluster's mean.
+        Per eigenvalue one of :data:`MODE_KINDS`, against its bound times ``safety``.
     multiplicity : (2n,) int
         Algebraic multiplicity of the (cluster of the) eigenvalue.
     clusters : tuple of Cluster
-        Multiple eigenvalues with their partial multiplicities (theory: spectrum).
+        Multiple eigenvalues with their partial multiplicities.
     is_simple : bool
-        True when every eigenvalue is semisimple (the dynamic stiffness is simple).
+        Every eigenvalue semisimple (the dynamic stiffness is simple).
     constants : ModeConstants or None
-        m, d, g, k, n per mode and the residual of their equation (theory: stability); None for tuple input.  Formed on first access.
+        m, d, g, k, n per mode (None for tuple input).  On first access.
     participation : (n, 2n) float
-        Each coordinate's share of each mode's kinetic plus potential energy
-        (columns sum to 1; :func:`pinlin.spectral.participation.participation`);
-        :meth:`dominant` lists the coordinates above
-        :data:`~pinlin.spectral.DOMINANT_SHARE`, as the last column of
-        :meth:`table` does.  Formed on first access.
+        Each coordinate's share of each mode's energy (columns sum to 1).  On first access.
     structure : StructuralFacts
-        Definiteness, inertia and determinant signs used by the verdict, each
-        decided against the rounding bound of the data and the uncertainty
-        (``structure.definiteness_M``, ``_D``, ``_S`` carry the numbers; the
-        command-line report shows these very decisions).  Formed on first access
-        (the symmetric paths predict eigh's accuracy from a Cholesky factor of M
-        and LAPACK's condition estimate, not from this decision).
+        Definiteness, inertia and determinant signs the verdict uses.  On first access.
     stability : Stability
-        The verdict (``.kind``, ``.reason``, ``.margin``: how large a relative
-        perturbation of the data it survives).  Formed on first access (the
-        margin on first access of the verdict's ``margin``, ``reason`` or ``error``).
+        The verdict (``.kind``, ``.reason``, ``.margin``).  On first access.
     method : Method
-        Solver path ("symmetric", "squared", "proportional", "general") with
-        ``.reason`` (in ``to_dict()``: ``method`` and ``method_reason``).
+        Solver path ("symmetric", "squared", "proportional", "general") with ``.reason``.
     scaling : Scaling or None
-        Fan-Lin-Van Dooren parameters used by the general path (None if none).
-        A heavily damped problem is also solved with the tropical scalings (two
-        more QZ runs), which ``method.reason`` describes.
+        Fan-Lin-Van Dooren parameters of the general path.
     block : (2n,) int
-        Companion block each right vector was recovered from (general path; 0
-        for structured paths).
+        Companion block each right vector came from (0 on structured paths).
     tolerances : mapping
-        cluster_tol, rank_tol, structure_tol, uncertainty (the relative data
-        uncertainty of the decisions), safety, eigh_tol.
+        cluster_tol, rank_tol, structure_tol, uncertainty, safety, eigh_tol.
     system : LinearizedSystem or None
-        The system analysed (None for tuple input).
-    matrices : tuple of (n, n) ndarray
-        (M, C, K) as analysed.
+        The system analysed (None for tuple input); ``matrices``: (M, C, K) as analysed.
     elapsed : float
-        Seconds spent in :func:`modal_analysis` [s].
+        Seconds spent in :func:`modal_analysis` [s], without the parts formed later.
     notes : tuple of str
-        What the analysis found worth saying (clusters it could not resolve, left
-        vectors it could not biorthogonalize, an M definite only within rounding).
-        Formed on first access (the last of them needs the structural facts).
+        What the analysis found worth saying.  On first access.
     error : float
-        The largest backward error eta of the eigenpairs, ``max(backward_error)``
-        (relative, theory: spectrum); the per-pair figures are ``backward_error``,
-        ``condition`` and ``error_bound``.
+        ``max(backward_error)``.
 
-    ``to_dict()`` leaves out ``system`` and ``matrices`` (the input); it
-    includes ``condition`` and ``constants``.
-
-    The parts formed on first access (``condition``, ``constants``,
-    ``participation``, ``structure``, ``stability``, ``notes``) are pure
-    functions of data the result keeps (:mod:`pinlin.spectral.deferred`): they
-    are computed by the same code from the same inputs as an eager analysis
-    would, so their values do not depend on when, in which order or from which
-    thread they are read, and a pickled result forms them the same way.  Every
-    check that can raise runs in :func:`~pinlin.spectral.modal_analysis` itself.
-    ``elapsed`` is the time of the call, without the parts formed later.
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> modes = pinlin.modal_analysis(sys)
+    >>> modes.n, len(modes), modes.method.name
+    (2, 4, 'proportional')
+    >>> np.round(modes.natural_frequency[::2], 6), np.round(modes.damping_ratio[::2], 6)
+    (array([1.      , 1.732051]), array([0.05    , 0.028868]))
+    >>> np.round(modes.frequency_hz[::2], 6), bool(modes.is_semisimple.all())
+    (array([0.159155, 0.275664]), True)
+    >>> modes.kind[0], bool(modes.error < 1e-14)
+    ('underdamped', True)
     """
 
     _dict_exclude = ("system", "matrices", "deferred", "verdict")
@@ -248,7 +209,7 @@ class Modes(Result):
     def participation(self) -> np.ndarray:
         """(n, 2n) share of each coordinate in each mode's kinetic plus potential energy (columns sum to 1).
 
-        See :func:`participation` (issue 17 part 3); for tuple input M and K enter
+        See :func:`participation`; for tuple input M and K enter
         by their symmetric parts.
         """
         M, _, K = self.matrices
@@ -280,6 +241,12 @@ class Modes(Result):
         ------
         ParameterError
             ``share`` not in (0, 1], or ``count`` not a positive integer.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> pinlin.modal_analysis(sys).dominant()[0]
+        [('x1', 0.5), ('x2', 0.5)]
         """
         if not isinstance(share, (int, float, np.floating)) or isinstance(share, bool) or not 0 < share <= 1:
             raise ParameterError("share", f"expected a share in (0, 1], got {share!r}")
@@ -323,7 +290,15 @@ class Modes(Result):
     def to_dict(self) -> dict:
         """JSON-serializable data: every field but ``system`` and ``matrices``; ``condition``, ``constants``,
         ``participation`` (n, 2n), ``dominant`` (per mode, the coordinates of :meth:`dominant` with their
-        shares), ``method_reason`` and ``dof_names`` added."""
+        shares), ``method_reason`` and ``dof_names`` added.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> data = pinlin.modal_analysis(sys).to_dict()
+        >>> data["method"], data["dof_names"]
+        ('proportional', ['x1', 'x2'])
+        """
         dominant = [[{"name": name, "share": p} for name, p in row] for row in self.dominant()]
         return super().to_dict(extra={"condition": self.condition, "constants": self.constants, "participation":
                                       self.participation, "dominant": dominant, "method_reason": self.method.reason,
@@ -346,6 +321,16 @@ class Modes(Result):
         ----------
         max_rows : int or None
             Show at most this many eigenvalues (the lowest frequencies); None for all.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> print(pinlin.modal_analysis(sys).table(max_rows=2))
+        Modal analysis: n = 2, 4 eigenvalues, method proportional: ...
+           #   Re lam [1/s] Im lam [rad/s] |lam| [rad/s]      f [Hz] ...
+        ...
+           1          -0.05       0.998749             1    0.159155 ...
+        ...
         """
         k = len(self)
         rows = range(k) if max_rows is None else range(min(k, max_rows))
@@ -381,11 +366,31 @@ class Modes(Result):
     summary = table
 
     def to_pandas(self):
-        """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`)."""
+        """One row per eigenvalue as a pandas DataFrame (:func:`pinlin.spectral.tables.modes_frame`).
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> frame = pinlin.modal_analysis(sys).to_pandas()
+        >>> frame.shape
+        (4, 11)
+        >>> list(frame.columns[:3])
+        ['eigenvalue_re', 'eigenvalue_im', 'natural_frequency']
+        """
         return modes_frame(self)
 
     def energy(self, k: int, scene=None):
-        """Mode k's energy per body and element (:func:`pinlin.spectral.energy.mode_energy`)."""
+        """Mode k's energy per body and element (:func:`pinlin.spectral.energy.mode_energy`).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> scene = pinlin.Scene(robot, [pinlin.JointSpring(j, 10.0) for j in robot.joint_names])
+        >>> modes = pinlin.modal_analysis(pinlin.linearize(scene, robot.neutral()))
+        >>> energy = modes.energy(0, scene)
+        >>> {body: round(share, 6) for body, share in energy.kinetic.items()}
+        {'link1': 0.18182, 'link2': 0.81818}
+        """
         return mode_energy(self, k, scene)
 
     def __repr__(self) -> str:

@@ -64,7 +64,6 @@ import numpy as np
 from ..errors import ComputationError
 from ..numerics.floating import EPS
 from ..numerics.norms import frobenius
-from ..numerics.small_linalg import eigvalsh
 from ..numerics.rank import JORDAN_RANK_TOL, chains_from_kernels, kernel_dimension
 from ..results import Result
 from .problem import QuadraticProblem
@@ -102,7 +101,7 @@ CERTIFICATE_MARGIN = 10.0
 INDEPENDENCE_TOL = 1e-3
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Cluster(Result):
     """A group of computed eigenvalues taken as one multiple eigenvalue.
 
@@ -163,7 +162,7 @@ class Cluster(Result):
         )
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ClusterEvidence:
     """What the computed spectrum already says about its clusters (input of :func:`semisimple_certificate`).
 
@@ -315,7 +314,7 @@ def semisimple_certificate(
     else:
         # Q = X R^-1 orthonormal: ||L Q||_2 <= ||L X||_F / sigma_min(X), sigma_min(X)^2 the least eigenvalue of X^H X
         X = evidence.right.take(ii, axis=1)
-        gram_min = float(eigvalsh(X.conj().T @ X)[0])
+        gram_min = float(np.linalg.eigvalsh(X.conj().T @ X)[0])
         if not gram_min > INDEPENDENCE_TOL**2:
             return None
         if not math.sqrt(float(np.dot(r, r)) / gram_min) <= tau / CERTIFICATE_MARGIN:  # r r >= 0 or NaN
@@ -324,9 +323,9 @@ def semisimple_certificate(
     out[ii] = False
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         gap = np.abs(lam[out] - center) - evidence.bound[out]
-        if gap.size and not np.minimum.reduce(gap) > 0:
+        if gap.size and not gap.min() > 0:
             return None
-        rest = float(np.add.reduce(evidence.sensitivity[out] / (evidence.weight[out] * gap)))
+        rest = float(np.sum(evidence.sensitivity[out] / (evidence.weight[out] * gap)))
     if not rest * (CERTIFICATE_MARGIN * tau) < 1.0:  # also False for NaN or inf
         return None
     return method
@@ -359,26 +358,27 @@ def analyse_cluster(
     """
     t0 = time.perf_counter()
     members = lam[list(indices)]
-    center = complex(np.add.reduce(members) / len(indices))  # np.mean's sum and division, without its wrapper
+    center = complex(members.mean())
     # a cluster closed under conjugation (members in exact conjugate pairs) has a real mean
     im = members.imag
-    if abs(np.add.reduce(im)) <= CONJUGATE_SUM_ULPS * EPS * np.add.reduce(np.abs(im)):  # np.sum's reductions
+    if abs(im.sum()) <= CONJUGATE_SUM_ULPS * EPS * np.abs(im).sum():
         center = complex(center.real, 0.0)
     m = len(indices)
     dist = np.abs(members - center)
-    spread = float(np.maximum.reduce(dist) / max(abs(center), problem.scaling.gamma))
+    spread = float(dist.max() / max(abs(center), problem.scaling.gamma))
     how = None if evidence is None else semisimple_certificate(
         problem, lam, indices, center, evidence, rank_tol, distance=dist
     )
     if how is not None:
         return Cluster(
-            tuple(indices), center, m, m, (1,) * m, True, (m,), error=spread, method=how,
-            elapsed=time.perf_counter() - t0,
+            indices=tuple(indices), center=center, algebraic=m, geometric=m, partial=(1,) * m,
+            consistent=True, kernel_dims=(m,), error=spread, method=how, elapsed=time.perf_counter() - t0,
         )
     projected = None if evidence is None else _projected(problem, lam, indices, center, evidence, rank_tol)
     if projected is not None:
         return Cluster(
-            tuple(indices), center, m, projected[1][0], projected[0], True, projected[1], error=spread,
+            indices=tuple(indices), center=center, algebraic=m, geometric=projected[1][0],
+            partial=projected[0], consistent=True, kernel_dims=projected[1], error=spread,
             method=_PROJECTED_METHOD, elapsed=time.perf_counter() - t0,
         )
     partial, dims = partial_multiplicities(problem, center, max_length=m + 1, rank_tol=rank_tol, max_total=m)
@@ -392,6 +392,6 @@ def analyse_cluster(
             f"{m} clustered eigenvalues"
         )
     return Cluster(
-        tuple(indices), center, m, geometric, partial, consistent, dims, note,
-        error=spread, elapsed=time.perf_counter() - t0,
+        indices=tuple(indices), center=center, algebraic=m, geometric=geometric, partial=partial,
+        consistent=consistent, kernel_dims=dims, note=note, error=spread, elapsed=time.perf_counter() - t0,
     )

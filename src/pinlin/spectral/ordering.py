@@ -56,22 +56,6 @@ def _pairs(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def spectrum_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(perm, at): ``lam[perm]`` is in the order of the module doc; ``at`` holds the new positions of the
     Im > 0 members of the conjugate pairs (their mates follow at ``at + 1``)."""
-    k = lam.shape[0]
-    if k and not k % 2:
-        first = lam[0::2].copy()  # contiguous, as lam.take(leaders) below
-        if np.count_nonzero(first.imag > 0) + np.count_nonzero(lam[1::2] == first.conj()) == k:
-            # no real eigenvalue, every pair adjacent with Im > 0 first (QZ's order): the leaders are the even
-            # positions, each with its mate next to it -- what _pairs and the general steps below give then
-            keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
-            perm = np.empty(k, dtype=int)
-            perm[0::2] = 2 * keys
-            perm[1::2] = perm[0::2] + 1
-            return perm, np.arange(0, k, 2)
-    return _general_order(lam)
-
-
-def _general_order(lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`spectrum_order` for any arrangement of the pairs (real eigenvalues, pairs apart)."""
     leaders, mates = _pairs(lam)
     first = lam.take(leaders)
     keys = np.lexsort((-np.abs(first.imag), first.real, np.abs(first)))
@@ -104,8 +88,8 @@ def order_spectrum(raw: RawSpectrum) -> RawSpectrum:
     block = raw.block.take(perm)
     block[at + 1] = block[at]
     eta = _permuted(raw.eta, perm, at)
-    return RawSpectrum(lam.take(perm), P, Y, block, eta, raw.note, raw.second, _permuted(raw.norm_x, perm, at),
-                       _permuted(raw.weight, perm, at), ordered=True)
+    return RawSpectrum(lam=lam.take(perm), P=P, Y=Y, block=block, eta=eta, note=raw.note, second=raw.second,
+                       norm_x=_permuted(raw.norm_x, perm, at), weight=_permuted(raw.weight, perm, at), ordered=True)
 
 
 def _permuted(a: np.ndarray | None, perm: np.ndarray, at: np.ndarray) -> np.ndarray | None:
@@ -136,10 +120,7 @@ def mirrored_figures(
     and the normalized left vector x / (x^T L'(lam_b) x) differ, and are formed
     for b.  The pairs are sorted by the keys :func:`order_spectrum` uses, then
     (a, b) interleaved: the same order and figures as the expanded spectrum.
-    The pairs are gathered in C order (``take``), or used as they are when the
-    path delivered them sorted already (an eigh of a stable undamped system:
-    ascending mu is ascending |lam|): the same C-ordered arrays either way, so
-    the figures do not depend on which happened.  The weights w(lam) are those
+    The weights w(lam) are those
     of the residual figures: |lam_b| = |lam_a| exactly (negation and
     conjugation are exact), so w(lam_b) = w(lam_a).
 
@@ -153,33 +134,27 @@ def mirrored_figures(
     """
     la, lb, P, block = raw.lam, raw.second, raw.P, raw.block
     keys = np.lexsort((-np.abs(la.imag), la.real, np.abs(la)))
-    if np.count_nonzero(keys[1:] > keys[:-1]) != keys.size - 1:  # not the identity permutation
-        la, lb, P, block = la.take(keys), lb.take(keys), P.take(keys, axis=-1), block.take(keys)
-    elif not P.flags.c_contiguous:
-        P = np.ascontiguousarray(P)
+    la, lb, P, block = la.take(keys), lb.take(keys), P.take(keys, axis=-1), block.take(keys)
     eta, norm_x, weight = residual_figures(la, *P, problem.norms)
     half = pair_figures(problem, la, P, None, eta, norm_x, weight)
     yMx, yCx = half.products[0], half.products[1]
     deriv_b = 2 * lb * yMx + yCx
     ok = half.left_normalized
-    if np.count_nonzero(ok) == ok.size:
-        left_b = half.right / deriv_b
-    else:
-        left_b = np.where(ok, half.right / np.where(ok, deriv_b, 1.0), half.right)
+    left_b = np.where(ok, half.right / np.where(ok, deriv_b, 1.0), half.right)
     right = np.repeat(half.right.astype(complex), 2, axis=-1)
     weight = np.repeat(weight, 2)
     fig = PairFigures(
-        right,
-        _interleave(half.left, left_b),
-        np.repeat(ok, 2),
-        _interleave(half.derivative, deriv_b),
-        np.repeat(half.backward_error, 2),
-        np.repeat(half.error_bound, 2),
-        np.repeat(half.sensitivity, 2),
-        right,
-        np.repeat(half.products, 2, axis=-1),
-        np.repeat(half.quadratic, 2, axis=-1),
-        weight,
+        right=right,
+        left=_interleave(half.left, left_b),
+        left_normalized=np.repeat(ok, 2),
+        derivative=_interleave(half.derivative, deriv_b),
+        backward_error=np.repeat(half.backward_error, 2),
+        error_bound=np.repeat(half.error_bound, 2),
+        sensitivity=np.repeat(half.sensitivity, 2),
+        left_unit=right,
+        products=np.repeat(half.products, 2, axis=-1),
+        quadratic=np.repeat(half.quadratic, 2, axis=-1),
+        weight=weight,
     )
     return _interleave(la, lb), np.repeat(block, 2), fig, weight
 
@@ -192,7 +167,7 @@ def mode_kinds(
     "rigid_body": |lam| <= r; "unstable": Re lam > r; "underdamped": |Im lam| > r;
     "overdamped" otherwise (theory: stability).  With ``undamped`` (D = 0 and G = 0 or
     N = 0 exactly: the spectrum is symmetric in the imaginary axis) an oscillating
-    eigenvalue with |Re lam| <= r is "undamped": its damping is none, not small (issue 25).
+    eigenvalue with |Re lam| <= r is "undamped": its damping is none, not small.
     """
     typical = lam
     if clusters:

@@ -1,4 +1,4 @@
-"""Which coordinates take part in each mode: their share of its kinetic plus potential energy (issue 17).
+"""Which coordinates take part in each mode: their share of its kinetic plus potential energy.
 
 :func:`participation` gives the shares (columns sum to 1);
 :meth:`pinlin.spectral.Modes.dominant` and the last column of
@@ -39,7 +39,7 @@ def participation(lam, X, M, S) -> np.ndarray:
     kinetic (equally potential) energy fraction of each coordinate whenever the
     products x_i (M x)_i are nonnegative.  A mode with T = V = 0 (lam = 0 with
     S x = 0, a rigid-body mode) is shared by |Re(x_i^* (M x)_i)|, its shape's
-    kinetic energy.  theory: stability (modal energies), issue 17.
+    kinetic energy.  theory: stability (modal energies).
     """
     X = np.asarray(X)
     kinetic = np.abs((np.conj(X) * (M @ X)).real)

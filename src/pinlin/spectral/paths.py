@@ -27,7 +27,7 @@ STRUCTURE_TOL = 1e-10
 
 #: Default largest backward error accepted from the symmetric path's eigh: a
 #: backward stable solver reaches a few eps (1e-15 is 4.5 eps); more means M is
-#: ill-conditioned and Newton steps follow (issue 14: one step left up to 4e-15 on
+#: ill-conditioned and Newton steps follow (one step left up to 4e-15 on
 #: chains of 200 links, where a second reaches 8e-17).
 EIGH_TOL = 1e-15
 

@@ -10,7 +10,7 @@ number), and the Fan-Lin-Van Dooren scaling.  It is built either from a
 K = S + N) or from a tuple ``(M, C, K)`` of general real square matrices with M
 nonsingular, which need not be mechanical at all.
 
-Two rules, on purpose (issue 13): a LinearizedSystem is a mechanical system,
+Two rules, on purpose: a LinearizedSystem is a mechanical system,
 and its constructor and :meth:`~pinlin.LinearizedSystem.from_matrices` refuse
 an M that is not symmetric positive definite; a tuple is the general quadratic
 eigenvalue problem of theory: spectrum ("any nonsingular leading" coefficient,

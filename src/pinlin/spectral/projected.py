@@ -73,7 +73,8 @@ START_INDEPENDENCE = 1e-4
 #: The golden angle [rad]: the phases of the generic start vectors.
 GOLDEN_ANGLE = np.pi * (3.0 - np.sqrt(5.0))
 
-#: LAPACK's complex LU factorization and solve (read-only after import: shared by threads safely).
+#: LAPACK's complex LU factorization and solve: getrf reports an exactly singular L(s) in ``info``, where
+#: scipy's ``lu_factor`` warns (read-only after import: shared by threads safely).
 _LU = sla.get_lapack_funcs(("getrf", "getrs"), dtype=np.complex128)
 
 
@@ -151,7 +152,7 @@ def _resolvent_reach(lam, ii, center, evidence, gamma, k_max):
         ratio = gamma / gap
         sums = np.empty(k_max)
         for i in range(k_max):
-            sums[i] = np.add.reduce(term)
+            sums[i] = np.sum(term)
             term = term * ratio
         totals = np.cumsum(sums)
     if not np.all(np.isfinite(totals)):

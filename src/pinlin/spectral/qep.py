@@ -364,5 +364,5 @@ def _solve_scaled(
             Y[:, mate] = Y[:, at].conj()
         for a in (block, best, norm_x, w):
             a[mate] = a[at]
-    raw = RawSpectrum(lam, P, Y, block, best, norm_x=norm_x, weight=w, ordered=all_finite)
+    raw = RawSpectrum(lam=lam, P=P, Y=Y, block=block, eta=best, norm_x=norm_x, weight=w, ordered=all_finite)
     return raw, best

@@ -48,7 +48,7 @@ __all__ = [
 
 
 @persistent
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ModeConstants:
     """The real constants m, d, g, k, n of each mode (theory: stability), x^H M x = 1.
 
@@ -106,7 +106,7 @@ def constants_from_quadratic_forms(lam, quad) -> ModeConstants:
     den = a * a + a * (np.abs(d) + np.abs(g)) + np.abs(kk) + np.abs(nn)
     with np.errstate(divide="ignore", invalid="ignore"):
         res = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
-    return ModeConstants(one, d, g, kk, nn, res)
+    return ModeConstants(m=one, d=d, g=g, k=kk, n=nn, residual=res)
 
 
 def constants_of(lam, X, quad, M, C, K, norm_M: float) -> ModeConstants:
@@ -125,7 +125,7 @@ def constants_of(lam, X, quad, M, C, K, norm_M: float) -> ModeConstants:
 
 
 @persistent
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class StructuralFacts:
     """What the matrices alone say about the spectrum (theory: stability).
 
@@ -227,8 +227,10 @@ def _mechanical(on_M, on_D, on_S, gyro, circ, damped, det_K) -> StructuralFacts:
         margin_K = on_S.margin
     symmetric = (not damped) and (not gyro or not circ)
     facts = StructuralFacts(
-        on_D.kind, on_S.kind, on_S.negative, on_S.zero > 0, gyro, circ, damped, sign_M, sign_K, symmetric,
-        on_S.uncertainty, on_D, on_S, on_M, on_M.margin, margin_K,
+        damping=on_D.kind, stiffness=on_S.kind, negative_stiffness=on_S.negative,
+        singular_stiffness=on_S.zero > 0, gyroscopic=gyro, circulatory=circ, damped=damped, det_sign_M=sign_M,
+        det_sign_K=sign_K, reflection_symmetric=symmetric, uncertainty=on_S.uncertainty, definiteness_D=on_D,
+        definiteness_S=on_S, definiteness_M=on_M, det_margin_M=on_M.margin, det_margin_K=margin_K,
     )
     object.__setattr__(facts, "_det_K", det_K)
     return facts
@@ -237,8 +239,9 @@ def _mechanical(on_M, on_D, on_S, gyro, circ, damped, det_K) -> StructuralFacts:
 def _general(dM: Nonsingularity, dK: Nonsingularity) -> StructuralFacts:
     """The facts of a tuple (general coefficients): determinant signs only."""
     facts = StructuralFacts(
-        None, None, None, None, None, None, None, dM.sign, dK.sign, False, dM.uncertainty,
-        det_margin_M=dM.margin, det_margin_K=dK.margin,
+        damping=None, stiffness=None, negative_stiffness=None, singular_stiffness=None, gyroscopic=None,
+        circulatory=None, damped=None, det_sign_M=dM.sign, det_sign_K=dK.sign, reflection_symmetric=False,
+        uncertainty=dM.uncertainty, det_margin_M=dM.margin, det_margin_K=dK.margin,
     )
     object.__setattr__(facts, "_det_K", dK)
     object.__setattr__(facts, "_det_M", dM)

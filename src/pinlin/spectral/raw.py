@@ -14,7 +14,7 @@ import numpy as np
 __all__ = ["RawSpectrum"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class RawSpectrum:
     """What a solver path hands to the result: eigenvalues, vectors and products.
 
@@ -73,7 +73,7 @@ class RawSpectrum:
         lam = np.empty(2 * k, dtype=complex)
         lam[0::2], lam[1::2] = self.lam, self.second
         P = np.repeat(self.P.astype(complex), 2, axis=-1)
-        return RawSpectrum(lam, P, None, np.repeat(self.block, 2), None, self.note, None)
+        return RawSpectrum(lam=lam, P=P, Y=None, block=np.repeat(self.block, 2), note=self.note)
 
     @property
     def X(self) -> np.ndarray:

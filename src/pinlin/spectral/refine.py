@@ -21,7 +21,7 @@ backward error of every pair is measured after each step, not assumed.
 Column j of the update needs only column j of E, hence columns j of R and T
 (symmetrized with their rows j) and the diagonal estimates w~: a step is taken
 on the pairs whose backward error is still above the tolerance, the others are
-kept (issue 14: eigh leaves about 40 % of the pairs of a hanging chain above
+kept (eigh leaves about 40 % of the pairs of a hanging chain above
 1e-15 and one step all but a few).  With more than :data:`REFINE_PARTIAL` of
 the pairs to refine the full step is cheaper (its products are shared).
 
@@ -144,9 +144,8 @@ def eigh_predicted_ok(cond_M: float, limit: float = EIGH_PREDICTION_LIMIT) -> bo
 def pencil_backward_errors(w, X, MX, AX, norm_A: float, norm_M: float) -> np.ndarray:
     """||A x_j - w_j M x_j|| / ((|w_j| ||M|| + ||A||) ||x_j||) per column (0 for an exact zero residual)."""
     R = AX - MX * w
-    # the 2-norms of the columns as numpy's norm(axis=0) forms them for real arrays (same sums, no overhead)
-    num = np.sqrt(np.add.reduce(R * R, axis=0))
-    den = (np.abs(w) * norm_M + norm_A) * np.sqrt(np.add.reduce(X * X, axis=0))
+    num = np.linalg.norm(R, axis=0)
+    den = (np.abs(w) * norm_M + norm_A) * np.linalg.norm(X, axis=0)
     if np.count_nonzero(num) == num.size and np.count_nonzero(den > 0) == den.size:
         return num / den
     return np.where(num == 0, 0.0, num / np.where(den > 0, den, np.finfo(float).tiny))

@@ -1,4 +1,4 @@
-"""Cheaper exact solver paths for structured mechanical systems (issue 3 part 2).
+"""Cheaper exact solver paths for structured mechanical systems.
 
 Each path solves an n-size problem instead of the 2n-size companion pencil
 and returns the same :class:`~pinlin.spectral.qep.RawSpectrum`; the backward
@@ -25,11 +25,9 @@ well L is symmetric and the right eigenvector is also the left one.
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 
 from ..errors import ComputationError
 from ..numerics.norms import frobenius
-from ..numerics.small_linalg import eigvalsh
 from .problem import QuadraticProblem
 from .qep import RawSpectrum, complex_columns, dggev, exact_pairs, products
 from .refine import RefinedPencil, pencil_backward_errors, refined_eigh
@@ -43,13 +41,12 @@ PATHS = ("symmetric", "squared", "proportional", "general")
 #: irrational number, so that distinct (k_j, d_j) pairs get distinct keys).
 _MIX = 0.6180339887498949
 
-#: LAPACK's real Cholesky factorization and solve (read-only after import: shared by threads safely).
-_CHOLESKY = sla.get_lapack_funcs(("potrf", "potrs"), dtype=np.float64)
-
 
 def _mirrored(lam_a, lam_b, X, MX, CX, KX) -> RawSpectrum:
     """One member of each pair with the shared real vectors, the other in ``second`` (see RawSpectrum)."""
-    return RawSpectrum(lam_a, np.stack([X, MX, CX, KX]), None, np.zeros(lam_a.shape[0], dtype=int), second=lam_b)
+    return RawSpectrum(
+        lam=lam_a, P=np.stack([X, MX, CX, KX]), Y=None, block=np.zeros(lam_a.shape[0], dtype=int), second=lam_b
+    )
 
 
 def solve_symmetric(
@@ -128,7 +125,7 @@ def solve_squared(problem: QuadraticProblem) -> RawSpectrum:
     lam = np.array(lam_list, dtype=complex)
     idx = np.array(idx_list, dtype=int)
     P = P[..., idx]
-    return RawSpectrum(lam, P, None if Y is None else Y[:, idx], np.zeros(lam.shape[0], dtype=int))
+    return RawSpectrum(lam=lam, P=P, Y=None if Y is None else Y[:, idx], block=np.zeros(lam.shape[0], dtype=int))
 
 
 def proportionality_defect(problem: QuadraticProblem) -> float:
@@ -142,16 +139,9 @@ def proportionality_defect(problem: QuadraticProblem) -> float:
     nd, ns = frobenius(D), frobenius(S)
     if nd == 0 or ns == 0:
         return 0.0
-    # LAPACK's potrf and potrs as scipy's cho_factor and cho_solve call them (the same numbers), without the
-    # wrappers' checks (M is validated positive definite and finite): a third of the test's time at n = 17
-    potrf, potrs = _CHOLESKY
-    c, info = potrf(sys.M, lower=False, clean=False)
-    if info != 0:
-        raise np.linalg.LinAlgError(f"Cholesky factorization of M failed (LAPACK potrf info {info})")
-    MiS, _ = potrs(c, S, lower=False)
-    MiD, _ = potrs(c, D, lower=False)
+    MiS, MiD = np.split(np.linalg.solve(sys.M, np.hstack((S, D))), 2, axis=1)
     comm = D @ MiS - S @ MiD
-    inv_norm = 1.0 / eigvalsh(sys.M)[0]
+    inv_norm = 1.0 / np.linalg.eigvalsh(sys.M)[0]
     return float(frobenius(comm) / nd / ns / inv_norm)
 
 

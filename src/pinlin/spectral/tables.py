@@ -1,4 +1,4 @@
-"""Tables of a modal analysis: one record per eigenvalue, as plain data or a pandas DataFrame (issue 26).
+"""Tables of a modal analysis: one record per eigenvalue, as plain data or a pandas DataFrame.
 
 - :func:`mode_records`: the rows of :meth:`pinlin.Modes.to_pandas` as a list of dicts (no pandas needed);
 - :func:`modes_frame`: the same as a :class:`pandas.DataFrame` (``pip install 'pinlin[pandas]'``).

@@ -4,7 +4,7 @@
 - :mod:`.rules` -- the ordered rules (theorems and numerical decisions) that decide it;
 - :mod:`.decide` -- :func:`decide_stability` (the rules against the eigenvalues' error bounds, and the
   margin's bisection) and :func:`stability_from_structure` (the theorems alone);
-- :mod:`.unstructured` -- the class of perturbations a margin covers, and the unstructured margin (issue 25);
+- :mod:`.unstructured` -- the class of perturbations a margin covers, and the unstructured margin;
 - :mod:`.dissipation` -- what small damping of a given shape does to the eigenvalues on the axis
   (:class:`DissipationRow`, the table of a marginal verdict).
 """

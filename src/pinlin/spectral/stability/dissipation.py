@@ -1,4 +1,4 @@
-"""Which small damping moves an eigenvalue off the imaginary axis, and which way (theory: stability, issue 25).
+"""Which small damping moves an eigenvalue off the imaginary axis, and which way (theory: stability).
 
 For D = eps D1 added to a system with a simple eigenvalue lam on the imaginary
 axis, right vector x and left vector y (y^T L(lam) = 0) normalized so that
@@ -57,7 +57,7 @@ _KTC = "Kelvin-Tait-Chetaev"
 _BOTTEMA = "Bottema"
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class DissipationRow(Result):
     """What small damping of one shape D = eps D1 does to the eigenvalues on the imaginary axis.
 
@@ -169,7 +169,10 @@ def _row(shape, D1, forms, lam, idx, facts) -> DissipationRow:
         why = f"{why} ({theorem}); computed: d Re lam / d eps = {rate:.4g} +- {err:.1e}"
     if not psd:
         why += "; D1 is not positive semidefinite (not a dissipation: it may feed energy in)"
-    return DissipationRow(shape, D1, decided, rate, err, theorem, at, why)
+    return DissipationRow(
+        shape=shape, D1=D1, destabilizes=decided, rate=rate, rate_error=err, theorem=theorem, eigenvalue=at,
+        reason=why,
+    )
 
 
 def _worst(forms, lam, idx, facts) -> DissipationRow:
@@ -185,21 +188,27 @@ def _worst(forms, lam, idx, facts) -> DissipationRow:
     if row.theorem is None and facts is not None:
         decided, theorem, why = _theorem(facts, True, True)  # a positive definite D1 exists
         if decided:
-            return DissipationRow(row.shape, D1, True, row.rate, row.rate_error, theorem, row.eigenvalue,
-                                  f"{why} ({theorem}) for every positive definite D1; the worst rank-one D1 "
-                                  f"computed: d Re lam / d eps = {row.rate:.4g} +- {row.rate_error:.1e}")
+            return DissipationRow(
+                shape=row.shape, D1=D1, destabilizes=True, rate=row.rate, rate_error=row.rate_error,
+                theorem=theorem, eigenvalue=row.eigenvalue,
+                reason=f"{why} ({theorem}) for every positive definite D1; the worst rank-one D1 "
+                                                  f"computed: d Re lam / d eps = {row.rate:.4g} +- {row.rate_error:.1e}",
+            )
     if row.theorem is not None or facts is None or not facts.circulatory or facts.damped or facts.gyroscopic:
         return row
     if top > err:  # x, y not parallel: H indefinite
-        return DissipationRow(row.shape, D1, True, row.rate, row.rate_error, _BOTTEMA, row.eigenvalue,
-                              f"N != 0, D = G = 0 and the left and right vectors of lam = {row.eigenvalue.imag:.6g}i "
-                              f"are not parallel (the form H has the eigenvalue {top:.4g} > its error {err:.1e}): "
-                              f"some D1 >= 0 destabilizes ({_BOTTEMA} 1956)")
+        return DissipationRow(
+            shape=row.shape, D1=D1, destabilizes=True, rate=row.rate, rate_error=row.rate_error,
+            theorem=_BOTTEMA, eigenvalue=row.eigenvalue,
+            reason=f"N != 0, D = G = 0 and the left and right vectors of lam = {row.eigenvalue.imag:.6g}i "
+                                          f"are not parallel (the form H has the eigenvalue {top:.4g} > its error {err:.1e}): "
+                                          f"some D1 >= 0 destabilizes ({_BOTTEMA} 1956)",
+        )
     return row
 
 
 def named_shapes(matrices, system) -> list[tuple[str, np.ndarray]]:
-    """The named damping shapes of issue 25 in the system's coordinates."""
+    """The named damping shapes in the system's coordinates."""
     M = np.asarray(matrices[0], dtype=float)
     n = M.shape[0]
     shapes = []

@@ -104,16 +104,15 @@ class Evidence:
 
     def at(self, kind: str, reason: str, i: int | None = None, theorem=None, bounded=None) -> Stability:
         """The verdict, with eigenvalue i and its bound attached (when given)."""
-        if i is None:
-            return Stability(kind, reason, theorem, None, None, bounded, self.safety, uncertainty=self.uncertainty)
         return Stability(
-            kind, reason, theorem, complex(self.lam[i]), float(self.r[i]), bounded, self.safety,
+            kind=kind, reason=reason, theorem=theorem, eigenvalue=None if i is None else complex(self.lam[i]),
+            error_bound=None if i is None else float(self.r[i]), bounded=bounded, safety=self.safety,
             uncertainty=self.uncertainty,
         )
 
     def quoted(self, i: int) -> str:
         """The bound r_i as the verdict quotes it, with the safety factor and the bound it multiplies named
-        (the bound of ``Modes.error_bound`` and the table's column when the uncertainty is 0; issue 25)."""
+        (the bound of ``Modes.error_bound`` and the table's column when the uncertainty is 0)."""
         r, s = float(self.r[i]), self.safety
         at = f" at the data uncertainty {self.uncertainty:g}" if self.uncertainty else ""
         if s == 1.0:

@@ -1,4 +1,4 @@
-"""What class of perturbations a margin covers, and the unstructured margin (theory: stability, issue 25).
+"""What class of perturbations a margin covers, and the unstructured margin (theory: stability).
 
 The structured margin (:attr:`~pinlin.spectral.Stability.margin`) perturbs each
 of M, C, K relative to its own norm and decides again with the same rules: a

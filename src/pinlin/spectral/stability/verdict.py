@@ -101,6 +101,15 @@ class Stability(Result):
         least the unit of rounding eps) as a share of the perturbation the
         verdict survives (relative; below 1 the verdict holds beyond the
         uncertainty of the data, 1 for "undecided", whose margin is 0).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+    >>> verdict = pinlin.modal_analysis(sys).stability
+    >>> verdict.kind, verdict.theorem, verdict.bounded
+    ('asymptotically_stable', 'Thomson-Tait-Chetaev', True)
+    >>> bool(verdict.margin > 0.1)
+    True
     """
 
     _dict_fields = (
@@ -309,7 +318,7 @@ def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) ->
 
     Every theorem of theory: stability assumes M > 0, and a rounding-level change of
     such an M makes it singular (an infinite eigenvalue) or indefinite: the data
-    decide nothing (issue 13).
+    decide nothing.
     """
     on_M = facts.definiteness_M
     if on_M is None:
@@ -319,7 +328,7 @@ def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) ->
             f"M is singular within rounding (relative distance to singularity {facts.det_margin_M:.1e} <= "
             f"the uncertainty {facts.uncertainty:g} plus rounding): the eigenvalues of largest modulus have no meaning"
         )
-        return Stability("undecided", reason, None, None, None, None, safety)
+        return Stability(kind="undecided", reason=reason, safety=safety)
     if on_M.kind == "positive_definite":
         return None
     reason = (
@@ -328,7 +337,7 @@ def mass_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) ->
         f"the data at that level makes M singular or indefinite and moves eigenvalues to infinity: no theorem "
         f"applies and the largest eigenvalues have no meaning"
     )
-    return Stability("undecided", reason, None, None, None, None, safety)
+    return Stability(kind="undecided", reason=reason, safety=safety)
 
 
 def theorem_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY) -> Stability | None:
@@ -349,13 +358,16 @@ def theorem_verdict(facts: StructuralFacts, *, safety: float = STABILITY_SAFETY)
     if doubt is not None:
         return doubt
     if facts.det_sign_M * facts.det_sign_K < 0:
-        return Stability("divergence", _DET_REASON, "sign of det K", None, None, False, safety)
+        return Stability(kind="divergence", reason=_DET_REASON, theorem="sign of det K", bounded=False, safety=safety)
     if facts.damping is None or facts.circulatory:
         return None
     if facts.damping == "positive_definite" and facts.stiffness == "positive_definite":
-        return Stability("asymptotically_stable", _TTC_REASON, "Thomson-Tait-Chetaev", None, None, True, safety)
+        return Stability(
+            kind="asymptotically_stable", reason=_TTC_REASON, theorem="Thomson-Tait-Chetaev", bounded=True, safety=safety
+        )
     if facts.stiffness == "positive_definite" and not facts.damped:
         return Stability(
-            "marginally_stable", _LD_REASON, "Lagrange-Dirichlet + symmetry", None, None, True, safety
+            kind="marginally_stable", reason=_LD_REASON, theorem="Lagrange-Dirichlet + symmetry", bounded=True,
+            safety=safety,
         )
     return None
