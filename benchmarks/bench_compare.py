@@ -4,10 +4,11 @@
 
 The base revision is checked out with ``git worktree add --detach`` into a
 temporary directory (removed afterwards).  The rows run in child processes
-(:mod:`._compare_worker`), one per side and row group, with ``PYTHONPATH=<tree>/src``
-of the side and the benchmark code of this tree: both sides run the same benchmark
-code and differ only in pinlin (each child reports which pinlin it imported).  The
-parent asks the two children for one sample at a time, base, head, base, head, ...,
+(:mod:`._compare_worker`), a few in turn per side and row group, with
+``PYTHONPATH=<tree>/src`` of the side and the benchmark code of this tree: both
+sides run the same benchmark code and differ only in pinlin (each child reports
+which pinlin it imported).  The parent asks a base and a head child for one sample
+at a time, base, head, base, head, ...,
 so that both sides see the same moments of the shared machine's load; a sample is
 the thread CPU time (``time.thread_time``) of the row's call and then of its
 same-process baseline.  A side's time is the median of its samples; head / base is
@@ -30,7 +31,8 @@ Rows (public API calls only, so that they run on both revisions):
   at four speeds (``bench_floquet``).
 
 Writes ``results/<name>.md`` and ``.json``: per row base, head, head/base and
-whether head is more than 15 % slower; the absolute targets on the head side.
+whether head is more than 15 % slower; the absolute targets on the head side;
+every sample in ``results/<name>_samples.json``.
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -55,8 +58,9 @@ ROOT = Path(__file__).resolve().parent.parent
 SLOWER = 1.15
 #: Absolute targets: linearize_many per point / floor, modal_analysis / eig(left=True), busy / single thread.
 FLOOR_TARGET, EIG_TARGET, BUSY_TARGET = 3.0, 2.0, 3.0
-#: Rounds of a full and a quick run: a round is one sample per row and side.
-FULL, QUICK = 80, 15
+#: Rounds and worker processes per side and row group of a full and a quick run: a round is one sample
+#: per row and side; the rounds are shared out between the processes.
+FULL, QUICK = (80, 4), (16, 2)
 #: The clocks of a sample, in the worker's order.
 CLOCKS = ("thread", "wall")
 
@@ -138,11 +142,12 @@ class Worker:
         self.stderr.close()
 
 
-def measure(trees: dict[str, Path], rounds: int) -> tuple[dict, dict]:
+def measure(trees: dict[str, Path], rounds: int, processes: int) -> tuple[dict, dict]:
     """Per row and side, the samples, and the failures (a side's error ends its part of the group).
 
-    Row groups run one after the other, each with one worker per side; a round takes one sample of
-    every row of the group from each side in turn (base, head, base, head, ...).
+    Row groups run one after the other, each with ``processes`` workers per side in turn (a process of
+    its own shifts every sample a little: memory layout, hash seed); a round takes one sample of every
+    row of the group from each side in turn (base, head, base, head, ...).
     """
     samples: dict[str, dict[str, list[dict]]] = {r.name: {side: [] for side in trees} for r in ROWS}
     failures: dict[str, dict[str, str]] = {}
@@ -151,21 +156,22 @@ def measure(trees: dict[str, Path], rounds: int) -> tuple[dict, dict]:
         busy = any(r.busy for r in rows)
         print(f"[compare] {group}: {rounds} rounds of {', '.join(r.name for r in rows)}", flush=True)
         with busy_core() if busy else contextlib.nullcontext():
-            workers = {side: Worker(tree, busy) for side, tree in trees.items()}
-            try:
-                for _ in range(rounds):
-                    for row in rows:
-                        for side, worker in workers.items():
-                            if side in failures.get(group, {}):
-                                continue
-                            try:
-                                samples[row.name][side].append(worker.sample(row.name))
-                            except RuntimeError as exc:
-                                failures.setdefault(group, {})[side] = str(exc)
-                                print(f"[compare] {group} failed on {side}: {exc}", flush=True)
-            finally:
-                for worker in workers.values():
-                    worker.close()
+            for block in range(processes):
+                workers = {side: Worker(tree, busy) for side, tree in trees.items()}
+                try:
+                    for _ in range(rounds // processes):
+                        for row in rows:
+                            for side, worker in workers.items():
+                                if side in failures.get(group, {}):
+                                    continue
+                                try:
+                                    samples[row.name][side].append(worker.sample(row.name))
+                                except RuntimeError as exc:
+                                    failures.setdefault(group, {})[side] = str(exc)
+                                    print(f"[compare] {group} failed on {side}: {exc}", flush=True)
+                finally:
+                    for worker in workers.values():
+                        worker.close()
     return samples, failures
 
 
@@ -180,10 +186,16 @@ def _ratio(samples: list[dict], clock: str = "thread") -> float:
     return statistics.median(s["call"][k] / s["baseline"][k] for s in samples)
 
 
-def _paired(base: list[dict], head: list[dict], clock: str = "thread") -> float:
-    """Median of head / base over the rounds (each pair of samples taken one after the other)."""
+def _paired(base: list[dict], head: list[dict], clock: str = "thread") -> list[float]:
+    """head / base of every round (its two samples taken one after the other)."""
     k = CLOCKS.index(clock)
-    return statistics.median(h["call"][k] / b["call"][k] for b, h in zip(base, head))
+    return [h["call"][k] / b["call"][k] for b, h in zip(base, head)]
+
+
+def median_interval(values: list[float]) -> tuple[float, float]:
+    """A distribution-free 95 % interval of the median: the order statistics n/2 -+ 1.96 sqrt(n)/2."""
+    v, half = sorted(values), 1.96 * math.sqrt(len(values)) / 2
+    return v[max(math.floor(len(v) / 2 - half), 0)], v[min(math.ceil(len(v) / 2 + half), len(v) - 1)]
 
 
 def _measured(samples: dict, name: str) -> bool:
@@ -195,25 +207,29 @@ def tables(samples: dict) -> tuple[list[Table], dict]:
     rows, summary = [], {}
     for row in ROWS:
         if not _measured(samples, row.name):
-            rows.append([row.name, "-", "-", "failed (see the JSON's failures)", "-", "-", row.baseline or "-", "-", "-"])
+            rows.append([row.name, "-", "-", "failed (see the JSON's failures)", "-", "-", "-", row.baseline or "-", "-", "-"])
             continue
         base, head = samples[row.name]["base"], samples[row.name]["head"]
         for clock in CLOCKS if row.busy else CLOCKS[:1]:
-            b, h, ratio = _median(base, clock), _median(head, clock), _paired(base, head, clock)
+            b, h, paired = _median(base, clock), _median(head, clock), _paired(base, head, clock)
+            ratio, (low, high) = statistics.median(paired), median_interval(paired)
             rb, rh = (f"{_ratio(base, clock):.2f}", f"{_ratio(head, clock):.2f}") if row.baseline else ("-", "-")
             name = row.name + (f" ({clock} time)" if row.busy else "")
-            rows.append([name, b * 1e3, h * 1e3, f"{ratio:.3f}", f"{h / b:.3f}", "**yes**" if ratio > SLOWER else "no",
+            rows.append([name, b * 1e3, h * 1e3, f"{ratio:.3f}", f"{low:.3f} - {high:.3f}", f"{h / b:.3f}",
+                         "**yes**" if ratio > SLOWER else "no",
                          row.baseline or "-", rb, rh])
             summary[name] = {"clock": clock, "base [s]": b, "head [s]": h, "head / base": ratio,
-                             "ratio of the medians": h / b, "slower than 15 %": ratio > SLOWER}
+                             "95 % interval": [low, high], "ratio of the medians": h / b,
+                             "slower than 15 %": ratio > SLOWER}
     table = Table(
         "pinlin at the base revision against the head tree [ms per call, per point for linearize_many and the sweep]",
-        ["row", "base", "head", "head / base", "ratio of the medians", f"slower than {SLOWER - 1:.0%}?",
+        ["row", "base", "head", "head / base", "95 % interval", "ratio of the medians", f"slower than {SLOWER - 1:.0%}?",
          "same-process baseline", "base / baseline", "head / baseline"],
         rows,
         note=("Thread CPU time unless said: medians of samples taken in turn from a base and a head process, "
               "one BLAS thread except the busy row. 'head / base': median over the rounds of the ratio of the two "
-              "samples taken one after the other (flagged above 1.15); '/ baseline': median of the ratios within a sample. "
+              "samples taken one after the other (flagged above 1.15), with a distribution-free 95 % interval of that "
+              "median; '/ baseline': median of the ratios within a sample. "
               f"Load average at the end {load_average()} on {os.cpu_count()} CPUs (a shared machine)."),
     )
     return [table], summary
@@ -256,13 +272,13 @@ def compare(base: str, head: Path, quick: bool = False) -> tuple[Report, dict]:
 
     Returns the report and the raw results: the rows' medians, every sample and the failures.
     """
-    rounds = QUICK if quick else FULL
+    rounds, processes = QUICK if quick else FULL
     t0 = time.perf_counter()
     with checkout(head, base) as base_tree:
         revisions = {"base": f"{base} = {_revision(base_tree)}", "head": f"{head} at {_revision(head)}"}
-        samples, failures = measure({"base": base_tree, "head": head}, rounds)
+        samples, failures = measure({"base": base_tree, "head": head}, rounds, processes)
     tabs, rows = tables(samples)
-    summary = {**revisions, "rounds": f"{rounds} (samples per row and side, taken in turn)",
+    summary = {**revisions, "rounds": f"{rounds} (samples per row and side, taken in turn), from {processes} processes per side",
                "rows slower than 15 %": ", ".join(k for k, v in rows.items() if v["slower than 15 %"]) or "none",
                "failed": ", ".join(f"{group} on {side}" for group, sides in failures.items() for side in sides) or "none"}
     report = Report("compare", tabs, summary, text=__doc__.split("\n\n")[2])
@@ -275,9 +291,19 @@ def _parse(argv):
     p = argparse.ArgumentParser(prog="python -m benchmarks.bench_compare", description=__doc__.splitlines()[0])
     p.add_argument("--base", required=True, help="git revision to compare against (e.g. 86bc0a5)")
     p.add_argument("--head", type=Path, default=ROOT, help="the tree measured as head (default: this working tree)")
-    p.add_argument("--quick", action="store_true", help=f"{QUICK} rounds instead of {FULL} (a smoke run)")
+    p.add_argument("--quick", action="store_true", help=f"{QUICK[0]} rounds instead of {FULL[0]} (a smoke run)")
     p.add_argument("--name", default="compare", help="results/<name>.md and .json (default: compare)")
     return p.parse_args(argv)
+
+
+def compact(samples: dict) -> dict:
+    """The samples per row and side as [thread, wall] pairs in microseconds (4 digits), with the pinlin imported."""
+    def us(pair):
+        return None if pair is None else [float(f"{t * 1e6:.4g}") for t in pair]
+
+    return {row: {side: {"pinlin": s[0]["pinlin"], "info": s[0]["info"], "call [us]": [us(x["call"]) for x in s],
+                         "baseline [us]": [us(x["baseline"]) for x in s]} for side, s in sides.items() if s}
+            for row, sides in samples.items()}
 
 
 def main(argv=None) -> int:
@@ -285,9 +311,12 @@ def main(argv=None) -> int:
     report, raw = compare(args.base, args.head.resolve(), args.quick)
     report.name = args.name + ("_quick" if args.quick else "")
     path = write_report(report).with_suffix(".json")
-    path.write_text(json.dumps(json.loads(path.read_text(encoding="utf-8")) | raw, indent=2), encoding="utf-8")
+    extra = {"rows": raw["rows"], "failures": raw["failures"], "samples": f"{report.name}_samples.json"}
+    path.write_text(json.dumps(json.loads(path.read_text(encoding="utf-8")) | extra, indent=2), encoding="utf-8")
+    samples = path.with_name(extra["samples"])
+    samples.write_text(json.dumps(compact(raw["samples"]), separators=(",", ":")) + "\n", encoding="utf-8")
     print(report.markdown())
-    print(f"[compare] {report.elapsed:.0f} s, written to {path.with_suffix('.md')} and {path}", flush=True)
+    print(f"[compare] {report.elapsed:.0f} s, written to {path.with_suffix('.md')}, {path} and {samples}", flush=True)
     return 1 if raw["failures"] else 0
 
 
