@@ -8,8 +8,8 @@ temporary directory (removed afterwards).  The rows run in child processes
 ``PYTHONPATH=<tree>/src`` of the side and the benchmark code of this tree: both
 sides run the same benchmark code and differ only in pinlin (each child reports
 which pinlin it imported).  The parent asks a base and a head child for one sample
-at a time, base, head, base, head, ...,
-so that both sides see the same moments of the shared machine's load; a sample is
+at a time, base, head, head, base, base, head, ..., so that both sides see the same
+moments of the shared machine's load (and each goes first as often); a sample is
 the thread CPU time (``time.thread_time``) of the row's call and then of its
 same-process baseline.  A side's time is the median of its samples; head / base is
 the median over the rounds of the ratio of the two samples of a round (a slow drift
@@ -147,7 +147,8 @@ def measure(trees: dict[str, Path], rounds: int, processes: int) -> tuple[dict, 
 
     Row groups run one after the other, each with ``processes`` workers per side in turn (a process of
     its own shifts every sample a little: memory layout, hash seed); a round takes one sample of every
-    row of the group from each side in turn (base, head, base, head, ...).
+    row of the group from each side in turn, base first in even rounds and head first in odd ones
+    (the second sample of a pair ran 1-3 % faster in a noise run; alternating cancels it).
     """
     samples: dict[str, dict[str, list[dict]]] = {r.name: {side: [] for side in trees} for r in ROWS}
     failures: dict[str, dict[str, str]] = {}
@@ -159,9 +160,10 @@ def measure(trees: dict[str, Path], rounds: int, processes: int) -> tuple[dict, 
             for block in range(processes):
                 workers = {side: Worker(tree, busy) for side, tree in trees.items()}
                 try:
-                    for _ in range(rounds // processes):
+                    for k in range(rounds // processes):
+                        order = list(workers.items())[:: 1 if k % 2 == 0 else -1]
                         for row in rows:
-                            for side, worker in workers.items():
+                            for side, worker in order:
                                 if side in failures.get(group, {}):
                                     continue
                                 try:
