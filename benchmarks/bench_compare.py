@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import itertools
 import json
 import math
 import os
@@ -123,9 +124,11 @@ class Worker:
                                         stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=self.stderr, text=True)
 
     def sample(self, row: str) -> dict:
-        """One sample of the row's call and baseline; RuntimeError if the worker failed or imported another pinlin."""
-        self.process.stdin.write(row + "\n")
-        self.process.stdin.flush()
+        """One sample of the row's call and baseline (or its error); RuntimeError if the worker died or
+        imported another pinlin."""
+        with contextlib.suppress(BrokenPipeError):  # a dead worker: its empty answer says so
+            self.process.stdin.write(row + "\n")
+            self.process.stdin.flush()
         line = self.process.stdout.readline()
         if not line:
             self.process.wait()
@@ -137,40 +140,51 @@ class Worker:
         return out
 
     def close(self) -> None:
-        self.process.stdin.close()
+        with contextlib.suppress(BrokenPipeError):
+            self.process.stdin.close()
         self.process.wait()
         self.stderr.close()
 
 
 def measure(trees: dict[str, Path], rounds: int, processes: int) -> tuple[dict, dict]:
-    """Per row and side, the samples, and the failures (a side's error ends its part of the group).
+    """Per row and side, the samples, and the failures (row -> side -> error; a failed row has no samples).
 
     Row groups run one after the other, each with ``processes`` workers per side in turn (a process of
     its own shifts every sample a little: memory layout, hash seed); a round takes one sample of every
     row of the group from each side in turn, base first in even rounds and head first in odd ones
-    (the second sample of a pair ran 1-3 % faster in a noise run; alternating cancels it).
+    (in one noise run the second sample of a pair ran 1-3 % faster: alternating cancels such an order effect).
     """
     samples: dict[str, dict[str, list[dict]]] = {r.name: {side: [] for side in trees} for r in ROWS}
     failures: dict[str, dict[str, str]] = {}
+
+    def fail(row: str, side: str, error: str) -> None:
+        failures.setdefault(row, {})[side] = error
+        samples[row][side].clear()
+        print(f"[compare] {row} failed on {side}:\n{error}", flush=True)
+
     for group in dict.fromkeys(r.group for r in ROWS):
         rows = [r for r in ROWS if r.group == group]
         busy = any(r.busy for r in rows)
         print(f"[compare] {group}: {rounds} rounds of {', '.join(r.name for r in rows)}", flush=True)
         with busy_core() if busy else contextlib.nullcontext():
-            for block in range(processes):
+            for _ in range(processes):
                 workers = {side: Worker(tree, busy) for side, tree in trees.items()}
                 try:
                     for k in range(rounds // processes):
                         order = list(workers.items())[:: 1 if k % 2 == 0 else -1]
-                        for row in rows:
-                            for side, worker in order:
-                                if side in failures.get(group, {}):
-                                    continue
-                                try:
-                                    samples[row.name][side].append(worker.sample(row.name))
-                                except RuntimeError as exc:
-                                    failures.setdefault(group, {})[side] = str(exc)
-                                    print(f"[compare] {group} failed on {side}: {exc}", flush=True)
+                        for row, (side, worker) in itertools.product(rows, order):
+                            if side in failures.get(row.name, {}):
+                                continue
+                            try:
+                                out = worker.sample(row.name)
+                            except RuntimeError as exc:  # the worker died: every row it has left fails
+                                for r in rows:
+                                    fail(r.name, side, str(exc))
+                                continue
+                            if "error" in out:
+                                fail(row.name, side, out["error"])
+                            else:
+                                samples[row.name][side].append(out)
                 finally:
                     for worker in workers.values():
                         worker.close()
@@ -282,7 +296,7 @@ def compare(base: str, head: Path, quick: bool = False) -> tuple[Report, dict]:
     tabs, rows = tables(samples)
     summary = {**revisions, "rounds": f"{rounds} (samples per row and side, taken in turn), from {processes} processes per side",
                "rows slower than 15 %": ", ".join(k for k, v in rows.items() if v["slower than 15 %"]) or "none",
-               "failed": ", ".join(f"{group} on {side}" for group, sides in failures.items() for side in sides) or "none"}
+               "failed": ", ".join(f"{row} on {side}" for row, sides in failures.items() for side in sides) or "none"}
     report = Report("compare", tabs, summary, text=__doc__.split("\n\n")[2])
     targets(report, samples, rows)
     report.elapsed = time.perf_counter() - t0

@@ -68,9 +68,9 @@ def analyse(sys, **options) -> pinlin.Modes:
     formed once and every later call would skip them, which a sweep (a new system
     per point) never does.
     """
-    if isinstance(sys, pinlin.LinearizedSystem):  # a tuple (M, C, K) caches nothing
-        sys.__dict__.pop("C", None)
-        sys.__dict__.pop("K", None)
+    cache = getattr(sys, "__dict__", {})  # a tuple (M, C, K) caches nothing
+    cache.pop("C", None)
+    cache.pop("K", None)
     return pinlin.modal_analysis(sys, **options)
 
 
