@@ -175,16 +175,18 @@ def write_readme(run: dict) -> None:
         "`floquet_campbell`):",
         "",
         "```",
-        "python -m benchmarks.bench_compare --base 86bc0a5             # this tree against 86bc0a5 (~6 min)",
+        "python -m benchmarks.bench_compare --base 86bc0a5             # this tree against 86bc0a5 (~4-5 min)",
         "python -m benchmarks.bench_compare --base 86bc0a5 --head PATH --name NAME  # another checkout: results/NAME.*",
-        "python -m benchmarks.bench_compare --base 86bc0a5 --quick     # 2 rounds, a smoke run (~1.5 min)",
+        "python -m benchmarks.bench_compare --base 86bc0a5 --quick     # 16 rounds, a smoke run (~1.5 min)",
         "```",
         "",
-        "The base revision is checked out into a temporary `git worktree` (removed afterwards); each row runs "
-        "in child processes on either tree's `src/` (the same benchmark code), alternating base and head, "
-        "thread CPU time, medians. Results: `results/compare.md` and `.json` (head / base per row, rows more "
-        "than 15 % slower flagged, the absolute targets); `results/compare_noise.*` compares a tree with its own "
-        "revision, which shows the noise floor of the ratios.",
+        "The base revision is checked out into a temporary `git worktree` (removed afterwards); the rows run "
+        "in child processes on either tree's `src/` (the same benchmark code), which take one sample at a time "
+        "in turn, base and head, thread CPU time; head / base is the median of the paired ratios. Results: "
+        "`results/compare.md` and `.json` (head / base per row with a 95 % interval, rows more than 15 % slower "
+        "flagged, the absolute targets), every sample in `results/compare_samples.json`; "
+        "`results/compare_noise.*` compares a tree with its own revision: the noise floor of the ratios "
+        "(within 5 % on this machine).",
         "",
         "Optional: with `mujoco` importable, the linearization benchmark adds MuJoCo's `mjd_inverseFD` as a peer "
         "(it is not a dependency of pinlin; without it the benchmark says it skipped it). "
