@@ -14,8 +14,8 @@ Variants: ``linearize`` (any version); with the per-thread workspaces of issue
 new Pinocchio Data for every call; the reused workspace is put back after it), ``workspace`` (``Workspace(scene)``:
 memory guard + createData), ``createData`` (``model.createData()`` alone) and
 ``lookup`` (``workspace(scene)``: the per-call cost of finding the thread's
-workspace).  Only the public API of pinlin builds the scenes, so the code of
-before issue 10 runs it too.
+workspace).  Only the public API of pinlin builds the scenes, so the code from
+before the per-thread workspaces runs it too.
 """
 
 from __future__ import annotations
@@ -69,7 +69,7 @@ def _variant(name: str, variant: str):
     scene, q, balancing = _case(name)
     if variant == "linearize":
         return lambda: pinlin.linearize(scene, q, balancing=balancing)
-    try:  # the per-thread workspaces: pinlin.model.evaluation since issue 22, pinlin.linearization.workspace before
+    try:  # the per-thread workspaces: pinlin.model.evaluation now, pinlin.linearization.workspace in older code
         from pinlin.model import evaluation as ws_module
     except ImportError:
         from pinlin.linearization import workspace as ws_module

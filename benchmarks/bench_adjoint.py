@@ -9,13 +9,13 @@
    output, and the full matrix (every input and output, 200 frequencies).
    Times are medians of repeats in one process; the modal time excludes the
    eigensolution, whose time is listed apart (it is paid once per system).
-   Target (issue 4): modal at least 20x faster, relative difference below 1e-10
+   Target: modal at least 20x faster, relative difference below 1e-10
    away from resonances (|i omega - lam_k| > 1e-2 |lam_k| for every k).  The
    difference is normwise over the input's column (both methods are backward
    stable, so accurate normwise; a far entry H[0, 99] is 1e-11 of its column at
    low frequency and has no relative accuracy in either).  The full run also
    measures both against a 50-digit mpmath solve at a few frequencies.
-2. The direct method against python-control (issue 14): the same 100-link
+2. The direct method against python-control: the same 100-link
    chain with springs, light dampers and a follower force at the tip (a
    non-symmetric L), 2000 frequencies, one input and one output and the full
    matrix; python-control's ``StateSpace.frequency_response`` on the first-order

@@ -1,4 +1,4 @@
-"""Stability boundaries: critical_parameter against bisection on the verdict (issue 15).
+"""Stability boundaries: critical_parameter against bisection on the verdict.
 
 For each boundary, in one process:
 

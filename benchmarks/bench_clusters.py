@@ -1,4 +1,4 @@
-"""Clustered spectra and busy machines: modal_analysis against eig(left=True) (issue 27).
+"""Clustered spectra and busy machines: modal_analysis against eig(left=True).
 
 Systems with repeated eigenvalues, the common case of real robots:
 
@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 import time
@@ -41,12 +40,10 @@ import scipy.linalg as sla
 import pinlin
 from pinlin.model.generators import branched_chain_urdf
 from pinlin.model.loading import example_urdf_path
-from pinlin.spectral.multiplicity import analyse_cluster
-from pinlin.spectral.problem import as_problem
 from pinlin.spectral.qep import companion_pencil
 
 from .bench_spectral import _robot_system, analyse
-from .common import THREAD_VARIABLES, Report, Table, interleaved_medians, load_average, write_report
+from .common import THREAD_VARIABLES, Report, Table, busy_core, interleaved_medians, load_average, write_report
 
 #: talos_full_v2 (legs, torso, arms, head and both grippers) beside talos_reduced in example-robot-data.
 TALOS = example_urdf_path("talos_reduced").parent / "talos_full_v2.urdf"
@@ -90,6 +87,10 @@ SMALL = ("double pendulum", "ur5", "panda")
 
 def _structure_unchanged(sys, modes) -> bool:
     """Every cluster's partial multiplicities equal those of the block Toeplitz ranks alone."""
+    # internal modules, imported here: CASES import with any revision of pinlin (bench_compare)
+    from pinlin.spectral.multiplicity import analyse_cluster
+    from pinlin.spectral.problem import as_problem
+
     problem = as_problem(sys)
     tol = modes.tolerances["rank_tol"]
     return all(
@@ -125,20 +126,12 @@ def timing_table(quick: bool) -> tuple[Table, dict]:
     return table, out
 
 
-def _busy_core() -> subprocess.Popen | None:
-    """A busy-loop process pinned to core 1 (None where taskset or a second core is missing)."""
-    if shutil.which("taskset") is None or (os.cpu_count() or 1) < 2:
-        return None
-    return subprocess.Popen(["taskset", "-c", "1", sys.executable, "-c", "while True: pass"])
-
-
 def busy_table(quick: bool, single: dict) -> tuple[Table, dict]:
     env = {k: v for k, v in os.environ.items() if k not in THREAD_VARIABLES}
     root = Path(__file__).resolve().parent.parent
     env["PYTHONPATH"] = os.pathsep.join(p for p in (str(root / "src"), str(root), env.get("PYTHONPATH", "")) if p)
     rows, out = [], {}
-    busy = _busy_core()
-    try:
+    with busy_core() as busy:
         load = load_average()
         for name in ("talos_full_v2", "8-branch chain", "panda"):
             run = subprocess.run(
@@ -151,10 +144,6 @@ def busy_table(quick: bool, single: dict) -> tuple[Table, dict]:
                          r["limited_wall"] * 1e3, r["limited_thread"] / one, r["threaded_thread"] * 1e3,
                          r["threaded_wall"] * 1e3, r["threaded_wall_max"] * 1e3, r["threaded_thread"] / one])
             out[name] = r | {"single": one}
-    finally:
-        if busy is not None:
-            busy.kill()
-            busy.wait()
     table = Table(
         "Default BLAS threads with a busy-loop process on core 1: modal_analysis with pinlin's one-thread limit "
         "for small kernels and without it, against its single-thread time [ms]",

@@ -1,4 +1,4 @@
-"""Constrained systems (issue 11): the price of constraints, the KKT equilibrium, the accuracy.
+"""Constrained systems: the price of constraints, the KKT equilibrium, the accuracy.
 
 - ``linearize`` of a constrained scene against the unconstrained ``linearize`` of the
   same robot at the same configuration (held by balancing forces, since without its

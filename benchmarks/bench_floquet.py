@@ -1,4 +1,4 @@
-"""Floquet analysis of periodic scenes against the leanest code a competent user writes (issue 23).
+"""Floquet analysis of periodic scenes against the leanest code a competent user writes.
 
 The baseline: A(t) of the variational equation from bare Pinocchio at each time the integrator asks,
 ``scipy.integrate.solve_ivp`` (DOP853, rtol 1e-12) on the (2n)^2-dimensional matrix equation
@@ -92,11 +92,12 @@ HEAVY_DAMPING = 0.02  # [N m s/rad]: the accuracy row, whose multipliers span ab
 SUPPORT = (0.01, 30.0)  # amplitude [m], omega [rad/s] of the support's motion
 
 
-def rotor_scene():
+def rotor_scene(speed: float = ROTOR_SPEED):
+    """The rotor driven at ``speed`` [rad/s] (a Campbell diagram varies it)."""
     robot = pinlin.load_urdf_string(rotor_urdf())
     elements = [pinlin.JointSpring(j, k) for j, k in ROTOR_SPRINGS.items()]
     elements += [pinlin.JointDamper(j, ROTOR_DAMPING) for j in ROTOR_SPRINGS]
-    return pinlin.Scene(robot, elements, gravity=(0.0, 0.0, 0.0), prescribed={"spin": ROTOR_SPEED})
+    return pinlin.Scene(robot, elements, gravity=(0.0, 0.0, 0.0), prescribed={"spin": speed})
 
 
 def chain_scene(n: int, damping: float = CHAIN_DAMPING):
@@ -253,13 +254,13 @@ def matched_errors(computed: np.ndarray, reference: np.ndarray) -> np.ndarray:
 # ----------------------------------------------------------------------------- the benchmark
 
 
-def _pinlin_run(scene, **options):
+def floquet_call(scene, **options):
     orbit = pinlin.periodic_orbit(scene, pin.neutral(scene.model))
     return orbit, (lambda: pinlin.floquet_analysis(scene, orbit, **options))
 
 
 def _row(name, scene, A, T, reference, ref_label, repeats, **options):
-    orbit, analyse = _pinlin_run(scene, **options)
+    orbit, analyse = floquet_call(scene, **options)
     flo = analyse()
     mu_base, nfev = baseline(A, T)
     t_pin, t_base = interleaved_medians([analyse, lambda: baseline(A, T)], repeats=repeats, clock=time.thread_time)
@@ -292,7 +293,7 @@ def run(quick: bool = False) -> Report:
     if not quick:
         chain20 = chain_scene(20)
         A20, T20 = chain_baseline_A(20)
-        _, analyse = _pinlin_run(chain20)
+        _, analyse = floquet_call(chain20)
         tight = pinlin.floquet_analysis(chain20, pinlin.periodic_orbit(chain20, pin.neutral(chain20.model)),
                                         rtol=1e-15, stages=8)
         rows.append(_row("chain20", chain20, A20, T20, np.asarray(tight.multipliers),

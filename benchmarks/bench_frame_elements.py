@@ -1,4 +1,4 @@
-"""Elements between frames (issue 12): the cost of spring-dampers and bushings in ``linearize``.
+"""Elements between frames: the cost of spring-dampers and bushings in ``linearize``.
 
 A 50-link pendulum chain (theory: pendulum chains) under gravity, at its equilibrium, with
 
@@ -41,16 +41,16 @@ from pinlin.testing import check_element  # noqa: E402
 from .bench_linearize import fd_linearization, matrix_error, richardson_reference  # noqa: E402
 from .common import Report, Table, interleaved_medians, result_path, save_figure, write_report  # noqa: E402
 
-#: Links of the chain (issue 12: a 50-link chain).
+#: Links of the chain.
 LINKS = 50
-#: Elements of the headline comparison (issue 12: 100 spring-dampers).
+#: Elements of the headline comparison (100 spring-dampers).
 HEADLINE = 100
 #: Numbers of elements in the sweep (full run, quick run).
 SWEEP = (10, 30, 100, 300)
 QUICK_SWEEP = (10, 100)
 #: Bushings in the chain (one per link pair i, i + 2).
 BUSHINGS = 20
-#: Target of issue 12: a spring-damper costs at most this many joint springs.
+#: Target: a spring-damper costs at most this many joint springs.
 TARGET_RATIO = 3.0
 #: Central-difference step [rad] of the comparison (bench_linearize's best central step).
 FD_STEP = 1e-5

@@ -1,6 +1,6 @@
-"""Linearization: analytic (pinlin.linearize) against finite differences, with honest baselines (issue 14).
+"""Linearization: analytic (pinlin.linearize) against finite differences, with honest baselines.
 
-For each scene of issue 14's table (springs and dampers on every joint, a follower
+For each scene of the table (springs and dampers on every joint, a follower
 wrench; the turntable with its prescribed speed), in one process:
 
 - ``linearize``: ``pinlin.linearize(scene, q)`` with every check pinlin makes;
@@ -20,7 +20,7 @@ wrench; the turntable with its prescribed speed), in one process:
   than the bare one, which flattered ``linearize``;
 - MuJoCo's ``mjd_inverseFD`` on the same URDF (meshes stripped, joints mapped by
   name), when the optional ``mujoco`` package is importable;
-- ``linearize`` before and after the per-thread Pinocchio workspaces of issue 10,
+- ``linearize`` before and after the per-thread Pinocchio workspaces,
   and a fresh ``Data`` per call against the reused workspace: :mod:`.bench_workspace`.
 
 Times are thread CPU times (``time.thread_time``: the machine is shared, and
@@ -56,8 +56,6 @@ import numpy as np
 import pinocchio as pin
 
 import pinlin
-from pinlin.linearization.assembly import assemble
-from pinlin.model.evaluation import workspace
 from pinlin.model.loading import example_urdf_path
 
 from .bench_workspace import workspace_section
@@ -92,7 +90,20 @@ LARGE_BATCH = 100
 
 
 def _residual(scene: pinlin.Scene, q: np.ndarray, v: np.ndarray) -> np.ndarray:
+    from pinlin.linearization.assembly import assemble  # internal: imported where used (see _pinlin_crba)
+
     return assemble(scene, q, v, stiffness=False).residual
+
+
+def _pinlin_crba(scene: pinlin.Scene, q: np.ndarray) -> np.ndarray:
+    """``crba`` on the scene's own Pinocchio workspace.
+
+    pinlin's internal modules are imported in the functions that use them, so that the
+    scene builders of this module import with any revision of pinlin (bench_compare).
+    """
+    from pinlin.model.evaluation import workspace
+
+    return pin.crba(scene.model, workspace(scene).data, q)
 
 
 def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str = "central"):
@@ -119,7 +130,7 @@ def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str =
         else:
             K[:, k] = (rp - r0) / h
             C[:, k] = (vp - r0) / h
-    M = pin.crba(model, workspace(scene).data, q)
+    M = _pinlin_crba(scene, q)
     M = np.triu(M) + np.triu(M, 1).T
     ix = np.ix_(f, f)
     return M[ix], C[ix], K[ix]
@@ -128,9 +139,9 @@ def fd_linearization(scene: pinlin.Scene, q: np.ndarray, h: float, scheme: str =
 class BareResidual:
     """r(q, v) = tau(q, v, 0, fext) - Q_e(q, v) with bare Pinocchio and plain numpy, as a competent user writes it.
 
-    Supports what issue 14's scenes contain: joint springs, joint dampers,
+    Supports what the benchmark's scenes contain: joint springs, joint dampers,
     follower wrenches (a constant ``fext``), gravity and prescribed velocities.
-    Everything that does not depend on (q, v) is prepared once (issue 27: the
+    Everything that does not depend on (q, v) is prepared once (the
     leanest honest baseline, no per-call index arrays): the springs as one
     full-length stiffness vector on q - q_rest when every joint has nq = nv
     (one multiply-add), otherwise one ``pin.difference`` from the rest
@@ -338,7 +349,7 @@ def richardson_reference(scene: pinlin.Scene, q: np.ndarray):
         eK = np.hypot(eK, err)
         C[:, k], err = ridders(dv)
         eC = np.hypot(eC, err)
-    M = pin.crba(model, workspace(scene).data, q)
+    M = _pinlin_crba(scene, q)
     M = np.triu(M) + np.triu(M, 1).T
     ix = np.ix_(f, f)
     return M[ix], C[ix], K[ix], (eC, eK)

@@ -1,4 +1,4 @@
-"""Free response: modal formula against matrix exponentials and time integration (issue 5).
+"""Free response: modal formula against matrix exponentials and time integration.
 
 Work-precision for the free response of one linearized system at 1000 time
 points, each method timed in this process (median of repeats):
@@ -53,7 +53,7 @@ DURATION = 10.0
 DIGITS = 50
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
 QUICK_RTOLS = (1e-3, 1e-6, 1e-10, 1e-12)
-#: Target of issue 5: modal at least this many times faster than solve_ivp at rtol 1e-10.
+#: Target: modal at least this many times faster than solve_ivp at rtol 1e-10.
 TARGET_SPEEDUP = 100.0
 
 

@@ -1,4 +1,4 @@
-"""Scaling of the whole pipeline with the size of a pendulum chain, and the memory guard (issue 14).
+"""Scaling of the whole pipeline with the size of a pendulum chain, and the memory guard.
 
 For n = 10 ... 400 links (springs, dampers, gravity; theory: pendulum chains), each n in a
 fresh subprocess, the stages of the data flow:
@@ -27,9 +27,9 @@ Pinocchio's C++ allocations are invisible to it).  The subprocess's VmHWM
 (its true peak RSS, interpreter included) is reported as the high-water mark.
 The cost exponents are the least-squares slopes of log(time) against log(n)
 for n >= :data:`FIT_FROM` only: below it fixed costs dominate and flatten the
-slope (issue 14: "linearize 0.99" fitted from n = 50 was 1.9 from 100 to 500).
+slope (a "linearize 0.99" fitted from n = 50 was 1.9 from 100 to 500).
 
-Chains up to the largest n the memory guard admits on this machine (issue 14):
+Chains up to the largest n the memory guard admits on this machine:
 a full run adds that n and one between (a few minutes that allocate most of
 the memory the guard allows; CI runs no benchmark); ``PINLIN_BENCH_LARGE=0``
 leaves them out.

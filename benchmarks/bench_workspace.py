@@ -1,4 +1,4 @@
-"""Per-thread Pinocchio workspaces (issue 10): ``linearize`` before and after, and the cost of a fresh Data.
+"""Per-thread Pinocchio workspaces: ``linearize`` before and after, and the cost of a fresh Data.
 
 Issue 10 moved Pinocchio's ``Data`` off the shared ``Scene`` into a workspace per
 thread (:mod:`pinlin.model.evaluation`), created on a thread's first use

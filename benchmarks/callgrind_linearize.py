@@ -1,4 +1,4 @@
-"""Instructions per call of ``linearize`` and its baselines under valgrind callgrind (issue 27).
+"""Instructions per call of ``linearize`` and its baselines under valgrind callgrind.
 
 Run under callgrind with instrumentation off at start::
 

@@ -1,4 +1,4 @@
-"""Instructions per call of ``modal_analysis`` and ``eig(left=True)`` under valgrind callgrind (issue 27).
+"""Instructions per call of ``modal_analysis`` and ``eig(left=True)`` under valgrind callgrind.
 
 Run under callgrind with instrumentation off at start::
 

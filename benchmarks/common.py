@@ -9,12 +9,16 @@ run time (log-log) as PNG.  ``python -m benchmarks`` runs them all.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import platform
+import shutil
 import statistics
+import subprocess
+import sys
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -270,6 +274,19 @@ def result_path(name: str, quick: bool, suffix: str = "png") -> Path:
     return RESULTS / f"{name}{'_quick' if quick else ''}.{suffix}"
 
 
+def loops_for(fn: Callable[[], object], min_time: float = 0.01, clock: Callable[[], float] = time.perf_counter) -> int:
+    """Loop count making one sample of ``fn()`` last at least ``min_time`` by ``clock``, after one warm-up call."""
+    fn()
+    n = 1
+    while True:
+        t0 = clock()
+        for _ in range(n):
+            fn()
+        if clock() - t0 >= min_time or n >= 1 << 20:
+            return n
+        n *= 2
+
+
 def interleaved_medians(
     fns: Sequence[Callable[[], object]],
     repeats: int = 7,
@@ -279,24 +296,13 @@ def interleaved_medians(
     """Median time [s] per call of each function, sampled in turn.
 
     Each function gets one warm-up call and a loop count making one sample last
-    at least ``min_time``; then the samples of all functions are taken
-    alternately, so a change of machine load (this machine is shared) does not
-    favour one side of a ratio.  ``clock``: wall time by default;
+    at least ``min_time`` (:func:`loops_for`); then the samples of all functions
+    are taken alternately, so a change of machine load (this machine is shared)
+    does not favour one side of a ratio.  ``clock``: wall time by default;
     ``time.thread_time`` counts this thread's CPU time only, so other processes'
     load shows less (it still slows the caches).
     """
-    loops = []
-    for fn in fns:
-        fn()
-        n = 1
-        while True:
-            t0 = clock()
-            for _ in range(n):
-                fn()
-            if clock() - t0 >= min_time or n >= 1 << 20:
-                break
-            n *= 2
-        loops.append(n)
+    loops = [loops_for(fn, min_time, clock) for fn in fns]
     samples: list[list[float]] = [[] for _ in fns]
     for _ in range(repeats):
         for fn, n, out in zip(fns, loops, samples):
@@ -314,3 +320,17 @@ def load_average() -> str:
             return f.read().split()[0]
     except OSError:
         return "unknown"
+
+
+@contextlib.contextmanager
+def busy_core() -> Iterator[subprocess.Popen | None]:
+    """A busy-loop process pinned to core 1 while the block runs (None where taskset or a second core is missing)."""
+    if shutil.which("taskset") is None or (os.cpu_count() or 1) < 2:
+        yield None
+        return
+    busy = subprocess.Popen(["taskset", "-c", "1", sys.executable, "-c", "while True: pass"])
+    try:
+        yield busy
+    finally:
+        busy.kill()
+        busy.wait()
