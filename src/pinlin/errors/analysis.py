@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 from .base import ComputationError, InputError
 
-__all__ = ["NotAnEquilibriumError", "SingularMassError", "TimePeriodicError", "ConvergenceError", "IntegrationError", "IntegrationBudgetError", "NotAnEigenvalueError", "NotSimpleError", "EigenvalueNotIsolatedError", "BracketError", "BoundaryNotIsolatedError", "SystemFunctionError"]
+__all__ = ["NotAnEquilibriumError", "SingularMassError", "TimePeriodicError", "ConvergenceError", "IntegrationError", "IntegrationBudgetError", "NotAnEigenvalueError", "NotSimpleError", "EigenvalueNotIsolatedError", "BracketError", "BoundaryNotIsolatedError", "SystemFunctionError", "SweepTimeoutError"]
 
 
 class NotAnEquilibriumError(InputError):
@@ -182,3 +182,30 @@ class SystemFunctionError(InputError):
     def __init__(self, message: str, p: float):
         super().__init__(message)
         self.p = float(p)
+
+
+class SweepTimeoutError(ComputationError, TimeoutError):
+    """Points of a sweep did not finish within its ``timeout`` (cancelled, except those already running: an
+    executor cannot stop a call once started).
+
+    Attributes
+    ----------
+    timeout : float
+        The seconds waited.
+    pending : tuple of int
+        Indices (grid order) of the points not finished.
+    points : tuple of dict
+        Those points.
+    """
+
+    #: Points named in the message; the rest are counted.
+    SHOWN = 5
+
+    def __init__(self, timeout: float, pending, points):
+        self.timeout = float(timeout)
+        self.pending = tuple(int(i) for i in pending)
+        self.points = tuple(dict(p) for p in points)
+        shown = ", ".join(f"#{i} {p}" for i, p in zip(self.pending[: self.SHOWN], self.points))
+        more = f" and {len(self.pending) - self.SHOWN} more" if len(self.pending) > self.SHOWN else ""
+        super().__init__(f"timeout: {len(self.pending)} points not finished after {self.timeout:g} s "
+                         f"(cancelled unless already running): {shown}{more}")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .base import InputError
 
-__all__ = ["UrdfError", "PrescribedJointError", "SceneFileError", "MjcfError", "ConstraintError", "ConstraintViolationError", "LoopClosureError", "AssemblyError", "SingularConstraintError", "OverconstrainedError"]
+__all__ = ["UrdfError", "PrescribedJointError", "SceneFileError", "MjcfError", "ConstraintError", "ConstraintViolationError", "LoopClosureError", "SingularConstraintError", "OverconstrainedError"]
 
 
 class UrdfError(InputError):
@@ -74,11 +74,6 @@ class LoopClosureError(ConstraintViolationError):
     def __init__(self, message: str, gap: float, rotation_gap: float, constraints, history):
         super().__init__(message, gap, rotation_gap, constraints)
         self.history = tuple(history)
-
-
-#: The 0.2 name of :class:`LoopClosureError` ("assembly" now means building the equations only); kept
-#: for 0.3, removed in 0.4.
-AssemblyError = LoopClosureError
 
 
 class SingularConstraintError(ConstraintError):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .base import ComputationError, InputError
 
-__all__ = ["QuasiPeriodicError", "NoPeriodError", "PeriodicOrbitError", "OrbitLimitError"]
+__all__ = ["QuasiPeriodicError", "PeriodicOrbitError", "OrbitLimitError"]
 
 
 class QuasiPeriodicError(InputError):
@@ -19,11 +19,6 @@ class QuasiPeriodicError(InputError):
     def __init__(self, message: str, periods: dict):
         super().__init__(message)
         self.periods = dict(periods)
-
-
-class NoPeriodError(InputError):
-    """No period to look for: an autonomous scene without a period guess, or a period that does not
-    match the scene's forcing."""
 
 
 class PeriodicOrbitError(ComputationError):

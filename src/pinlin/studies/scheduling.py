@@ -19,9 +19,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError, PinlinError
+from ..errors import ParameterError, PinlinError, SweepTimeoutError
 from ..results import Result
-from .sweep_result import SweepFailure, SweepTimeoutError
+from .sweep_result import SweepFailure
 
 __all__ = ["call_point", "run_points", "function_name"]
 

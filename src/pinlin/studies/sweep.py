@@ -24,11 +24,11 @@ from typing import Any, TextIO
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SweepTimeoutError
 from .grid import MAX_POINTS, grid_points
 from .progress import PROGRESS_MIN_POINTS, PROGRESS_WIDTH, progress_bar
 from .scheduling import call_point, function_name, run_points
-from .sweep_result import SweepFailure, SweepResult, SweepTimeoutError
+from .sweep_result import SweepFailure, SweepResult
 
 __all__ = [
     "sweep",

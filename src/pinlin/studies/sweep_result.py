@@ -14,46 +14,11 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..errors import ComputationError, ParameterError, PinlinError
+from ..errors import ParameterError, PinlinError
 from ..extras import import_pandas
 from ..results import Result
 
-__all__ = ["SweepResult", "SweepFailure", "SweepTimeoutError"]
-
-
-def _rebuild_exception(cls: type, args: tuple, state: dict) -> BaseException:
-    """An exception restored without calling its ``__init__`` (whose signature may differ from ``args``)."""
-    exc = cls.__new__(cls)
-    exc.args = args
-    exc.__dict__.update(state)
-    return exc
-
-
-class SweepTimeoutError(ComputationError, TimeoutError):
-    """Points of a sweep did not finish within its ``timeout`` (cancelled, except those already running: an
-    executor cannot stop a call once started).
-
-    Attributes
-    ----------
-    timeout : float
-        The seconds waited.
-    pending : tuple of int
-        Indices (grid order) of the points not finished.
-    points : tuple of dict
-        Those points.
-    """
-
-    #: Points named in the message; the rest are counted.
-    SHOWN = 5
-
-    def __init__(self, timeout: float, pending, points):
-        self.timeout = float(timeout)
-        self.pending = tuple(int(i) for i in pending)
-        self.points = tuple(dict(p) for p in points)
-        shown = ", ".join(f"#{i} {p}" for i, p in zip(self.pending[: self.SHOWN], self.points))
-        more = f" and {len(self.pending) - self.SHOWN} more" if len(self.pending) > self.SHOWN else ""
-        super().__init__(f"timeout: {len(self.pending)} points not finished after {self.timeout:g} s "
-                         f"(cancelled unless already running): {shown}{more}")
+__all__ = ["SweepResult", "SweepFailure"]
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -85,21 +50,11 @@ class SweepFailure(Result):
     def __repr__(self) -> str:
         return f"SweepFailure({dict(self.point)}, {type(self.exception).__name__}: {self.exception})"
 
-    def __reduce__(self):
-        exc = self.exception
-        rebuilt = (_rebuild_exception, (type(exc), exc.args, dict(exc.__dict__)))
-        return (_rebuild_failure, (dict(self.point), rebuilt, self.method, self.elapsed))
-
     def to_dict(self) -> dict[str, Any]:
         """The failure as JSON-serializable data; the exception as its type name and message."""
         out = super().to_dict()
         out["exception"] = {"type": type(self.exception).__name__, "message": str(self.exception)}
         return out
-
-
-def _rebuild_failure(point, rebuilt, method, elapsed) -> SweepFailure:
-    function, args = rebuilt
-    return SweepFailure(point, function(*args), method, elapsed)
 
 
 @dataclass(frozen=True, repr=False, eq=False)
