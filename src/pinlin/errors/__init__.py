@@ -94,6 +94,7 @@ from .base import (
     NameNotFoundError,
     ParameterError,
     PinlinError,
+    warn_user,
 )
 from .model import (
     ConstraintError,
@@ -149,6 +150,7 @@ __all__ = [
     "SamplingError",
     "PeriodicOrbitError",
     "OrbitLimitError",
+    "warn_user",
 ]
 
 #: Old names of merged classes: old name -> (the name to use, the class); removed in 0.5.

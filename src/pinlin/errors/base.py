@@ -3,9 +3,12 @@ optional dependencies, models too large for this machine; the accuracy warning."
 
 from __future__ import annotations
 
+import inspect
+import warnings
 from collections.abc import Sequence
+from pathlib import Path
 
-__all__ = ["PinlinError", "InputError", "NameNotFoundError", "JointNotFoundError", "FrameNotFoundError", "ParameterError", "ConfigurationError", "ComputationError", "ModelTooLargeError", "AccuracyWarning", "MissingDependencyError"]
+__all__ = ["PinlinError", "InputError", "NameNotFoundError", "JointNotFoundError", "FrameNotFoundError", "ParameterError", "ConfigurationError", "ComputationError", "ModelTooLargeError", "AccuracyWarning", "MissingDependencyError", "warn_user"]
 
 
 def _rebuild(cls, args, state):
@@ -114,3 +117,27 @@ class AccuracyWarning(UserWarning):
 
 class MissingDependencyError(PinlinError, ImportError):
     """An optional dependency (matplotlib for plots, ...) is not installed; the message says which extra to install."""
+
+
+#: The installed package: warnings are attributed to the first frame outside it.
+PACKAGE_DIR = str(Path(__file__).resolve().parent.parent)
+
+
+def warn_user(message: str, category: type[Warning] = UserWarning) -> None:
+    """Warn at the caller's line: the first frame outside pinlin, however many pinlin frames lie between
+    (decorators, helpers), as ``warnings.warn(..., skip_file_prefixes=...)`` does from Python 3.12.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     warn_user("the result is rough", AccuracyWarning)
+    >>> caught[0].category.__name__, "pinlin" in caught[0].filename
+    ('AccuracyWarning', False)
+    """
+    frame, level = inspect.currentframe(), 1
+    while frame is not None and str(Path(frame.f_code.co_filename).resolve()).startswith(PACKAGE_DIR):
+        frame, level = frame.f_back, level + 1
+    del frame
+    warnings.warn(message, category, stacklevel=level)

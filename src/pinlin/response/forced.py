@@ -10,13 +10,13 @@ defective or not.
 from __future__ import annotations
 
 import time
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
 
-from ..errors import AccuracyWarning, ParameterError
+from ..errors import AccuracyWarning, ParameterError, warn_user
+from ..errors.deprecated import reordered_arguments
 from ..linearization.system import LinearizedSystem, check_system
 from ..numerics import check_integer, check_tolerance
 from ..numerics.arrays import check_samples, check_times, check_vector
@@ -138,10 +138,28 @@ def hold_matrices(A: np.ndarray, B: np.ndarray, h: float, degree: int) -> tuple[
     return Phi, Psi
 
 
+def _old_order(args: tuple, kwargs: dict) -> bool:
+    """Whether a call uses the 0.3 order ``(sys, f, t, x0, v0)``: ``t`` given by keyword after a positional
+    force, or a first argument that is no time grid (None, a callable, a 2-D array of samples)."""
+    rest = args[1:]
+    if not rest:
+        return False
+    if "t" in kwargs:
+        return True
+    first = rest[0]
+    if first is None or callable(first):
+        return True
+    try:
+        return np.ndim(first) == 2
+    except ValueError:  # ragged: the checks of the new order name what is wrong
+        return False
+
+
+@reordered_arguments(("sys", "f", "t", "x0", "v0"), _old_order)
 def forced_response(
     sys: LinearizedSystem,
-    f,
     t,
+    f=None,
     x0=None,
     v0=None,
     *,
@@ -166,11 +184,13 @@ def forced_response(
     Parameters
     ----------
     sys : LinearizedSystem
+    t : (len(t),) array
+        Strictly increasing output times [s]; the initial state is at t[0].
     f : None, (len(t), n) array, or callable
         Generalized force [N, N m]: samples at t, or ``f(t) -> (n,)`` which is
         sampled ``substeps`` times per output interval.  None: free response.
-    t : (len(t),) array
-        Strictly increasing output times [s]; the initial state is at t[0].
+        The 0.3 order ``(sys, f, t, x0, v0)`` still works with a
+        :class:`DeprecationWarning` (``t`` second, as in :func:`free_response`).
     x0, v0 : (n,) arrays, optional
         Initial displacement and velocity; default zero.
     interpolation : {"linear", "cubic"}
@@ -211,12 +231,11 @@ def forced_response(
     if callable(f) and len(tau) > 1:
         input_error = _input_error(f, tau, F, interpolation, n)
         if input_error > input_tol:
-            warnings.warn(
+            warn_user(
                 f"forced_response: the {interpolation} interpolation of the callable force is off by "
                 f"{input_error:.1e} (relative, at interval midpoints) > input_tol {input_tol:g}; "
                 f"increase substeps (now {substeps}) or use interpolation='cubic'",
                 AccuracyWarning,
-                stacklevel=2,
             )
     out = np.arange(0, len(tau), substeps)
     return ForcedResponse(

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import time
-import warnings
 from math import factorial
 
 import numpy as np
 
-from ..errors import AccuracyWarning, ComputationError, ParameterError
+from ..errors import AccuracyWarning, ComputationError, ParameterError, warn_user
+from ..errors.deprecated import renamed_keywords, reordered_arguments
 from ..frf.engine import DEFAULT_TOL
 from ..frf.expansion import ModalExpansion, complex_matmul, modal_expansion
 from ..linearization.system import LinearizedSystem, check_system
@@ -200,15 +200,50 @@ def _relative_defect(sys: LinearizedSystem, x, xd, xdd) -> float:
     return float(np.max(num[ok] / scale[ok])) if np.any(ok) else 0.0
 
 
+def _old_order(args: tuple, kwargs: dict) -> bool:
+    """Whether a call uses the 0.3 order ``(sys, x0, v0, t)``: ``t`` given by keyword after positional
+    initial conditions, or a third that is an increasing time grid after a first that is None or an (n,)
+    vector, the third being no (n,) vector or (when n equals len(t)) the first not increasing."""
+    rest = args[1:]
+    if "t" in kwargs:
+        return bool(rest)
+    if len(rest) < 3:
+        return False
+    first, _, third = rest[:3]
+    third = None if third is None else _real_array(third)
+    if third is None or third.ndim != 1 or not _increasing(third):
+        return False  # no time grid third: the checks of the new order name what is wrong
+    if first is None:
+        return True
+    first = _real_array(first)
+    if first is None or first.shape != (getattr(args[0], "n", None),):
+        return False
+    return third.size != first.size or not _increasing(first)
+
+
+def _real_array(values) -> np.ndarray | None:
+    try:
+        a = np.asarray(values)
+    except (TypeError, ValueError):
+        return None
+    return a if a.dtype.kind in "iuf" else None
+
+
+def _increasing(a: np.ndarray) -> bool:
+    return bool(np.all(np.diff(a) > 0))
+
+
+@renamed_keywords(tol="rtol")
+@reordered_arguments(("sys", "x0", "v0", "t"), _old_order)
 def free_response(
     sys: LinearizedSystem,
+    t,
     x0,
     v0=None,
-    t=None,
     *,
     t0: float = 0.0,
     modes=None,
-    tol: float = DEFAULT_TOL,
+    rtol: float = DEFAULT_TOL,
 ) -> FreeResponse:
     """Free vibration x(t) of M x'' + (D + G) x' + (S + N) x = 0 by the modal solution (theory: responses).
 
@@ -237,17 +272,18 @@ def free_response(
     Parameters
     ----------
     sys : LinearizedSystem
-    x0, v0 : (n,) arrays
-        Displacement and velocity at t0 (None: zero).
     t : (len(t),) array
         Strictly increasing times [s] (they may start before or after t0).
+    x0, v0 : (n,) arrays
+        Displacement and velocity at t0 (None: zero).  The 0.3 order ``(sys, x0, v0, t)`` still works
+        with a :class:`DeprecationWarning` where the arguments tell it apart (always with ``t=``).
     t0 : float
         Time of the initial conditions [s].
     modes : Modes, optional
         A modal analysis of ``sys`` to reuse.
-    tol : float
-        An :class:`~pinlin.AccuracyWarning` is issued when ``defect``,
-        ``initial_defect`` or ``symmetry_defect`` exceeds it.
+    rtol : float
+        The relative accuracy aimed at: an :class:`~pinlin.AccuracyWarning` is issued when
+        ``defect``, ``initial_defect`` or ``symmetry_defect`` exceeds it (``tol`` before 0.4).
 
     Returns
     -------
@@ -277,7 +313,7 @@ def free_response(
         raise ParameterError("t0", f"expected a time [s], got {t0!r:.80}") from None
     if not np.isfinite(t0):
         raise ParameterError("t0", f"must be finite, got {t0!r}")
-    tol = check_tolerance(tol, "tol")
+    rtol = check_tolerance(rtol, "rtol")
 
     expansion = modal_expansion(sys, modes)
     tau = times - t0
@@ -304,14 +340,13 @@ def free_response(
             f"free_response: the error figures overflow (defect {defect}, initial defect {initial}); "
             f"rescale the initial state"
         )
-    if worst > tol:
-        warnings.warn(
+    if worst > rtol:
+        warn_user(
             f"free_response: the {method} solution has defect {defect:.1e}, initial defect {initial:.1e}, "
-            f"symmetry defect {symmetry:.1e} (largest above tol {tol:g}); the eigen-data may be ill-conditioned "
-            f"(max eigenvalue condition {np.max(expansion.modes.condition):.1e}); forced_response(sys, None, "
-            f"...) gives the exact discretization instead",
+            f"symmetry defect {symmetry:.1e} (largest above rtol {rtol:g}); the eigen-data may be ill-conditioned "
+            f"(max eigenvalue condition {np.max(expansion.modes.condition):.1e}); forced_response(sys, t, "
+            f"None, ...) gives the exact discretization instead",
             AccuracyWarning,
-            stacklevel=2,
         )
     return FreeResponse(
         x,
