@@ -35,6 +35,8 @@ __all__ = [
     "ERROR_TOL_FACTOR",
     "MIN_RTOL",
     "DEFAULT_MAX_STEPS",
+    "DEFAULT_RTOL",
+    "DEFAULT_ATOL",
 ]
 
 #: ``solve_ivp`` methods for non-stiff scenes (explicit Runge-Kutta).
@@ -49,6 +51,10 @@ IMPLICIT_METHODS = ("Radau", "BDF", "LSODA")
 ERROR_TOL_FACTOR = 10.0
 #: Smallest rtol ``solve_ivp`` honours (it raises smaller ones to this, with a warning).
 MIN_RTOL = 100 * np.finfo(float).eps
+#: Default relative and absolute accuracy of the integration (``solve_ivp``'s ``rtol`` and ``atol``; atol
+#: in [rad, m] and [rad/s, m/s]): a reference for linearizations that agree to ~1e-8.
+DEFAULT_RTOL = 1e-10
+DEFAULT_ATOL = 1e-12
 #: Default ``max_steps`` of each integration run: at the default tolerances DOP853 takes about 40
 #: steps per period of the paper's double pendulum (theory: double pendulum), so this covers hours of its motion
 #: in about a minute of wall time, while ``simulate(scene, q0, v0, [0, 1e9])`` stops in a second.
@@ -137,8 +143,8 @@ def simulate(
     t=None,
     *,
     method: str = "DOP853",
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
     max_step: float = np.inf,
     chart_radius: float = 1.0,
     estimate_error: bool = True,

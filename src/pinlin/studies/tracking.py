@@ -20,6 +20,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import ParameterError
+from ..errors.deprecated import deprecated_names, renamed_keywords
 from ..numerics.arrays import readonly
 from ..results import Result
 
@@ -29,7 +30,7 @@ __all__ = [
     "mac",
     "one_per_conjugate_pair",
     "DEFAULT_EIGENVALUE_WEIGHT",
-    "CONJUGATE_RTOL",
+    "CONJUGATE_TOL",
     "IMAG_SIGN_RTOL",
 ]
 
@@ -40,7 +41,7 @@ __all__ = [
 DEFAULT_EIGENVALUE_WEIGHT = 0.5
 #: Columns j, k of tracked eigenvalues are a conjugate pair when lam_k = conj(lam_j) to this relative
 #: distance at every step: far above rounding of computed pairs (~1e-15), far below distinct modes.
-CONJUGATE_RTOL = 1e-8
+CONJUGATE_TOL = 1e-8
 #: An unpaired column counts as Im lambda >= 0 when Im lambda >= -this * (1 + |lambda|): rounding of a
 #: real eigenvalue's zero imaginary part.
 IMAG_SIGN_RTOL = 1e-12
@@ -192,7 +193,8 @@ def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = DEFAULT
     )
 
 
-def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
+@renamed_keywords(rtol="conjugate_tol")
+def one_per_conjugate_pair(lam, conjugate_tol: float = CONJUGATE_TOL) -> list[int]:
     """Columns of tracked eigenvalues (steps, m) to draw: one of each conjugate pair.
 
     Columns j and k are a pair when lam[:, k] = conj(lam[:, j]) at every step
@@ -204,8 +206,9 @@ def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
     ----------
     lam : (steps, m) array_like
         Tracked eigenvalues [1/s] (``TrackedModes.eigenvalues``).
-    rtol : float
-        Relative distance within which two columns are conjugates (see :data:`CONJUGATE_RTOL`).
+    conjugate_tol : float
+        Relative distance within which two columns are conjugates (see :data:`CONJUGATE_TOL`;
+        ``rtol`` before 0.4).
 
     Raises
     ------
@@ -225,9 +228,12 @@ def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
         dist[j] = np.inf
         dist[list(used)] = np.inf
         k = int(np.argmin(dist))
-        if dist[k] <= rtol:
+        if dist[k] <= conjugate_tol:
             used.update((j, k))
             keep.append(j if lam[:, j].imag.sum() >= lam[:, k].imag.sum() else k)
         elif np.all(lam[:, j].imag >= -IMAG_SIGN_RTOL * (1 + np.abs(lam[:, j]))):
             keep.append(j)
     return sorted(keep)
+
+
+__getattr__ = deprecated_names(__name__, {"CONJUGATE_RTOL": (f"{__name__}.CONJUGATE_TOL", lambda: CONJUGATE_TOL)})
