@@ -1,4 +1,4 @@
-"""The nonlinear reference simulation (issue 5 part 4) against hand-derived equations and first integrals.
+"""The nonlinear reference simulation against hand-derived equations and first integrals.
 
 Each test checks :func:`pinlin.simulate` against something it does not compute
 itself: a hand-written equation of motion integrated by scipy, the Jacobi

@@ -57,7 +57,7 @@ def test_free_response_tol_is_rtol_with_a_warning():
 
 @pytest.mark.parametrize(
     ("f", "kwargs"),
-    [(None, {}), (lambda tt: np.array([np.sin(tt), 0.0]), {"substeps": 4}), (np.ones((len(T), 2)), {})],
+    [(None, {}), (lambda tt: np.array([np.sin(tt), 0.0]), {"substeps": 4, "interpolation": "cubic"}), (np.ones((len(T), 2)), {})],
     ids=["free", "callable", "samples"],
 )
 def test_forced_response_old_order_warns_and_gives_the_same_response(f, kwargs):

@@ -1,4 +1,4 @@
-"""The linearized power theorem (theory: responses, issue 5 part 3).
+"""The linearized power theorem (theory: responses).
 
 The trajectories come from the exact discretization (``forced_response``); the
 budget integrates the powers with its own Hermite rule.  The balance

@@ -1,4 +1,4 @@
-"""Forced response by exact discretization (issue 5 part 2) against solve_ivp and closed forms."""
+"""Forced response by exact discretization against solve_ivp and closed forms."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Free vibration from the modal solution (issue 5 part 1, theory: responses).
+"""Free vibration from the modal solution (theory: responses).
 
 References: ``scipy.linalg.expm`` of the first-order form built in the tests
 (``response_cases.expm_free_response``), and closed forms for one degree of

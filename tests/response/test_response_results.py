@@ -1,4 +1,4 @@
-"""The result convention of the time responses (issue 10): FreeResponse, ForcedResponse, EnergyBudget.
+"""The result convention of the time responses: FreeResponse, ForcedResponse, EnergyBudget.
 
 Each result is built on a small system; ``json.dumps(to_dict())`` must work, and
 ``error``, ``method`` and ``elapsed`` must mean what the docstrings say.  The

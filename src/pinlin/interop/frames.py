@@ -1,4 +1,4 @@
-"""Frame inputs and outputs at the operating point: wrench columns of B and frame rows of C (issue 17).
+"""Frame inputs and outputs at the operating point: wrench columns of B and frame rows of C.
 
 At the operating point q0 of a system linearized from a scene, a deviation x
 of the coordinates moves the origin of frame f by

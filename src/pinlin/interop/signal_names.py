@@ -1,4 +1,4 @@
-"""The inputs and outputs of a state-space model, written as short strings (issue 17; theory: conventions).
+"""The inputs and outputs of a state-space model, written as short strings (theory: conventions).
 
 Each input or output is one scalar signal.  It is written as a string
 ``"kind:target[:axis]"`` (or, for coordinates, the coordinate's name or index

@@ -1,4 +1,4 @@
-"""State-space form of the linearized equations, for python-control and scipy (issue 17; theory: equations, conventions).
+"""State-space form of the linearized equations, for python-control and scipy (theory: equations, conventions).
 
 With the state s = [x; x'] (coordinates, then their rates), the second-order
 equation M x'' + C x' + K x = F u (C = D + G, K = S + N) reads

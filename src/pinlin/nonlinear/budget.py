@@ -1,4 +1,5 @@
-"""The budget of one integration: solver steps and wall time, checked at every step (issue 13, item 7).
+"""The budget of one integration: solver steps and wall time, checked at every step, so that a
+run that would take hours stops early with what it reached.
 
 ``solve_ivp`` runs until it reaches the last output time, however long that
 takes: ``simulate(scene, q0, v0, [0, 1e9])`` on a double pendulum would need

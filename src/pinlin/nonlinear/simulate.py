@@ -3,7 +3,7 @@
 The linearized equations (theory: equations) describe small deviations from an
 equilibrium or steady motion; :func:`simulate` integrates the full nonlinear
 equations of the same scene so that the linearization can be validated against
-them (issue 5, parts 4 and 5).  The right-hand side is
+them.  The right-hand side is
 :mod:`pinlin.nonlinear.dynamics`, the charts :mod:`pinlin.nonlinear.charts`, the
 solver loop :mod:`pinlin.nonlinear.integration`.
 """
@@ -151,7 +151,7 @@ def simulate(
     max_steps: int | None = DEFAULT_MAX_STEPS,
     max_time: float | None = None,
 ) -> Simulation:
-    """Integrate the nonlinear equations of motion of a scene (issue 5 part 4; theory: equations, elements).
+    """Integrate the nonlinear equations of motion of a scene (theory: equations, elements).
 
     The free coordinates obey
 

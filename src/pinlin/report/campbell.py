@@ -1,4 +1,4 @@
-"""``pinlin campbell``: frequencies and damping of a scene against the speed of a prescribed joint (issue 26).
+"""``pinlin campbell``: frequencies and damping of a scene against the speed of a prescribed joint.
 
 A Campbell study is a sweep (:mod:`pinlin.report.sweep`) of one prescribed
 velocity, ``prescribed.<joint>``: at every speed the scene is analysed as

@@ -119,7 +119,7 @@ _BLAME = (
 
 def blame(spec: SceneSpec, exc: InputError) -> InputError:
     """``exc``, raised by an analysis of a scene read from a file, as a :class:`~pinlin.SceneFileError`
-    naming that file and the key that caused it (issue 13 item 9).
+    naming that file and the key that caused it, so that the user knows what to edit.
 
     A time-periodic scene blames ``prescribed.<joint>``, a start that is no
     equilibrium ``start``, a singular mass ``robot`` (its URDF), constraints

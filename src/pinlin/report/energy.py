@@ -1,4 +1,4 @@
-"""The energy section of the ``pinlin analyze`` report: for each mode, where its energy lives (issue 26).
+"""The energy section of the ``pinlin analyze`` report: for each mode, where its energy lives.
 
 :func:`energy_section` gives the report's ``energy`` list, one entry per mode (each
 eigenvalue with Im lam >= 0; a conjugate partner has the same shares): the mode's

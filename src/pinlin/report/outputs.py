@@ -1,5 +1,5 @@
 """The optional outputs of the command line (``--json``, ``--plot``, ``--animate``): checked before anything
-is computed, written after the text report (issue 13 item 8).
+is computed, written after the text report (so that a failing figure never costs the report).
 
 Everything that can be known about an output before the analysis is checked
 first: the directory exists, the file is not a directory, the suffix names a

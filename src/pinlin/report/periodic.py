@@ -1,4 +1,4 @@
-"""``pinlin analyze`` of a periodic scene: the periodic orbit and its Floquet analysis (issue 23; theory: Floquet).
+"""``pinlin analyze`` of a periodic scene: the periodic orbit and its Floquet analysis (theory: Floquet).
 
 A scene is periodic when a prescribed joint follows a periodic motion (``[prescribed] pivot = { amplitude = ...,
 omega = ... }``) or turns at a constant speed on which the equations depend (:func:`pinlin.scene_period`): its

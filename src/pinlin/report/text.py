@@ -1,4 +1,4 @@
-"""The human-readable report of ``pinlin analyze`` (from its JSON document; issue 17 part 6).
+"""The human-readable report of ``pinlin analyze`` (rendered from its JSON document, so the two never disagree).
 
 What the text promises, each checked by a test:
 
@@ -8,7 +8,7 @@ What the text promises, each checked by a test:
   the same below which an eigenvalue of A is not told from zero;
 - every printed matrix carries its unit (:func:`pinlin.report.units.matrix_unit`);
 - a mode's kind is the result's own (``Modes.kind``: "undamped" on the axis of
-  a system with D = 0, issue 25), never relabelled here;
+  a system with D = 0), never relabelled here;
 - the stability verdict is printed once, in its own section.
 """
 
@@ -175,7 +175,7 @@ def _dominant(modes: dict, i: int) -> str:
 
 def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> str:
     """The mode table of a report's ``modes`` section: lam, |lam| in rad/s and Hz, zeta, eta, kappa, bound, multiplicity, kind,
-    dominant coordinates (their share of the mode's energy, issue 17).
+    dominant coordinates (their share of the mode's energy).
 
     The verdict is not part of it (the report prints it once, in its own section).
 
@@ -222,7 +222,7 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
 
 
 def _dissipation_lines(st: dict) -> list[str]:
-    """The dissipation table of a marginal verdict (``Stability.dissipation``, issue 25), one row per shape."""
+    """The dissipation table of a marginal verdict (``Stability.dissipation``), one row per shape."""
     rows = st.get("dissipation") or []
     if not rows:
         return []

@@ -1,4 +1,4 @@
-"""Forced response by exact discretization of the first-order form (issue 5 part 2).
+"""Forced response by exact discretization of the first-order form (theory: responses).
 
 Between two samples the force is a polynomial of the time (a first-order hold,
 or a cubic spline); for such an input the state at the next sample is an exact

@@ -1,4 +1,4 @@
-"""Free vibration from the modal solution (theory: responses, issue 5 part 1)."""
+"""Free vibration from the modal solution (theory: responses)."""
 
 from __future__ import annotations
 

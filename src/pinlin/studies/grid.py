@@ -1,4 +1,5 @@
-"""The points of a sweep's grid, checked and counted before any is built (issue 26).
+"""The points of a sweep's grid, checked and counted before any is built (a
+typo in a grid fails at once, not after hours of points).
 
 A mapping ``name -> values`` stands for the Cartesian product of its axes.
 :class:`GridPoints` gives its points by index without building the product, so

@@ -1,6 +1,6 @@
 """The ``[sweep]`` table of a scene file: which parameter, which values, and the scene at each value.
 
-Format (issue 17 part 4)::
+Format::
 
     [sweep]
     parameter = "follower.tip.force"   # see the paths below
@@ -48,7 +48,7 @@ from ..units import coordinate_units
 __all__ = ["SweepParameter", "SweepPlan", "sweep_plan", "MAX_POINTS", "ELEMENT_KINDS", "SWEEP_FORMAT"]
 
 #: The format of the ``[sweep]`` table and its parameter paths, as ``pinlin sweep --help`` prints it.
-SWEEP_FORMAT = __doc__.split("Format (issue 17 part 4)::\n", 1)[1]
+SWEEP_FORMAT = __doc__.split("Format::\n", 1)[1]
 
 #: Most points of one sweep (both parameters together): a modal analysis each, so 10 000 points are
 #: minutes for a small scene; more is a typing error more often than a plan.  The API's default cap
