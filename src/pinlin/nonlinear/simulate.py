@@ -242,6 +242,17 @@ def simulate(
     IntegrationError
         The solver failed or the state became non-finite, in the run or in the
         comparison run (``t_reached`` says where).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> sim = pinlin.simulate(pinlin.Scene(robot), [0.1, 0.0], t=np.linspace(0.0, 1.0, 5))
+    >>> sim.shape, sim.integrator
+    ((5, 2), 'DOP853')
+    >>> np.round(sim[:, 0], 6)
+    array([ 0.1     ,  0.052513, -0.016845, -0.069088, -0.094171])
+    >>> bool(sim.error < 1e-8)
+    True
     """
     t_start = time.perf_counter()
     if not isinstance(scene, Scene):
