@@ -197,6 +197,17 @@ def sweep(
     PinlinError
         Whatever ``function`` raised at the first failing point, with
         ``on_error="raise"``.
+
+    Examples
+    --------
+    The natural frequency of x'' m + 4 x = 0 over the mass:
+
+    >>> def omega(m):
+    ...     sys = pinlin.LinearizedSystem.from_matrices([[m]], None, [[4.0]])
+    ...     return float(np.max(pinlin.modal_analysis(sys).eigenvalues.imag))
+    >>> result = pinlin.sweep(omega, {"m": [1.0, 4.0, 16.0]})
+    >>> np.round(result.collect(), 6), result.points[1]
+    (array([2. , 1. , 0.5]), {'m': 4.0})
     """
     t0 = time.perf_counter()
     if not callable(function):

@@ -38,6 +38,17 @@ class SweepFailure(Result):
         Wall time [s] of the failed call, measured where it ran.
     error : None
         A failed point computed no value, so it has no error figure.
+
+    Examples
+    --------
+    A massless point fails (a singular mass matrix); ``on_error="record"`` keeps it:
+
+    >>> def omega(m):
+    ...     return pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices([[m]], None, [[4.0]]))
+    >>> result = pinlin.sweep(omega, {"m": [1.0, 0.0]}, on_error="record")
+    >>> failure = result.failures[0]
+    >>> failure.point, type(failure.exception).__name__, failure.exception.joints
+    ({'m': 0.0}, 'SingularMassError', ('x1',))
     """
 
     point: Mapping[str, Any]
@@ -88,6 +99,17 @@ class SweepResult(Result):
         documents, relative unless documented otherwise; NaN if one of them is
         NaN); None when no value carries an error figure (the function returned
         plain arrays or numbers, or every point failed).
+
+    Examples
+    --------
+    >>> result = pinlin.sweep(lambda m, k: np.sqrt(k / m), {"m": [1.0, 4.0], "k": [1.0, 4.0, 9.0]})
+    >>> result.names, result.shape
+    (('m', 'k'), (2, 3))
+    >>> result.collect()  # one axis per name, the last varying fastest
+    array([[1. , 2. , 3. ],
+           [0.5, 1. , 1.5]])
+    >>> result.error is None  # plain numbers carry no error figure
+    True
     """
 
     names: tuple[str, ...]
