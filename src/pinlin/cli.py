@@ -95,12 +95,24 @@ MAX_PRECISION = 17
 
 
 def default_sweep_scene_path():
-    """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower load."""
+    """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower 
+
+    Examples
+    --------
+    >>> pinlin.cli.default_sweep_scene_path().name
+    'double_pendulum_flutter.toml'
+    """
     return data_path("scenes/double_pendulum_flutter.toml")
 
 
 def default_campbell_scene_path():
-    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (theory: rotating ring)."""
+    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (theory: rotating r
+
+    Examples
+    --------
+    >>> pinlin.cli.default_campbell_scene_path().name
+    'rotating_ring.toml'
+    """
     return data_path("scenes/rotating_ring.toml")
 
 
@@ -367,6 +379,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     SystemExit
         From argparse: after ``--help`` or ``--version`` (code 0) and for
         unknown options or malformed values (code 2, like :data:`EXIT_INPUT`).
+
+    Examples
+    --------
+    ``pinlin analyze`` on the bundled double pendulum, its text report captured:
+
+    >>> import contextlib, io
+    >>> out = io.StringIO()
+    >>> with contextlib.redirect_stdout(out):
+    ...     code = pinlin.cli.main(["analyze", str(pinlin.data_path("scenes/double_pendulum.toml"))])
+    >>> code == pinlin.cli.EXIT_OK, "Stability: MARGINALLY STABLE" in out.getvalue()
+    (True, True)
     """
     clock = Stopwatch()
     parser = _parser()

@@ -244,6 +244,16 @@ def render_text(report: dict, precision: int = 6) -> str:
         The JSON document (version :data:`pinlin.report.REPORT_VERSION`).
     precision : int
         Significant digits of the printed matrices, configuration and eigenvalues.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> report, _, _ = pinlin.report.analyze(load_scene(pinlin.data_path("scenes/double_pendulum.toml")))
+    >>> text = pinlin.report.render_text(report, precision=4)
+    >>> text.splitlines()[0]
+    'pinlin ...: double_pendulum from .../double_pendulum.urdf'
+    >>> "Stability: MARGINALLY STABLE" in text
+    True
     """
     s = report["scene"]
     units = s.get("dof_units") or ["?"] * len(s["dof_names"])
