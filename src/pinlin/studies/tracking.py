@@ -48,7 +48,15 @@ IMAG_SIGN_RTOL = 1e-12
 
 
 def mac(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
-    """Modal assurance criterion between the columns of X (n, a) and Y (n, b): (a, b) in [0, 1]."""
+    """Modal assurance criterion between the columns of X (n, a) and Y (n, b): (a, b) in [0, 1].
+
+    Examples
+    --------
+    >>> from pinlin.studies import mac
+    >>> mac(np.eye(2), np.array([[1.0, 1.0], [0.0, 1.0]]))
+    array([[1. , 0.5],
+           [0. , 0.5]])
+    """
     X = np.asarray(X)
     Y = np.asarray(Y)
     cross = np.abs(X.conj().T @ Y) ** 2
@@ -84,6 +92,17 @@ class TrackedModes(Result):
         ``1 - min(match)``, without shapes ``max(jump)``.
     elapsed : float
         Wall time [s] of :func:`track_modes`.
+
+    Examples
+    --------
+    >>> from pinlin.studies import track_modes
+    >>> tracked = track_modes([[1.0, 2.0], [2.5, 1.5], [3.1, 1.1]])  # by eigenvalue distance alone
+    >>> tracked.eigenvalues.real
+    array([[1. , 2. ],
+           [1.5, 2.5],
+           [1.1, 3.1]])
+    >>> tracked.order.tolist(), tracked.vectors is None
+    ([[0, 1], [1, 0], [1, 0]], True)
     """
 
     eigenvalues: np.ndarray
@@ -160,6 +179,20 @@ def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = DEFAULT
     ------
     ParameterError
         Shapes that do not agree, non-finite values, a negative weight.
+
+    Examples
+    --------
+    Two modes cross between the steps; sorted eigenvalues hide it, the shapes show it:
+
+    >>> from pinlin.studies import track_modes
+    >>> lam = np.array([[1.0, 2.0], [1.8, 2.2]])
+    >>> shapes = np.array([np.eye(2), np.eye(2)[:, ::-1]])
+    >>> tracked = track_modes(lam, shapes)
+    >>> tracked.eigenvalues.real
+    array([[1. , 2. ],
+           [2.2, 1.8]])
+    >>> float(tracked.error)
+    0.0
     """
     t0 = time.perf_counter()
     lam, X = _checked(eigenvalues, vectors, eigenvalue_weight)
@@ -214,6 +247,12 @@ def one_per_conjugate_pair(lam, conjugate_tol: float = CONJUGATE_TOL) -> list[in
     ------
     ParameterError
         ``lam`` not two-dimensional.
+
+    Examples
+    --------
+    >>> from pinlin.studies import one_per_conjugate_pair
+    >>> one_per_conjugate_pair(np.array([[1j, -1j, -0.5], [2j, -2j, -0.4]]))
+    [0, 2]
     """
     lam = np.asarray(lam, dtype=complex)
     if lam.ndim != 2:
