@@ -132,6 +132,15 @@ def hold_matrices(A: np.ndarray, B: np.ndarray, h: float, degree: int) -> tuple[
     where Phi and Psi_j are blocks of the exponential of the block matrix
     [[A h, B h, 0, ...], [0, 0, I, ...], ..., [0, ..., 0]] (Van Loan 1978):
     the state of the augmented system is (z, u, du/ds, d^2u/ds^2, ...).
+
+    Examples
+    --------
+    >>> import scipy.linalg
+    >>> from pinlin.response.forced import hold_matrices
+    >>> A, B = np.array([[0.0, 1.0], [-4.0, -0.2]]), np.array([[0.0], [1.0]])
+    >>> Phi, Psi = hold_matrices(A, B, 0.1, 1)  # a first-order hold: Psi_0 and Psi_1
+    >>> bool(np.allclose(Phi, scipy.linalg.expm(0.1 * A))), [p.shape for p in Psi]
+    (True, [(2, 1), (2, 1)])
     """
     nz, m = B.shape
     size = nz + (degree + 1) * m

@@ -119,6 +119,16 @@ def modal_free_motion(expansion: ModalExpansion, x0: np.ndarray, v0: np.ndarray,
         real modes and Jordan terms: their imaginary part).
     residual : float
         The projection residual of the coefficients (see ``coefficients``).
+
+    Examples
+    --------
+    >>> from pinlin.frf.expansion import modal_expansion
+    >>> from pinlin.response.free import modal_free_motion
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], None, [[4.0]])  # x = cos(2 tau) / 10
+    >>> x, xdot, xddot, symmetry, residual = modal_free_motion(
+    ...     modal_expansion(sys, None), np.array([0.1]), np.array([0.0]), np.array([0.0, np.pi / 6]))
+    >>> print(f"{x[1, 0]:.6f} {xdot[1, 0]:.6f} {xddot[1, 0]:.6f}")
+    0.050000 -0.173205 -0.200000
     """
     c, d, residual = expansion.coefficients(x0.astype(complex), v0.astype(complex))
     lam, X = expansion.lam, expansion.right
