@@ -72,6 +72,14 @@ def chunk_size_for(points: int, executor: Executor, chunk_size: int | None = Non
     ------
     ParameterError
         ``chunk_size`` is not a positive integer.
+
+    Examples
+    --------
+    >>> from concurrent.futures import ThreadPoolExecutor
+    >>> from pinlin.studies.sweep import chunk_size_for
+    >>> with ThreadPoolExecutor(max_workers=2) as executor:
+    ...     chunk_size_for(100, executor), chunk_size_for(100, executor, chunk_size=10)
+    (7, 10)
     """
     if chunk_size is not None:
         if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
