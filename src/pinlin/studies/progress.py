@@ -33,6 +33,7 @@ class TextBar:
     stream : text stream, optional
         Where the bar is written; default stderr.
    
+
     Examples
     --------
     >>> import io
