@@ -43,7 +43,14 @@ def _float(value) -> float:
 
 
 def number(x: float, precision: int, *, zero_below: float = 0.0) -> str:
-    """``x`` to ``precision`` significant digits; 0 (never "-0") when ``|x| <= zero_below``."""
+    """``x`` to ``precision`` significant digits; 0 (never "-0") when ``|x| <= zero_below``.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import number
+    >>> number(3.14159265, 4), number(-1e-20, 4, zero_below=1e-12)
+    ('3.142', '0')
+    """
     x = _float(x)
     if abs(x) <= zero_below:  # also turns -0.0 into 0
         return "0"
@@ -51,7 +58,14 @@ def number(x: float, precision: int, *, zero_below: float = 0.0) -> str:
 
 
 def complex_text(lam: complex, precision: int = 6) -> str:
-    """A complex number as ``a+bi`` (``i``, as the stability verdicts write them; a real one as ``a``)."""
+    """A complex number as ``a+bi`` (``i``, as the stability verdicts write them; a real one as ``a``).
+
+    Examples
+    --------
+    >>> from pinlin.report.text import complex_text
+    >>> complex_text(-0.5 + 3.2j, 4), complex_text(2.0)
+    ('-0.5+3.2i', '2')
+    """
     lam = complex(lam)
     if lam.imag == 0:
         return number(lam.real, precision)
@@ -59,7 +73,14 @@ def complex_text(lam: complex, precision: int = 6) -> str:
 
 
 def plural(count: int, noun: str) -> str:
-    """``1 iteration``, ``3 iterations``."""
+    """``1 iteration``, ``3 iterations``.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import plural
+    >>> plural(1, "mode"), plural(3, "mode")
+    ('1 mode', '3 modes')
+    """
     return f"{count} {noun}" + ("" if count == 1 else "s")
 
 
@@ -68,6 +89,14 @@ def matrix_text(name: str, a: np.ndarray, names: Sequence[str], units: Sequence[
 
     Entries with ``|a_ij| <= rounding_bound(n, ||A||_2)`` (c n eps ||A||_2) are
     below what rounding in forming A can tell from zero.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import matrix_text
+    >>> print(matrix_text("M", np.array([[1.0, 0.2], [0.2, 0.5]]), ["joint1", "joint2"], ["rad", "rad"], 4))
+      M [kg m^2] =
+        joint1            1         0.2
+        joint2          0.2         0.5
     """
     unit = matrix_unit(name, units)
     if a.shape[0] > MAX_PRINTED_SIZE:
@@ -187,6 +216,15 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
         Significant digits of lam and |lam|.
     max_rows : int, optional
         Show at most this many eigenvalues (the lowest frequencies); None for all.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import mode_table
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> modes = pinlin.modal_analysis(pinlin.linearize(pinlin.Scene(robot), np.zeros(2)))
+    >>> table = mode_table(modes.to_dict(), precision=4, max_rows=2)
+    >>> table.splitlines()[-2]
+    '... 2 more (higher frequencies)'
     """
     re = [_float(x) for x in modes["eigenvalues"]["re"]]
     k = len(re)
