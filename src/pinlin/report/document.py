@@ -43,7 +43,17 @@ STRUCTURE_MATRICES = ("M", "D", "S")
 
 def normalized_path(source: str) -> str:
     """An existing file as its absolute path without ``..`` or symbolic links; anything else
-    (``example:ur5``, a URDF given as a string) unchanged."""
+    (``example:ur5``, a URDF given as a string) unchanged.
+
+    Examples
+    --------
+    >>> from pinlin.report.document import normalized_path
+    >>> normalized_path("example:ur5")
+    'example:ur5'
+    >>> urdf = pinlin.data_path("urdf/double_pendulum.urdf")
+    >>> normalized_path(str(urdf.parent / ".." / "urdf" / urdf.name)) == str(urdf.resolve())
+    True
+    """
     try:
         path = Path(source)
         return str(path.resolve()) if path.is_file() else source
@@ -140,6 +150,15 @@ def blame(spec: SceneSpec, exc: InputError) -> InputError:
     equilibrium ``start``, a singular mass ``robot`` (its URDF), constraints
     ``constraint``; other input errors name the file only.  A spec that did not
     come from a file (``--example``) keeps ``exc`` as it is (returned unchanged).
+
+    Examples
+    --------
+    >>> from pinlin.report.document import blame
+    >>> from pinlin.model.scene_file import load_scene
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum.toml"))
+    >>> error = blame(spec, pinlin.SingularMassError("M is singular", ["joint2"]))
+    >>> type(error).__name__, error.key
+    ('SceneFileError', 'robot')
     """
     if isinstance(exc, SceneFileError) or not Path(spec.path).is_file():
         return exc
