@@ -159,30 +159,14 @@ def simulate(
         M_{ff}(q)\\, a_f = Q_{e,f}(q, v) - h_f(q, v), \\qquad
         h = \\mathrm{rnea}(q, v, 0, f_{ext})
 
-    with every scene element (:mod:`pinlin.nonlinear.dynamics`): springs,
-    dampers and Rayleigh damping through their generalized forces Q_e, follower
-    and dead wrenches through Pinocchio's ``fext``, gravity in the scene's
-    model.  Prescribed joints keep their constant velocity, or follow their
-    periodic motion exactly (:class:`~pinlin.Harmonic` etc.: q_p(t), v_p(t) and
-    a_p(t) enter the dynamics; q0 and v0's entries of those joints are replaced
-    by q_p(t[0]), v_p(t[0])).  The computation
-    runs in the calling thread's Pinocchio workspace, so one scene can be
-    simulated from many threads at once.
-
-    The configuration lives on Pinocchio's manifold (nq != nv for continuous,
-    spherical and free-flyer joints).  The state integrated is (dq, v_f) in a
-    local chart q = ``pin.integrate(q_b, dq)`` around a base point q_b, with
-
-    .. math::  \\dot{dq} = \\left(\\partial\\, \\mathrm{integrate}(q_b, dq) / \\partial dq\\right)^{-1} v
-
-    (the identity for revolute, prismatic and continuous joints, whose chart is
-    global).  When the rotation part of dq on a spherical, free-flyer or planar
-    joint exceeds ``chart_radius``, integration stops (a ``solve_ivp`` event),
-    the base point moves to the current configuration and integration restarts.
-
-    The requested tolerances bound local errors per step, not the error of the
-    trajectory; ``.error`` estimates the latter by a second run at tolerances
-    :data:`ERROR_TOL_FACTOR` times tighter (see :class:`Simulation`).
+    with every scene element and gravity (:mod:`pinlin.nonlinear.dynamics`).  Prescribed joints
+    keep their constant velocity or follow their periodic motion exactly (their entries of q0 and v0
+    are replaced by q_p(t[0]), v_p(t[0])).  The state (dq, v_f) lives in a local chart
+    q = ``pin.integrate(q_b, dq)`` of the configuration manifold, re-centred when a joint's rotation
+    exceeds ``chart_radius`` (:mod:`pinlin.nonlinear.charts`).  The tolerances bound local errors per
+    step; ``.error`` estimates the trajectory's error by a second run at tolerances
+    :data:`ERROR_TOL_FACTOR` times tighter (see :class:`Simulation`).  The run uses the calling
+    thread's Pinocchio workspace, so one scene can be simulated from many threads at once.
 
     Parameters
     ----------
