@@ -229,15 +229,14 @@ def _old_order(args: tuple, kwargs: dict) -> bool:
     if len(rest) < 3:
         return False
     first, _, third = rest[:3]
+    if first is not None:
+        first = _real_array(first)
+        if first is None or first.shape != (getattr(args[0], "n", None),):
+            return False  # no (n,) vector first: the new order (its checks name what is wrong)
     third = None if third is None else _real_array(third)
     if third is None or third.ndim != 1 or not _increasing(third):
-        return False  # no time grid third: the checks of the new order name what is wrong
-    if first is None:
-        return True
-    first = _real_array(first)
-    if first is None or first.shape != (getattr(args[0], "n", None),):
         return False
-    return third.size != first.size or not _increasing(first)
+    return first is None or third.size != first.size or not _increasing(first)
 
 
 def _real_array(values) -> np.ndarray | None:
