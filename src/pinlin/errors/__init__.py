@@ -10,47 +10,47 @@ react without parsing messages (theory: conventions).
 A class exists because a caller catches it apart from its parent or because it
 carries data; the others are merged into their parents:
 
-=============================  ===========================================================
-class                          why it exists
-=============================  ===========================================================
-``PinlinError``                the root: ``except PinlinError`` catches everything pinlin raises
-``InputError``                 bad input (``ValueError``): the command line exits with code 2
-``ComputationError``           a failed computation (``RuntimeError``): exit code 3
-``NameNotFoundError``          ``name``, ``valid``
-``JointNotFoundError``         ``name``, ``valid`` (the joint names); a misspelt joint apart from a frame
-``FrameNotFoundError``         ``name``, ``valid`` (the frame names)
-``ParameterError``             ``parameter``
-``ConfigurationError``         caught apart: a scene-file report blames its ``start`` key
-``PrescribedJointError``       caught apart: a scene-file report blames its ``prescribed`` key
-``ModelTooLargeError``         ``required``, ``available`` (``MemoryError``)
-``MissingDependencyError``     caught apart (``ImportError``): which optional extra to install
-``AccuracyWarning``            filtered apart (a warning): a result beyond its tolerance
-``UrdfError``, ``MjcfError``   ``source``
-``SceneFileError``             ``path``, ``key``
-``ConstraintError``            ``constraints``; caught apart: a report blames ``constraint``
-``ConstraintViolationError``   ``gap``, ``rotation_gap``
-``LoopClosureError``           ``history``
-``SingularConstraintError``    ``rank``, ``nearby_rank``
-``OverconstrainedError``       ``rank``, ``nv``
-``NotAnEquilibriumError``      ``residual``, ``relative_residual``
-``SingularMassError``          ``joints``
-``TimePeriodicError``          ``joint``, ``variation``
-``ConvergenceError``           ``history``
-``IntegrationError``           ``t_reached``
-``IntegrationBudgetError``     ``t_end``, ``steps``, ``elapsed``, ``budget``
-``NotAnEigenvalueError``       ``lam``, ``distance``
-``NotSimpleError``             ``lam``, ``measure``
-``EigenvalueNotIsolatedError`` ``lam``, ``inner``, ``outer``
-``BracketError``               ``bracket``, ``verdicts``
-``BoundaryNotIsolatedError``   ``interval``
-``SystemFunctionError``        ``p``
-``SweepTimeoutError``          ``timeout``, ``pending``, ``points``; caught apart (``TimeoutError``)
-``MultibladeNotExactError``    ``matrix``, ``variation``, ``tolerance``
-``SamplingError``              ``samples``, ``history``, ``tolerance``
-``QuasiPeriodicError``         ``periods``
-``PeriodicOrbitError``         ``history``, ``period``
-``OrbitLimitError``            ``joint``, ``time``, ``value``, ``lower``, ``upper``
-=============================  ===========================================================
+==============================  ==========================================================================
+class                           why it exists
+==============================  ==========================================================================
+``PinlinError``                 the root: ``except PinlinError`` catches everything pinlin raises
+``InputError``                  bad input (``ValueError``): the command line exits with code 2
+``ComputationError``            a failed computation (``RuntimeError``): exit code 3
+``NameNotFoundError``           ``name``, ``valid``
+``JointNotFoundError``          ``name``, ``valid`` (the joint names); a misspelt joint apart from a frame
+``FrameNotFoundError``          ``name``, ``valid`` (the frame names)
+``ParameterError``              ``parameter``
+``ConfigurationError``          caught apart: a scene-file report blames its ``start`` key
+``PrescribedJointError``        caught apart: a scene-file report blames its ``prescribed`` key
+``ModelTooLargeError``          ``required``, ``available`` (``MemoryError``)
+``MissingDependencyError``      caught apart (``ImportError``): which optional extra to install
+``AccuracyWarning``             filtered apart (a warning): a result beyond its tolerance
+``UrdfError``, ``MjcfError``    ``source``
+``SceneFileError``              ``path``, ``key``
+``ConstraintError``             ``constraints``; caught apart: a report blames ``constraint``
+``ConstraintViolationError``    ``gap``, ``rotation_gap``
+``LoopClosureError``            ``history``
+``SingularConstraintError``     ``rank``, ``nearby_rank``
+``OverconstrainedError``        ``rank``, ``nv``
+``NotAnEquilibriumError``       ``residual``, ``relative_residual``
+``SingularMassError``           ``joints``
+``TimePeriodicError``           ``joint``, ``variation``
+``ConvergenceError``            ``history``
+``IntegrationError``            ``t_reached``
+``IntegrationBudgetError``      ``t_end``, ``steps``, ``elapsed``, ``budget``
+``NotAnEigenvalueError``        ``lam``, ``distance``
+``NotSimpleError``              ``lam``, ``measure``
+``EigenvalueNotIsolatedError``  ``lam``, ``inner``, ``outer``
+``BracketError``                ``bracket``, ``verdicts``
+``BoundaryNotIsolatedError``    ``interval``
+``SystemFunctionError``         ``p``
+``SweepTimeoutError``           ``timeout``, ``pending``, ``points``; caught apart (``TimeoutError``)
+``MultibladeNotExactError``     ``matrix``, ``variation``, ``tolerance``
+``SamplingError``               ``samples``, ``history``, ``tolerance``
+``QuasiPeriodicError``          ``periods``
+``PeriodicOrbitError``          ``history``, ``period``
+``OrbitLimitError``             ``joint``, ``time``, ``value``, ``lower``, ``upper``
+==============================  ==========================================================================
 
 Merged (the old name resolves to the parent with a :class:`DeprecationWarning` until 0.5):
 ``NoPeriodError`` into :class:`InputError` (no data, not caught apart), ``AssemblyError`` (the 0.2
