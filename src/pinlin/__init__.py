@@ -42,9 +42,9 @@ from .boundaries import (
     eigenvalue_sensitivity,
     stability_boundary,
 )
+from .errors import DEPRECATED_NAMES as _DEPRECATED_NAMES
 from .errors import (
     AccuracyWarning,
-    AssemblyError,
     BoundaryNotIsolatedError,
     BracketError,
     ComputationError,
@@ -65,7 +65,6 @@ from .errors import (
     MultibladeNotExactError,
     SamplingError,
     NameNotFoundError,
-    NoPeriodError,
     NotAnEigenvalueError,
     NotAnEquilibriumError,
     NotSimpleError,
@@ -79,6 +78,7 @@ from .errors import (
     SceneFileError,
     SingularConstraintError,
     SingularMassError,
+    SweepTimeoutError,
     SystemFunctionError,
     TimePeriodicError,
     UrdfError,
@@ -163,6 +163,7 @@ from .results import load
 from .spectral import JordanChains, ModeEnergy, Modes, Stability, jordan_chains, modal_analysis
 from .studies.floquet_campbell import FloquetCampbell, floquet_campbell
 from .studies.sweep import SweepFailure, SweepResult, sweep
+from .errors.deprecated import deprecated_names as _deprecated_names
 from .version import __version__
 
 __all__ = [
@@ -218,7 +219,6 @@ __all__ = [
     "constraint_stiffness",
     "ConstraintError",
     "ConstraintViolationError",
-    "AssemblyError",
     "LoopClosureError",
     "SingularConstraintError",
     "OverconstrainedError",
@@ -227,6 +227,7 @@ __all__ = [
     "sweep",
     "SweepResult",
     "SweepFailure",
+    "SweepTimeoutError",
     # sensitivities and stability boundaries (theory: boundaries)
     "eigenvalue_sensitivity",
     "EigenvalueSensitivity",
@@ -294,10 +295,10 @@ __all__ = [
     "Residues",
     "frequency_response",
     "FrequencyResponse",
-    # other tools' forms (issue 17)
+    # other tools' forms
     "state_space",
     "StateSpaceModel",
-    # time-periodic motions (theory: Floquet, issue 23)
+    # time-periodic motions (theory: Floquet)
     "Harmonic",
     "FourierMotion",
     "PeriodicMotion",
@@ -316,7 +317,9 @@ __all__ = [
     "QuasiPeriodicError",
     "MultibladeNotExactError",
     "SamplingError",
-    "NoPeriodError",
     "PeriodicOrbitError",
     "OrbitLimitError",
 ]
+
+# The old names of merged error classes resolve with a DeprecationWarning, as in pinlin.errors.
+__getattr__ = _deprecated_names("pinlin", _DEPRECATED_NAMES)

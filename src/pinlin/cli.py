@@ -34,7 +34,6 @@ import sys
 from collections.abc import Sequence
 from pathlib import Path
 
-import numpy as np
 
 from .errors import (
     InputError,
@@ -44,9 +43,7 @@ from .errors import (
     PinlinError,
     SceneFileError,
 )
-from .model.elements import JointDamper, JointSpring
-from .model.loading import EXAMPLES, data_path, load_example
-from .model.scene import Scene
+from .model.loading import EXAMPLES
 from .model.scene_file import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
 from .report import REPORT_SCHEMA, REPORT_VERSION, analyze, render_text, write_plot
 from .report.campbell import (
@@ -64,6 +61,7 @@ from .report.outputs import (
     write_animation,
     write_json,
 )
+from .report.scenes import default_campbell_scene_path, default_sweep_scene_path, example_spec
 from .report.periodic import analyze_periodic, check_periodic_options, is_periodic, render_periodic_text
 from .report.sweep import render_sweep_text, run_sweep, sweep_document, sweep_plan, write_sweep_plot
 from .report.sweep.parameters import SWEEP_FORMAT
@@ -92,61 +90,6 @@ EXIT_OK, EXIT_INPUT, EXIT_COMPUTATION = 0, 2, 3
 DEFAULT_EXAMPLE_STIFFNESS = 1e3
 #: Most significant digits ``--precision`` allows: a double holds 17 (more would print rounding noise).
 MAX_PRECISION = 17
-
-
-def default_sweep_scene_path():
-    """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower load."""
-    return data_path("scenes/double_pendulum_flutter.toml")
-
-
-def default_campbell_scene_path():
-    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (theory: rotating ring)."""
-    return data_path("scenes/rotating_ring.toml")
-
-
-def example_spec(name: str, stiffness: float, damping: float = 0.0) -> SceneSpec:
-    """An example-robot-data robot with elastic joints, springs unstressed at its reference pose.
-
-    A robot with a free-flyer joint is linearized with balancing forces (it
-    has no equilibrium of its own); a fixed-base one at its equilibrium near
-    the reference pose.
-
-    Parameters
-    ----------
-    name : str
-        One of :data:`pinlin.EXAMPLES`.
-    stiffness : float
-        Stiffness of every joint spring [N m/rad or N/m], > 0.
-    damping : float
-        Damping of every joint [N m s/rad or N s/m], >= 0 (0: no dampers).
-
-    Raises
-    ------
-    ParameterError
-        A stiffness that is not positive, a damping that is negative (named by
-        their command-line options).
-    InputError
-        An unknown example name (see :func:`pinlin.load_example`).
-    """
-    if not (np.isfinite(stiffness) and stiffness > 0):
-        raise ParameterError("--stiffness", f"must be a positive number, got {stiffness}")
-    if not (np.isfinite(damping) and damping >= 0):
-        raise ParameterError("--damping", f"must be a non-negative number, got {damping}")
-    robot = load_example(name)
-    refs = robot.reference_configurations
-    q0 = next(iter(refs.values())).copy() if refs else robot.neutral()
-    elements = []
-    for jname in robot.joint_names:
-        j = robot.joint(jname)
-        if j.kind == "JointModelFreeFlyer":
-            continue
-        rest = q0[j.q_slice]
-        elements.append(JointSpring(jname, stiffness, rest=rest if j.nq > 1 else float(rest[0])))
-        if damping:
-            elements.append(JointDamper(jname, damping))
-    scene = Scene(robot, elements)
-    floating = any(robot.joint(n).kind == "JointModelFreeFlyer" for n in robot.joint_names)
-    return SceneSpec(scene, scene.check_configuration(q0), not floating, floating, f"example:{name}")
 
 
 def _command(sub, name: str, help: str, description: str, epilog: str) -> argparse.ArgumentParser:
@@ -367,6 +310,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     SystemExit
         From argparse: after ``--help`` or ``--version`` (code 0) and for
         unknown options or malformed values (code 2, like :data:`EXIT_INPUT`).
+
+    Examples
+    --------
+    ``pinlin analyze`` on the bundled double pendulum, its text report captured:
+
+    >>> import contextlib, io
+    >>> out = io.StringIO()
+    >>> with contextlib.redirect_stdout(out):
+    ...     code = pinlin.cli.main(["analyze", str(pinlin.data_path("scenes/double_pendulum.toml"))])
+    >>> code == pinlin.cli.EXIT_OK, "Stability: MARGINALLY STABLE" in out.getvalue()
+    (True, True)
     """
     clock = Stopwatch()
     parser = _parser()

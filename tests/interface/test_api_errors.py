@@ -1,4 +1,4 @@
-"""The API's last crashes (issue 26 part 6): each a PinlinError (a ValueError) naming the argument."""
+"""The API's last crashes: each a PinlinError (a ValueError) naming the argument."""
 
 import re
 

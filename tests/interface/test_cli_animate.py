@@ -1,4 +1,4 @@
-"""``pinlin analyze --animate mode1.gif --mode 1`` (issue 17 part 2): the animation is written."""
+"""``pinlin analyze --animate mode1.gif --mode 1``: the animation is written."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``pinlin campbell`` (issue 26 part 4): frequencies, damping and critical speeds against a prescribed speed.
+"""``pinlin campbell``: frequencies, damping and critical speeds against a prescribed speed.
 
 Acceptance: on the bundled rotating ring (theory: rotating ring; Example 11.1) the critical
 speed is found to 1e-10 against its closed form.  In the ring's frame the

@@ -1,4 +1,4 @@
-"""The command line does what it says (issue 26 part 4): options checked before anything is computed, every
+"""The command line does what it says: options checked before anything is computed, every
 file written named, the total time broken down, and the print artefacts gone."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""``pinlin analyze`` on a periodic scene runs the Floquet analysis (issue 23 part 6).
+"""``pinlin analyze`` on a periodic scene runs the Floquet analysis.
 
 The bundled Kapitza pendulum (``kapitza.toml``: bob 0.1 kg at l = 0.2 m, pivot z_p = 0.02 sin(200 t) m) is
 stable upside down: its two multipliers lie on the unit circle; their argument is the Floquet frequency

@@ -1,4 +1,4 @@
-"""The text report reads well (issue 17 part 6): no "-0", undamped modes called undamped, the verdict once,
+"""The text report reads well: no "-0", undamped modes called undamped, the verdict once,
 normalized paths, rounding-level matrix entries printed as 0, a unit on every printed matrix."""
 
 from __future__ import annotations
@@ -58,8 +58,8 @@ def test_undamped_modes_are_labelled_undamped(capsys, tmp_path):
     out, report = analyze([], capsys, tmp_path)
     kinds = re.findall(r"^\s+\d+ .*?\s(\w*damped)\s", report["modes"]["table"], flags=re.M)
     assert kinds == ["undamped"] * 4
-    assert report["modes"]["kind"] == ["undamped"] * 4  # the result's own kinds (issue 25), not relabelled
-    assert "joint1 88%, joint2 12%" in report["modes"]["table"]  # the dominant coordinates (issue 17)
+    assert report["modes"]["kind"] == ["undamped"] * 4  # the result's own kinds, not relabelled
+    assert "joint1 88%, joint2 12%" in report["modes"]["table"]  # the dominant coordinates
     # a damped arm's modes stay underdamped
     out, _ = analyze(["--example", "ur5", "--damping", "1"], capsys, tmp_path)
     assert re.findall(r"^\s+\d+ .*?\s(\w*damped)\s", out, flags=re.M) == ["underdamped"] * 12

@@ -1,4 +1,4 @@
-"""The command line never crashes, hangs or lies on bad input (issue 13 items 8-10).
+"""The command line never crashes, hangs or lies on bad input.
 
 Each test drives :func:`pinlin.cli.main` (or the scene-file reader) with one
 input of the issue and checks the exit code (2 bad input, 3 failed
@@ -148,7 +148,7 @@ def test_analysis_errors_name_the_scene_file_and_key(capsys, tmp_path, text, key
 
 def test_a_time_periodic_scene_is_blamed_in_the_steady_report_and_analysed_by_floquet_in_the_cli(capsys, tmp_path):
     """The steady report refuses it naming [prescribed.joint1]; the CLI runs the periodic path instead
-    (issue 23), whose shooting finds no periodic motion of the spun double pendulum near q = 0 and says so."""
+    (theory: Floquet), whose shooting finds no periodic motion of the spun double pendulum near q = 0 and says so."""
     path = write(tmp_path, DP + "[prescribed]\njoint1 = 2.0\n[start]\nequilibrium = false\n")
     with pytest.raises(pinlin.SceneFileError, match=r"\[prescribed.joint1\] the linearized equations depend on "
                        r"the position of prescribed joint 'joint1'.*pinlin.floquet_analysis") as info:

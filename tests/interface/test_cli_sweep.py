@@ -1,4 +1,4 @@
-"""``pinlin sweep`` and the ``[sweep]`` table (issue 17 part 4).
+"""``pinlin sweep`` and the ``[sweep]`` table.
 
 The reference is theory: double pendulum worked by hand: the double pendulum with follower
 load P is marginally stable while det(K(P) - mu M) = 0 has two real positive

@@ -1,4 +1,4 @@
-"""Every notebook in notebooks/ executes without error (issue 6).
+"""Every notebook in notebooks/ executes without error.
 
 Each notebook ends with ``assert`` cells on its key numbers (closed forms, bisections on the stability verdict,
 convergence rates), so executing it is the test. The notebooks run in a fresh kernel, headless

@@ -1,4 +1,4 @@
-"""The README's tour runs as printed, from any directory (issue 26 part 5).
+"""The README's tour runs as printed, from any directory.
 
 Every ```python block of README.md is run, in order, in one fresh interpreter
 whose working directory is an empty temporary directory (so a path relative to

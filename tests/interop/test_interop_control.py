@@ -1,4 +1,4 @@
-"""python-control as an optional dependency, and FrequencyResponse as its FrequencyResponseData (issue 17)."""
+"""python-control as an optional dependency, and FrequencyResponse as its FrequencyResponseData."""
 
 import sys as python_sys
 
@@ -12,7 +12,7 @@ from pinlin.interop import frequency_response_data
 
 control = pytest.importorskip("control")
 
-#: Agreement demanded by issue 17 between pinlin and python-control.
+#: Agreement demanded between pinlin and python-control (both compute the same matrices).
 AGREEMENT = 1e-10
 
 

@@ -25,7 +25,7 @@ KINEMATIC_TOL = 1e-13
 #: Central differences with step H: truncation O(H^2) ~ 1e-10 relative, rounding eps/H ~ 1e-10.
 H = 1e-5
 FD_TOL = 1e-8
-#: Agreement of frequency responses (issue 17).
+#: Agreement of frequency responses.
 AGREEMENT = 1e-10
 
 

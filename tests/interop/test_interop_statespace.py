@@ -1,8 +1,8 @@
-"""state_space: the default model against python-control and scipy, and its blocks in closed form (issue 17).
+"""state_space: the default model against python-control and scipy, and its blocks in closed form.
 
 python-control's ``frequency_response`` and ``damp`` and scipy's ``freqresp`` on the
 exported model must agree with pinlin's ``frequency_response`` and
-``modal_analysis`` (issue 17 acceptance: to 1e-10).
+``modal_analysis`` (to 1e-10).
 """
 
 import json
@@ -17,7 +17,7 @@ import pinlin
 
 control = pytest.importorskip("control")
 
-#: Agreement demanded by issue 17 between pinlin and python-control / scipy.
+#: Agreement demanded between pinlin and python-control / scipy (both compute the same matrices).
 AGREEMENT = 1e-10
 #: The first-order blocks are Cholesky solves with M, backward stable: a relative residual of a
 #: few tens of eps at most.

@@ -1,4 +1,4 @@
-"""The state-space error figure is its documented formula, by value (issue 25 part 6 (ii); theory: error figures).
+"""The state-space error figure is its documented formula, by value (theory: error figures).
 
 ``StateSpaceModel.error`` and ``LinearizedSystem.first_order``'s third value are documented as
 ||M X - Y||_F / (||M||_F ||X||_F + ||Y||_F) for X = M^-1 Y, Y = [K, C, F] (the backward error of the

@@ -1,4 +1,4 @@
-"""The budget of a nonlinear simulation (issue 13, item 7): long runs stop early and say how far they got."""
+"""The budget of a nonlinear simulation: long runs stop early and say how far they got."""
 
 from __future__ import annotations
 
@@ -69,7 +69,7 @@ def test_wall_time_budget(pendulum):
 def test_no_limit_and_the_summary(pendulum):
     sim = pinlin.simulate(pendulum, [0.1, 0], [0, 0], np.linspace(0, 2, 5), max_steps=None, max_time=None)
     assert sim.max_steps is None and sim.steps > 0
-    text = str(sim)  # issue 17 part 6: printing a simulation shows its summary, not the numbers
+    text = str(sim)  # printing a simulation shows its summary, not the numbers
     assert text == repr(sim) and text.startswith("Simulation(shape=(5, 2)") and f"steps={sim.steps}" in text
     assert "\n" not in text
 

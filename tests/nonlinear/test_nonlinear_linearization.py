@@ -1,4 +1,4 @@
-"""Validation of the linearization itself against nonlinear simulation (issue 5 part 5).
+"""Validation of the linearization itself against nonlinear simulation.
 
 For an initial perturbation eps (dx, dv) of an equilibrium or steady motion, the
 nonlinear motion (``pinlin.simulate``, Pinocchio's dynamics) and the linear one

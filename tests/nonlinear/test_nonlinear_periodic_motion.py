@@ -1,4 +1,4 @@
-"""simulate with periodic prescribed motions (issue 23 part 4): the prescribed joints follow q_p(t),
+"""simulate with periodic prescribed motions: the prescribed joints follow q_p(t),
 v_p(t), a_p(t) exactly.
 
 Closed form: a point-mass pendulum (mass m, length l) on a pivot moving horizontally, x_p = A sin(omega t),

@@ -1,4 +1,4 @@
-"""The nonlinear reference simulation (issue 5 part 4) against hand-derived equations and first integrals.
+"""The nonlinear reference simulation against hand-derived equations and first integrals.
 
 Each test checks :func:`pinlin.simulate` against something it does not compute
 itself: a hand-written equation of motion integrated by scipy, the Jacobi
@@ -295,3 +295,12 @@ def test_non_finite_dynamics_raise_integration_error():
     with pytest.raises(pinlin.IntegrationError, match="non-finite") as info:
         pinlin.simulate(scene, [0.0], [1.0], [0.0, 1.0])
     assert 0.0 < info.value.t_reached < 1.0
+
+
+def test_default_accuracy_is_the_named_constants():
+    import inspect
+
+    from pinlin.nonlinear.simulate import DEFAULT_ATOL, DEFAULT_RTOL
+
+    params = inspect.signature(pinlin.simulate).parameters
+    assert (params["rtol"].default, params["atol"].default) == (DEFAULT_RTOL, DEFAULT_ATOL) == (1e-10, 1e-12)

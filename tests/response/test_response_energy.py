@@ -1,4 +1,4 @@
-"""The linearized power theorem (theory: responses, issue 5 part 3).
+"""The linearized power theorem (theory: responses).
 
 The trajectories come from the exact discretization (``forced_response``); the
 budget integrates the powers with its own Hermite rule.  The balance
@@ -37,7 +37,7 @@ def test_damped_budget_balances(damped):
     assert np.any(sys.D) and not np.any(sys.G) and not np.any(sys.N)
     x0, v0 = _initial(sys.n, 1)
     t = np.linspace(0.0, 10.0, 4001)  # h |lam|_max = 0.17
-    resp = pinlin.forced_response(sys, None, t, x0, v0)
+    resp = pinlin.forced_response(sys, t, None, x0, v0)
     budget = pinlin.energy_budget(sys, t, resp.x, resp.xdot)
     assert budget.balance_residual < 1e-8
     assert budget.quadrature_error < 1e-6
@@ -54,7 +54,7 @@ def test_gyroscopic_forces_do_no_work():
     assert np.any(sys.G) and not np.any(sys.D)
     x0, v0 = _initial(sys.n, 2)
     t = np.linspace(0.0, 10.0, 2001)
-    resp = pinlin.forced_response(sys, None, t, x0, v0)
+    resp = pinlin.forced_response(sys, t, None, x0, v0)
     budget = pinlin.energy_budget(sys, t, resp.x, resp.xdot)
     assert budget.balance_residual < 1e-8
     assert_allclose(budget.energy, budget.energy[0], rtol=1e-10, atol=0)
@@ -67,7 +67,7 @@ def test_circulatory_budget_balances_with_nonzero_circulatory_work():
     assert np.any(sys.N)
     x0, v0 = _initial(sys.n, 3)
     t = np.linspace(0.0, 8.0, 3201)
-    resp = pinlin.forced_response(sys, None, t, x0, v0)
+    resp = pinlin.forced_response(sys, t, None, x0, v0)
     budget = pinlin.energy_budget(sys, t, resp.x, resp.xdot)
     assert budget.balance_residual < 1e-8
     assert np.max(np.abs(budget.work_circulatory)) > 1e-2 * budget.energy[0]
@@ -78,7 +78,7 @@ def test_forced_budget_balances_with_work_of_the_force():
     sys = pinlin.linearize(scene, q)
     b = np.array([0.3, 1.0])
     t = np.linspace(0.0, 6.0, 601)
-    resp = pinlin.forced_response(sys, lambda tt: np.sin(2.0 * tt) * b, t, interpolation="cubic", substeps=2)
+    resp = pinlin.forced_response(sys, t, lambda tt: np.sin(2.0 * tt) * b, interpolation="cubic", substeps=2)
     budget = resp.energy()
     assert budget.balance_residual < 1e-8
     assert np.max(np.abs(budget.work_force)) > 0.5 * np.max(budget.energy)
@@ -103,7 +103,7 @@ def test_single_oscillator_energy_values():
 def test_trajectory_of_another_system_does_not_balance(damped):
     x0, v0 = _initial(damped.n, 4)
     t = np.linspace(0.0, 5.0, 1001)
-    resp = pinlin.forced_response(damped, None, t, x0, v0)
+    resp = pinlin.forced_response(damped, t, None, x0, v0)
     other = pinlin.LinearizedSystem.from_matrices(damped.M, damped.C, damped.K * 1.01)
     budget = pinlin.energy_budget(other, t, resp.x, resp.xdot)
     assert budget.balance_residual > 1e-4

@@ -1,4 +1,4 @@
-"""Free vibration from the modal solution (issue 5 part 1, theory: responses).
+"""Free vibration from the modal solution (theory: responses).
 
 References: ``scipy.linalg.expm`` of the first-order form built in the tests
 (``response_cases.expm_free_response``), and closed forms for one degree of
@@ -62,7 +62,7 @@ DEFECTIVE = _defective_systems()
 def _compare(sys, seed, t, rtol):
     rng = np.random.default_rng(seed)
     x0, v0 = rng.standard_normal((2, sys.n))
-    x = pinlin.free_response(sys, x0, v0, t)
+    x = pinlin.free_response(sys, t, x0, v0)
     x_ref, v_ref = expm_free_response(sys, x0, v0, t)
     assert isinstance(x, np.ndarray) and x.shape == (len(t), sys.n) and x.dtype == float
     assert_allclose(x, x_ref, rtol=0, atol=rtol * np.abs(x_ref).max())
@@ -93,7 +93,7 @@ def test_rigid_body_drift_is_linear_in_time():
     # Two free masses: the centre of mass moves at constant speed (the t x_0 term of the chain).
     sys = DEFECTIVE["two free masses"]
     t = np.linspace(0.0, 10.0, 11)
-    x = pinlin.free_response(sys, [0.0, 0.0], [1.0, 1.0], t)
+    x = pinlin.free_response(sys, t, [0.0, 0.0], [1.0, 1.0])
     assert_allclose(x, np.column_stack([t, t]), rtol=0, atol=1e-12)
 
 
@@ -105,7 +105,7 @@ def test_single_oscillator_closed_form():
     wd = w * np.sqrt(1 - z**2)
     x0, v0 = 0.3, -1.1
     t = np.linspace(0.0, 8.0, 201)
-    x = pinlin.free_response(pinlin.LinearizedSystem.from_matrices([[m]], [[c]], [[k]]), [x0], [v0], t)
+    x = pinlin.free_response(pinlin.LinearizedSystem.from_matrices([[m]], [[c]], [[k]]), t, [x0], [v0])
     exact = np.exp(-z * w * t) * (x0 * np.cos(wd * t) + (v0 + z * w * x0) / wd * np.sin(wd * t))
     assert_allclose(x[:, 0], exact, rtol=0, atol=1e-14)
 
@@ -114,19 +114,19 @@ def test_initial_time_shift_and_backward_times():
     sys = SIMPLE["turntable (G)"]
     x0, v0 = np.array([0.1, 0.0]), np.array([0.0, 0.3])
     t = np.linspace(-1.0, 2.0, 31)
-    shifted = pinlin.free_response(sys, x0, v0, t, t0=-1.0)
-    plain = pinlin.free_response(sys, x0, v0, t + 1.0)
+    shifted = pinlin.free_response(sys, t, x0, v0, t0=-1.0)
+    plain = pinlin.free_response(sys, t + 1.0, x0, v0)
     assert_allclose(shifted, plain, rtol=0, atol=1e-14)
     x_ref, _ = expm_free_response(sys, x0, v0, t)  # negative times: expm(A t) backward
-    assert_allclose(pinlin.free_response(sys, x0, v0, t), x_ref, rtol=0, atol=1e-12)
+    assert_allclose(pinlin.free_response(sys, t, x0, v0), x_ref, rtol=0, atol=1e-12)
 
 
 def test_reusing_modes_and_array_behaviour():
     sys = SIMPLE["double pendulum, damped + N"]
     modes = pinlin.modal_analysis(sys)
     t = np.linspace(0.0, 1.0, 11)
-    a = pinlin.free_response(sys, [0.1, 0.2], None, t)
-    b = pinlin.free_response(sys, [0.1, 0.2], None, t, modes=modes)
+    a = pinlin.free_response(sys, t, [0.1, 0.2])
+    b = pinlin.free_response(sys, t, [0.1, 0.2], modes=modes)
     assert b.modes is modes
     assert_allclose(b, a, rtol=0, atol=0)
     assert repr(a).startswith("FreeResponse(shape=(11, 2)")
@@ -139,22 +139,22 @@ def test_reusing_modes_and_array_behaviour():
         a[0, 0] = 1.0
     other = pinlin.LinearizedSystem.from_matrices(sys.M, sys.C, 2 * sys.K)
     with pytest.raises(pinlin.ParameterError, match="another system"):
-        pinlin.free_response(other, [0.1, 0.2], None, t, modes=modes)
+        pinlin.free_response(other, t, [0.1, 0.2], modes=modes)
 
 
 @pytest.mark.parametrize(
     ("args", "kwargs", "match"),
     [
-        (([1.0], None, [0.0, 1.0]), {}, r"x0: expected shape \(2,\)"),
-        (([1.0, np.nan], None, [0.0, 1.0]), {}, "x0: must be finite"),
-        (([1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0]), {}, r"v0: expected shape \(2,\)"),
-        (([1.0, 0.0], None, [0.0, 1.0, 0.5]), {}, "strictly increasing"),
-        (([1.0, 0.0], None, [[0.0, 1.0]]), {}, "1-D"),
-        (([1.0, 0.0], None, [0.0, np.inf]), {}, "finite"),
-        (([1.0, 0.0], None, None), {}, "required"),
-        (([1.0, 0.0], None, [0.0, 1.0]), {"t0": np.nan}, "t0"),
-        (([1.0, 0.0], None, [0.0, 1.0]), {"tol": -1.0}, "tol"),
-        ((["a", 0.0], None, [0.0, 1.0]), {}, "x0"),
+        (([0.0, 1.0], [1.0], None), {}, r"x0: expected shape \(2,\)"),
+        (([0.0, 1.0], [1.0, np.nan], None), {}, "x0: must be finite"),
+        (([0.0, 1.0], [1.0, 0.0], [0.0, 0.0, 0.0]), {}, r"v0: expected shape \(2,\)"),
+        (([0.0, 1.0, 0.5], [1.0, 0.0], None), {}, "strictly increasing"),
+        (([[0.0, 1.0]], [1.0, 0.0], None), {}, "1-D"),
+        (([0.0, np.inf], [1.0, 0.0], None), {}, "finite"),
+        ((None, [1.0, 0.0], None), {}, "required"),
+        (([0.0, 1.0], [1.0, 0.0], None), {"t0": np.nan}, "t0"),
+        (([0.0, 1.0], [1.0, 0.0], None), {"rtol": -1.0}, "rtol"),
+        (([0.0, 1.0], ["a", 0.0], None), {}, "x0"),
     ],
 )
 def test_bad_inputs_raise(args, kwargs, match):
@@ -165,7 +165,7 @@ def test_bad_inputs_raise(args, kwargs, match):
 
 def test_not_a_system_raises():
     with pytest.raises(pinlin.ParameterError, match="LinearizedSystem"):
-        pinlin.free_response(np.eye(2), [1.0, 0.0], None, [0.0, 1.0])
+        pinlin.free_response(np.eye(2), [0.0, 1.0], [1.0, 0.0])
 
 
 def test_long_response_across_evaluation_blocks_matches_exact_discretization():
@@ -175,8 +175,8 @@ def test_long_response_across_evaluation_blocks_matches_exact_discretization():
 
     sys = DEFECTIVE["Jordan stiffness"]
     t = np.linspace(0.0, 40.0, TIME_CHUNK + 905)
-    x = pinlin.free_response(sys, [1.0, 0.0], [0.0, 1.0], t)
-    ref = pinlin.forced_response(sys, None, t, [1.0, 0.0], [0.0, 1.0])
+    x = pinlin.free_response(sys, t, [1.0, 0.0], [0.0, 1.0])
+    ref = pinlin.forced_response(sys, t, None, [1.0, 0.0], [0.0, 1.0])
     assert_allclose(x, ref.x, rtol=0, atol=1e-12 * np.abs(ref.x).max())
     assert_allclose(x.xdot, ref.xdot, rtol=0, atol=1e-12 * np.abs(ref.xdot).max())
 
@@ -184,5 +184,5 @@ def test_long_response_across_evaluation_blocks_matches_exact_discretization():
 def test_figures_above_tol_warn():
     sys = SIMPLE["turntable (G)"]
     with pytest.warns(pinlin.AccuracyWarning, match="defect"):
-        x = pinlin.free_response(sys, [0.1, 0.0], None, [0.0, 1.0], tol=1e-300)
+        x = pinlin.free_response(sys, [0.0, 1.0], [0.1, 0.0], rtol=1e-300)
     assert x.defect > 1e-300

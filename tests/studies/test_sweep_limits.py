@@ -1,4 +1,4 @@
-"""pinlin.sweep's last crashes (issue 26 part 6): names, executors, huge grids, futures that never finish."""
+"""pinlin.sweep's last crashes: names, executors, huge grids, futures that never finish."""
 
 from concurrent.futures import Executor, Future, ThreadPoolExecutor
 

@@ -78,3 +78,14 @@ def test_one_per_conjugate_pair():
     W = np.array([0.0, 1.0, 3.0])
     lam = np.column_stack([1j * (2 - W), -1j * (2 - W), -np.ones(3), 1j * np.ones(3) + 5, -2j * np.ones(3) - 7])
     assert one_per_conjugate_pair(lam) == [0, 2, 3]
+
+
+def test_one_per_conjugate_pair_rtol_is_conjugate_tol_with_a_warning():
+    lam = np.array([[2.0, 2.0 + 2e-6]])  # two real roots 1e-6 apart (relative): a "pair" only above that
+    assert one_per_conjugate_pair(lam) == [0, 1]
+    assert one_per_conjugate_pair(lam, conjugate_tol=1e-5) == [0]
+    with pytest.warns(DeprecationWarning, match=r"one_per_conjugate_pair\(rtol=...\) is deprecated .* conjugate_tol"):
+        assert one_per_conjugate_pair(lam, rtol=1e-5) == [0]
+    with pytest.warns(DeprecationWarning, match="CONJUGATE_TOL"):
+        from pinlin.studies.tracking import CONJUGATE_RTOL
+    assert CONJUGATE_RTOL == 1e-8

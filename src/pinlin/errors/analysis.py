@@ -7,7 +7,7 @@ from collections.abc import Sequence
 
 from .base import ComputationError, InputError
 
-__all__ = ["NotAnEquilibriumError", "SingularMassError", "TimePeriodicError", "ConvergenceError", "IntegrationError", "IntegrationBudgetError", "NotAnEigenvalueError", "NotSimpleError", "EigenvalueNotIsolatedError", "BracketError", "BoundaryNotIsolatedError", "SystemFunctionError"]
+__all__ = ["NotAnEquilibriumError", "SingularMassError", "TimePeriodicError", "ConvergenceError", "IntegrationError", "IntegrationBudgetError", "NotAnEigenvalueError", "NotSimpleError", "EigenvalueNotIsolatedError", "BracketError", "BoundaryNotIsolatedError", "SystemFunctionError", "SweepTimeoutError"]
 
 
 class NotAnEquilibriumError(InputError):
@@ -19,6 +19,14 @@ class NotAnEquilibriumError(InputError):
         Norm of the generalized-force residual [N or N m].
     relative_residual : float
         The residual divided by the size of the forces that should balance.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.NotAnEquilibriumError("q is no equilibrium", residual=9.81, relative_residual=0.5)
+    ... except pinlin.InputError as exc:
+    ...     print(exc.relative_residual)
+    0.5
     """
 
     def __init__(self, message: str, residual: float, relative_residual: float):
@@ -34,6 +42,14 @@ class SingularMassError(InputError):
     ----------
     joints : tuple of str
         Joints whose motion carries no inertia.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.SingularMassError("M is singular", joints=["joint2"])
+    ... except pinlin.InputError as exc:
+    ...     print(exc.joints)
+    ('joint2',)
     """
 
     def __init__(self, message: str, joints: Sequence[str]):
@@ -53,6 +69,14 @@ class TimePeriodicError(InputError):
         The prescribed joint whose angle changes the equations.
     variation : float
         Largest relative change of M, C, K or the residual over the tested angles.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.TimePeriodicError("M depends on the table angle", joint="table", variation=0.25)
+    ... except pinlin.InputError as exc:
+    ...     print((exc.joint, exc.variation))
+    ('table', 0.25)
     """
 
     def __init__(self, message: str, joint: str, variation: float):
@@ -68,6 +92,14 @@ class ConvergenceError(ComputationError):
     ----------
     history : tuple of float
         The residual norm at each iteration.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.ConvergenceError("Newton did not converge", [1.0, 0.5, 0.4])
+    ... except pinlin.ComputationError as exc:
+    ...     print(exc.history)
+    (1.0, 0.5, 0.4)
     """
 
     def __init__(self, message: str, history: Sequence[float]):
@@ -82,6 +114,14 @@ class IntegrationError(ComputationError):
     ----------
     t_reached : float
         The time [s] up to which the solution is valid.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.IntegrationError("the step size underflowed", t_reached=1.5)
+    ... except pinlin.ComputationError as exc:
+    ...     print(exc.t_reached)
+    1.5
     """
 
     def __init__(self, message: str, t_reached: float):
@@ -94,6 +134,15 @@ class IntegrationBudgetError(IntegrationError):
 
     Attributes: ``t_reached`` [s] (the solution is valid up to it), ``t_end`` [s] (asked for),
     ``steps`` (taken), ``elapsed`` [s] (spent), ``budget`` (``"max_steps"`` or ``"max_time"``).
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.IntegrationBudgetError("out of steps",
+    ...         t_reached=2.0, t_end=10.0, steps=100, elapsed=0.1, budget="max_steps")
+    ... except pinlin.IntegrationError as exc:
+    ...     print((exc.t_reached, exc.budget))
+    (2.0, 'max_steps')
     """
 
     def __init__(self, message: str, t_reached: float, t_end: float, steps: int, elapsed: float, budget: str):
@@ -112,6 +161,14 @@ class NotAnEigenvalueError(InputError):
         How far it is from being a root, in the measure the message names
         (relative smallest singular value of L, or relative distance to the
         nearest eigenvalue).
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.NotAnEigenvalueError("2j is no eigenvalue", lam=2j, distance=0.3)
+    ... except pinlin.InputError as exc:
+    ...     print(exc.distance)
+    0.3
     """
 
     def __init__(self, message: str, lam: complex, distance: float):
@@ -129,6 +186,14 @@ class NotSimpleError(InputError):
         The offending eigenvalue [1/s], when there is one.
     measure : float
         The quantity that failed the test (named in the message).
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.NotSimpleError("lam = 0 is defective", lam=0.0, measure=1e-17)
+    ... except pinlin.InputError as exc:
+    ...     print(exc.lam)
+    0j
     """
 
     def __init__(self, message: str, lam: complex | None = None, measure: float = float("nan")):
@@ -148,6 +213,14 @@ class EigenvalueNotIsolatedError(ComputationError):
         Radius [1/s] of the cluster taken as the eigenvalue itself.
     outer : float
         Radius [1/s] at which the next eigenvalue was found.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.EigenvalueNotIsolatedError("no separating contour", lam=1j, inner=0.1, outer=0.1)
+    ... except pinlin.ComputationError as exc:
+    ...     print((exc.inner, exc.outer))
+    (0.1, 0.1)
     """
 
     def __init__(self, message: str, lam: complex, inner: float, outer: float):
@@ -159,7 +232,16 @@ class EigenvalueNotIsolatedError(ComputationError):
 
 class BracketError(InputError):
     """A bracket cannot hold a stability boundary (theory: boundaries): its ends have the same verdict class, one is
-    "undecided", or they are not two distinct finite numbers; ``bracket``, ``verdicts`` (the kinds at its ends)."""
+    "undecided", or they are not two distinct finite numbers; ``bracket``, ``verdicts`` (the kinds at its ends).
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.BracketError("both ends stable", bracket=(0.0, 1.0), verdicts=("stable", "stable"))
+    ... except pinlin.InputError as exc:
+    ...     print(exc.verdicts)
+    ('stable', 'stable')
+    """
 
     def __init__(self, message: str, bracket, verdicts=()):
         super().__init__(message)
@@ -168,7 +250,16 @@ class BracketError(InputError):
 
 class BoundaryNotIsolatedError(InputError):
     """The verdict changes, but not at an isolated parameter value (theory: boundaries): it stays "undecided" over an
-    interval far wider than rounding; ``interval``: where."""
+    interval far wider than rounding; ``interval``: where.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.BoundaryNotIsolatedError("undecided on an interval", interval=(0.4, 0.6))
+    ... except pinlin.InputError as exc:
+    ...     print(exc.interval)
+    (0.4, 0.6)
+    """
 
     def __init__(self, message: str, interval):
         super().__init__(message)
@@ -177,8 +268,52 @@ class BoundaryNotIsolatedError(InputError):
 
 class SystemFunctionError(InputError):
     """A user's ``func(p) -> LinearizedSystem`` raised (chained as ``__cause__``), returned something else, or
-    systems of different sizes (theory: boundaries); ``p``: the parameter value."""
+    systems of different sizes (theory: boundaries); ``p``: the parameter value.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.SystemFunctionError("func(p) returned None", p=0.5)
+    ... except pinlin.InputError as exc:
+    ...     print(exc.p)
+    0.5
+    """
 
     def __init__(self, message: str, p: float):
         super().__init__(message)
         self.p = float(p)
+
+
+class SweepTimeoutError(ComputationError, TimeoutError):
+    """Points of a sweep did not finish within its ``timeout`` (cancelled, except those already running: an
+    executor cannot stop a call once started).
+
+    Attributes
+    ----------
+    timeout : float
+        The seconds waited.
+    pending : tuple of int
+        Indices (grid order) of the points not finished.
+    points : tuple of dict
+        Those points.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.SweepTimeoutError(5.0, pending=[2], points=[{"k": 3.0}])
+    ... except TimeoutError as exc:
+    ...     print(exc)
+    timeout: 1 points not finished after 5 s (cancelled unless already running): #2 {'k': 3.0}
+    """
+
+    #: Points named in the message; the rest are counted.
+    SHOWN = 5
+
+    def __init__(self, timeout: float, pending, points):
+        self.timeout = float(timeout)
+        self.pending = tuple(int(i) for i in pending)
+        self.points = tuple(dict(p) for p in points)
+        shown = ", ".join(f"#{i} {p}" for i, p in zip(self.pending[: self.SHOWN], self.points))
+        more = f" and {len(self.pending) - self.SHOWN} more" if len(self.pending) > self.SHOWN else ""
+        super().__init__(f"timeout: {len(self.pending)} points not finished after {self.timeout:g} s "
+                         f"(cancelled unless already running): {shown}{more}")

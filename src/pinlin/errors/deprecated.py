@@ -1,10 +1,12 @@
-"""Every deprecation of pinlin in one place: renamed keywords and renamed names.
+"""Every deprecation of pinlin in one place: renamed keywords, reordered arguments and renamed names.
 
 A deprecated spelling keeps working for one release, warns with a :class:`DeprecationWarning` that names
 the new spelling, and is then removed (the CHANGELOG lists each with its release).  Two tools:
 
 - :func:`renamed_keywords`, a decorator: ``@renamed_keywords(tol="rtol")`` maps a call's old keyword to the
   new one and warns; passing both is an error;
+- :func:`reordered_arguments`, a decorator: a call in a function's previous positional order (recognized
+  by a test of the arguments) is mapped to the new order and warns;
 - :func:`deprecated_names`, a module ``__getattr__``: an old module-level name (an exception class merged into
   its parent, a moved function) resolves to the new object and warns.
 
@@ -25,12 +27,12 @@ DeprecationWarning solve(tol=...) is deprecated since pinlin 0.4 and will be rem
 from __future__ import annotations
 
 import functools
-import warnings
+import inspect
 from collections.abc import Callable
 
-from .base import ParameterError
+from .base import ParameterError, warn_user
 
-__all__ = ["REMOVED_IN", "renamed_keywords", "deprecated_names", "warn_deprecated"]
+__all__ = ["REMOVED_IN", "renamed_keywords", "reordered_arguments", "deprecated_names", "warn_deprecated"]
 
 #: The release that removes what this module keeps alive.
 REMOVED_IN = "0.5"
@@ -38,8 +40,8 @@ REMOVED_IN = "0.5"
 DEPRECATED_IN = "0.4"
 
 
-def warn_deprecated(old: str, new: str, *, stacklevel: int = 3) -> None:
-    """Warn that ``old`` is deprecated in favour of ``new``.
+def warn_deprecated(old: str, new: str) -> None:
+    """Warn, at the caller's line (the first frame outside pinlin), that ``old`` is deprecated for ``new``.
 
     Examples
     --------
@@ -50,11 +52,8 @@ def warn_deprecated(old: str, new: str, *, stacklevel: int = 3) -> None:
     >>> "use pinlin.LoopClosureError" in str(caught[0].message)
     True
     """
-    warnings.warn(
-        f"{old} is deprecated since pinlin {DEPRECATED_IN} and will be removed in {REMOVED_IN}: use {new}",
-        DeprecationWarning,
-        stacklevel=stacklevel,
-    )
+    warn_user(f"{old} is deprecated since pinlin {DEPRECATED_IN} and will be removed in {REMOVED_IN}: use {new}",
+              DeprecationWarning)
 
 
 def renamed_keywords(**renames: str) -> Callable:
@@ -85,6 +84,50 @@ def renamed_keywords(**renames: str) -> Callable:
             return func(*args, **kwargs)
 
         wrapper.__deprecated_keywords__ = dict(renames)
+        return wrapper
+
+    return decorate
+
+
+def reordered_arguments(old: tuple[str, ...], is_old: Callable[[tuple, dict], bool]) -> Callable:
+    """Decorator: accept a call in the previous positional order ``old`` for one release, with a warning.
+
+    ``old`` names the parameters in their previous order; ``is_old(args, kwargs)`` tells a call in that
+    order from one in the new order (from the kinds and shapes of the arguments).  Such a call is passed
+    on by keyword; any other call is passed on unchanged.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> @reordered_arguments(("f", "t"), lambda args, kwargs: bool(args) and callable(args[0]))
+    ... def grid(t, f=None):
+    ...     return [f(x) for x in t]
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     grid(abs, [-1, 2])
+    [1, 2]
+    >>> print(caught[0].message)
+    grid(f, t) is deprecated since pinlin 0.4 and will be removed in 0.5: use grid(t, f)
+    >>> grid([-1, 2], abs)
+    [1, 2]
+    """
+
+    def decorate(func: Callable) -> Callable:
+        new = [name for name in inspect.signature(func).parameters if name in old]
+
+        @functools.wraps(func)
+        def wrapper(*args, **kwargs):
+            if is_old(args, kwargs):
+                warn_deprecated(f"{func.__name__}({', '.join(old)})", f"{func.__name__}({', '.join(new)})")
+                if len(args) > len(old):
+                    raise TypeError(f"{func.__name__}() takes {len(old)} positional arguments in its old order")
+                for name, value in zip(old, args):
+                    if name in kwargs:
+                        raise TypeError(f"{func.__name__}() got multiple values for argument {name!r}")
+                    kwargs[name] = value
+                args = ()
+            return func(*args, **kwargs)
+
         return wrapper
 
     return decorate

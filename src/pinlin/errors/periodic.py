@@ -20,6 +20,14 @@ class MultibladeNotExactError(InputError):
         Its largest relative change over the checked times.
     tolerance : float
         The relative change allowed.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.MultibladeNotExactError("two blades", matrix="M", variation=0.2, tolerance=1e-10)
+    ... except pinlin.InputError as exc:
+    ...     print(exc.matrix)
+    M
     """
 
     def __init__(self, message: str, matrix: str, variation: float, tolerance: float):
@@ -39,6 +47,14 @@ class SamplingError(ComputationError):
         The measured relative interpolation error after each doubling of the samples.
     tolerance : float
         The relative error asked for.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.SamplingError("not resolved", samples=64, history=[1e-2, 1e-3], tolerance=1e-12)
+    ... except pinlin.ComputationError as exc:
+    ...     print(exc.samples)
+    64
     """
 
     def __init__(self, message: str, samples: int, history, tolerance: float):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from .base import ComputationError, InputError
 
-__all__ = ["QuasiPeriodicError", "NoPeriodError", "PeriodicOrbitError", "OrbitLimitError"]
+__all__ = ["QuasiPeriodicError", "PeriodicOrbitError", "OrbitLimitError"]
 
 
 class QuasiPeriodicError(InputError):
@@ -14,16 +14,19 @@ class QuasiPeriodicError(InputError):
     ----------
     periods : dict of str to float
         Joint name -> period [s] of each periodic prescribed motion.
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.QuasiPeriodicError("no common period", periods={"a": 1.0, "b": 2 ** 0.5})
+    ... except pinlin.InputError as exc:
+    ...     print(sorted(exc.periods))
+    ['a', 'b']
     """
 
     def __init__(self, message: str, periods: dict):
         super().__init__(message)
         self.periods = dict(periods)
-
-
-class NoPeriodError(InputError):
-    """No period to look for: an autonomous scene without a period guess, or a period that does not
-    match the scene's forcing."""
 
 
 class PeriodicOrbitError(ComputationError):
@@ -35,6 +38,14 @@ class PeriodicOrbitError(ComputationError):
         The relative residual ||x(T) - x(0)|| of each Newton step (the start first).
     period : float
         The last period tried [s].
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.PeriodicOrbitError("shooting diverged", history=[1e-2, 1e3], period=2.0)
+    ... except pinlin.ComputationError as exc:
+    ...     print(exc.period)
+    2.0
     """
 
     def __init__(self, message: str, history=(), period: float = float("nan")):
@@ -53,6 +64,15 @@ class OrbitLimitError(PeriodicOrbitError):
         Time [s] at which the limit is crossed.
     value, lower, upper : float
         The joint position and its limits [rad or m].
+
+    Examples
+    --------
+    >>> try:
+    ...     raise pinlin.OrbitLimitError("joint1 leaves its limits",
+    ...         "joint1", time=0.7, value=3.2, lower=-3.0, upper=3.0)
+    ... except pinlin.PeriodicOrbitError as exc:
+    ...     print((exc.joint, exc.upper))
+    ('joint1', 3.0)
     """
 
     def __init__(self, message: str, joint: str, time: float, value: float, lower: float, upper: float,

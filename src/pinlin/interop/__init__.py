@@ -1,4 +1,4 @@
-"""pinlin's results in other tools' forms: state-space models for python-control and scipy (issue 17).
+"""pinlin's results in other tools' forms: state-space models for python-control and scipy.
 
 One concept per module:
 

@@ -1,4 +1,4 @@
-"""The inputs and outputs of a state-space model, written as short strings (issue 17; theory: conventions).
+"""The inputs and outputs of a state-space model, written as short strings (theory: conventions).
 
 Each input or output is one scalar signal.  It is written as a string
 ``"kind:target[:axis]"`` (or, for coordinates, the coordinate's name or index
@@ -93,6 +93,13 @@ class Signal:
         axis index (frame outputs: 0-2 for x-z).
     wrench : WrenchElement or None
         The wrench an input of kind follower or dead applies for u = 1.
+
+    Examples
+    --------
+    >>> from pinlin.interop import parse_outputs
+    >>> signal = parse_outputs("rate:joint2", ("joint1", "joint2"))[0]
+    >>> signal.name, signal.kind, signal.target, signal.index
+    ('rate:joint2', 'rate', 'joint2', 1)
     """
 
     name: str
@@ -170,6 +177,13 @@ def parse_inputs(spec, dof_names: tuple[str, ...], label: str = "inputs") -> lis
     ------
     ParameterError
         An unknown coordinate, kind or axis, an empty list, or a name used twice.
+
+    Examples
+    --------
+    >>> from pinlin.interop import parse_inputs
+    >>> signals = parse_inputs(["joint1", "dead:tip:fz"], ("joint1", "joint2"))
+    >>> [s.name for s in signals], signals[1].wrench.force
+    (['force:joint1', 'dead:tip:fz'], array([0., 0., 1.]))
     """
     if spec is None:
         return coordinate_inputs(dof_names)
@@ -205,6 +219,12 @@ def parse_outputs(spec, dof_names: tuple[str, ...], label: str = "outputs") -> l
     ------
     ParameterError
         An unknown coordinate, kind or axis, an empty list, or a name used twice.
+
+    Examples
+    --------
+    >>> from pinlin.interop import parse_outputs
+    >>> [s.name for s in parse_outputs(["joint2", "position:tip"], ("joint1", "joint2"))]
+    ['joint2', 'position:tip:x', 'position:tip:y', 'position:tip:z']
     """
     if spec is None:
         return coordinate_outputs(dof_names)
@@ -230,12 +250,26 @@ def parse_outputs(spec, dof_names: tuple[str, ...], label: str = "outputs") -> l
 
 
 def coordinate_inputs(dof_names: tuple[str, ...]) -> list[Signal]:
-    """A generalized force on every coordinate, in ``dof_names`` order."""
+    """A generalized force on every coordinate, in ``dof_names`` order.
+
+    Examples
+    --------
+    >>> from pinlin.interop.signal_names import coordinate_inputs
+    >>> [s.name for s in coordinate_inputs(("joint1", "joint2"))]
+    ['force:joint1', 'force:joint2']
+    """
     return [Signal(f"force:{name}", "force", name, k) for k, name in enumerate(dof_names)]
 
 
 def coordinate_outputs(dof_names: tuple[str, ...]) -> list[Signal]:
-    """Every coordinate, in ``dof_names`` order."""
+    """Every coordinate, in ``dof_names`` order.
+
+    Examples
+    --------
+    >>> from pinlin.interop.signal_names import coordinate_outputs
+    >>> [(s.name, s.kind) for s in coordinate_outputs(("joint1", "joint2"))]
+    [('joint1', 'coordinate'), ('joint2', 'coordinate')]
+    """
     return [Signal(name, "coordinate", name, k) for k, name in enumerate(dof_names)]
 
 

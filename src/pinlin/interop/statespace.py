@@ -1,4 +1,4 @@
-"""State-space form of the linearized equations, for python-control and scipy (issue 17; theory: equations, conventions).
+"""State-space form of the linearized equations, for python-control and scipy (theory: equations, conventions).
 
 With the state s = [x; x'] (coordinates, then their rates), the second-order
 equation M x'' + C x' + K x = F u (C = D + G, K = S + N) reads
@@ -69,6 +69,18 @@ class StateSpaceModel(Result):
     elapsed : float
         Seconds.
     notes : tuple of str
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.2]], [[4.0]])  # x'' + 0.2 x' + 4 x = u
+    >>> model = pinlin.state_space(sys)
+    >>> model.A
+    array([[ 0. ,  1. ],
+           [-4. , -0.2]])
+    >>> model.state_names, model.input_names, model.n_states
+    (('x1', 'rate:x1'), ('force:x1',), 2)
+    >>> type(model.to_scipy()).__name__
+    'StateSpaceContinuous'
     """
 
     A: np.ndarray
@@ -221,6 +233,17 @@ def state_space(
     See Also
     --------
     frequency_response_data : a :class:`~pinlin.FrequencyResponse` as python-control data.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> model = pinlin.state_space(sys, inputs="force:joint1", outputs=["joint2", "position:tip:x"], scene=scene)
+    >>> model.A.shape, model.B.shape, model.C.shape
+    ((4, 4), (4, 1), (2, 4))
+    >>> model.output_names, bool(model.error < 1e-14)
+    (('joint2', 'position:tip:x'), True)
     """
     t0 = time.perf_counter()
     sys = check_system(sys)

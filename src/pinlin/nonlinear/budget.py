@@ -1,4 +1,5 @@
-"""The budget of one integration: solver steps and wall time, checked at every step (issue 13, item 7).
+"""The budget of one integration: solver steps and wall time, checked at every step, so that a
+run that would take hours stops early with what it reached.
 
 ``solve_ivp`` runs until it reaches the last output time, however long that
 takes: ``simulate(scene, q0, v0, [0, 1e9])`` on a double pendulum would need
@@ -52,6 +53,17 @@ class Budget:
         Most wall time [s]; None: no limit.
     what : str
         Which run this is, for the message (``"simulate"``, ``"the comparison run"``).
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.budget import Budget
+    >>> budget = Budget(0.0, 1.0, max_steps=2, max_time=None, what="demo")
+    >>> budget.step(0.0); budget.step(0.1)
+    >>> try:
+    ...     budget.step(0.2)
+    ... except pinlin.IntegrationBudgetError as exc:
+    ...     print(exc.budget, exc.steps, exc.t_reached)
+    max_steps 2 0.2
     """
 
     def __init__(self, t_start: float, t_end: float, max_steps: int | None, max_time: float | None, what: str):
@@ -113,6 +125,12 @@ def budgeted_solver(name: str, budget: Budget) -> type:
 
     ``solve_ivp`` accepts an ``OdeSolver`` subclass as its ``method``; this one
     only adds the check in front of the solver's own step.
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.budget import Budget, budgeted_solver
+    >>> budgeted_solver("RK45", Budget(0.0, 1.0, 100, None, "demo")).__name__
+    'BudgetedRK45'
     """
     base = SOLVERS[name]
 

@@ -38,6 +38,13 @@ def chart_groups(model: pin.Model) -> list[np.ndarray]:
 
     Joints of other curved groups contribute all their tangent indices.  Flat
     groups (R^n, SO(2)) have a global chart and contribute nothing.
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.charts import chart_groups
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> chart_groups(scene.model)  # two revolute joints: one global chart
+    []
     """
     groups: list[np.ndarray] = []
     for jid in range(1, model.njoints):
@@ -65,6 +72,14 @@ class Chart:
         The base point q_b.
     groups : list of ndarray
         :func:`chart_groups` of the model (empty: every joint is flat, the chart is global).
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.charts import Chart
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> chart = Chart(scene.model, np.zeros(2), [])
+    >>> chart.configuration(np.array([0.1, 0.2])), chart.size(np.array([0.1, 0.2]))
+    (array([0.1, 0.2]), 0.0)
     """
 
     def __init__(self, model: pin.Model, base: np.ndarray, groups: list[np.ndarray]):

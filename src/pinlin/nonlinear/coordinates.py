@@ -75,6 +75,13 @@ def linear_coordinates(scene: Scene, q_op, q, v=None) -> tuple[np.ndarray, np.nd
     ------
     ConfigurationError
         Wrong sizes or non-finite values.
+
+    Examples
+    --------
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> x, xdot = pinlin.linear_coordinates(scene, [0.0, 0.0], [0.1, -0.2], [1.0, 0.0])
+    >>> x, xdot
+    (array([ 0.1, -0.2]), array([1., 0.]))
     """
     q_op = scene.check_configuration(q_op, "q_op")
     model = scene.model

@@ -35,6 +35,13 @@ class FreeDynamics:
     Everything is computed in the calling thread's Pinocchio workspace
     (:func:`pinlin.model.evaluation.workspace`), fetched once: an
     instance belongs to the thread that created it.
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.dynamics import FreeDynamics
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> np.round(FreeDynamics(scene).acceleration(np.array([0.1, 0.0]), np.zeros(2)), 6)
+    array([-1.859555,  2.826524])
     """
 
     def __init__(self, scene: Scene):
@@ -103,6 +110,13 @@ def initial_velocity(scene: Scene, v0) -> np.ndarray:
     ------
     ConfigurationError
         Not numbers, not finite, of neither size, or contradicting a prescribed velocity.
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.dynamics import initial_velocity
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> initial_velocity(scene, None), initial_velocity(scene, [1.0, 0.0])
+    (array([0., 0.]), array([1., 0.]))
     """
     nv, n = scene.model.nv, scene.n
     v = np.array(scene.v0, dtype=float)

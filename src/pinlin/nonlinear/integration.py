@@ -26,7 +26,15 @@ __all__ = ["Settings", "Trajectory", "integrate"]
 
 @dataclass(frozen=True)
 class Settings:
-    """The integrator and its options (checked by :func:`pinlin.simulate`)."""
+    """The integrator and its options (checked by :func:`pinlin.simulate`).
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.integration import Settings
+    >>> Settings("DOP853", rtol=1e-10, atol=1e-12, max_step=np.inf, chart_radius=1.0, max_steps=None,
+    ...          max_time=None).method
+    'DOP853'
+    """
 
     method: str
     rtol: float
@@ -39,7 +47,14 @@ class Settings:
 
 @dataclass
 class Trajectory:
-    """What one integration produced: configurations, velocities and the solver's statistics."""
+    """What one integration produced: configurations, velocities and the solver's statistics.
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.integration import Trajectory
+    >>> Trajectory(q=np.zeros((1, 2)), v=np.zeros((1, 2))).message
+    'a single time point: nothing to integrate'
+    """
 
     q: np.ndarray
     v: np.ndarray
@@ -143,6 +158,15 @@ def integrate(
         clearly exceed them (see :class:`~pinlin.nonlinear.budget.Budget`).
     IntegrationError
         The solver failed or the state became non-finite (``t_reached`` says where).
+
+    Examples
+    --------
+    >>> from pinlin.nonlinear.integration import Settings, integrate
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> settings = Settings("DOP853", 1e-10, 1e-12, np.inf, 1.0, max_steps=10_000, max_time=None)
+    >>> run = integrate(scene, np.array([0.1, 0.0]), np.zeros(2), np.linspace(0.0, 1.0, 5), settings)
+    >>> np.round(run.q[:, 0], 6), run.charts
+    (array([ 0.1     ,  0.052513, -0.016845, -0.069088, -0.094171]), 1)
     """
     budget = Budget(times[0], times[-1], settings.max_steps, settings.max_time, what)
     solver = budgeted_solver(settings.method, budget)

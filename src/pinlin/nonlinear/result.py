@@ -70,6 +70,18 @@ class Simulation(ResultArray):
         Wall time [s] of the whole call, comparison run included.
     message : str
         The solver's last status message.
+
+    Examples
+    --------
+    A small swing of the double pendulum against its linearization at rest:
+
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> t = np.linspace(0.0, 1.0, 5)
+    >>> sim = pinlin.simulate(scene, [1e-3, 0.0], t=t)
+    >>> x, xdot = sim.linear_coordinates(np.zeros(2))
+    >>> linear = pinlin.free_response(pinlin.linearize(scene, np.zeros(2)), t, [1e-3, 0.0])
+    >>> sim.v.shape, bool(np.max(np.abs(x - linear)) < 1e-8)
+    ((5, 2), True)
     """
 
     _fields = (

@@ -3,7 +3,7 @@
 The linearized equations (theory: equations) describe small deviations from an
 equilibrium or steady motion; :func:`simulate` integrates the full nonlinear
 equations of the same scene so that the linearization can be validated against
-them (issue 5, parts 4 and 5).  The right-hand side is
+them.  The right-hand side is
 :mod:`pinlin.nonlinear.dynamics`, the charts :mod:`pinlin.nonlinear.charts`, the
 solver loop :mod:`pinlin.nonlinear.integration`.
 """
@@ -35,6 +35,8 @@ __all__ = [
     "ERROR_TOL_FACTOR",
     "MIN_RTOL",
     "DEFAULT_MAX_STEPS",
+    "DEFAULT_RTOL",
+    "DEFAULT_ATOL",
 ]
 
 #: ``solve_ivp`` methods for non-stiff scenes (explicit Runge-Kutta).
@@ -49,6 +51,10 @@ IMPLICIT_METHODS = ("Radau", "BDF", "LSODA")
 ERROR_TOL_FACTOR = 10.0
 #: Smallest rtol ``solve_ivp`` honours (it raises smaller ones to this, with a warning).
 MIN_RTOL = 100 * np.finfo(float).eps
+#: Default relative and absolute accuracy of the integration (``solve_ivp``'s ``rtol`` and ``atol``; atol
+#: in [rad, m] and [rad/s, m/s]): a reference for linearizations that agree to ~1e-8.
+DEFAULT_RTOL = 1e-10
+DEFAULT_ATOL = 1e-12
 #: Default ``max_steps`` of each integration run: at the default tolerances DOP853 takes about 40
 #: steps per period of the paper's double pendulum (theory: double pendulum), so this covers hours of its motion
 #: in about a minute of wall time, while ``simulate(scene, q0, v0, [0, 1e9])`` stops in a second.
@@ -137,15 +143,15 @@ def simulate(
     t=None,
     *,
     method: str = "DOP853",
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
     max_step: float = np.inf,
     chart_radius: float = 1.0,
     estimate_error: bool = True,
     max_steps: int | None = DEFAULT_MAX_STEPS,
     max_time: float | None = None,
 ) -> Simulation:
-    """Integrate the nonlinear equations of motion of a scene (issue 5 part 4; theory: equations, elements).
+    """Integrate the nonlinear equations of motion of a scene (theory: equations, elements).
 
     The free coordinates obey
 
@@ -153,30 +159,14 @@ def simulate(
         M_{ff}(q)\\, a_f = Q_{e,f}(q, v) - h_f(q, v), \\qquad
         h = \\mathrm{rnea}(q, v, 0, f_{ext})
 
-    with every scene element (:mod:`pinlin.nonlinear.dynamics`): springs,
-    dampers and Rayleigh damping through their generalized forces Q_e, follower
-    and dead wrenches through Pinocchio's ``fext``, gravity in the scene's
-    model.  Prescribed joints keep their constant velocity, or follow their
-    periodic motion exactly (:class:`~pinlin.Harmonic` etc.: q_p(t), v_p(t) and
-    a_p(t) enter the dynamics; q0 and v0's entries of those joints are replaced
-    by q_p(t[0]), v_p(t[0])).  The computation
-    runs in the calling thread's Pinocchio workspace, so one scene can be
-    simulated from many threads at once.
-
-    The configuration lives on Pinocchio's manifold (nq != nv for continuous,
-    spherical and free-flyer joints).  The state integrated is (dq, v_f) in a
-    local chart q = ``pin.integrate(q_b, dq)`` around a base point q_b, with
-
-    .. math::  \\dot{dq} = \\left(\\partial\\, \\mathrm{integrate}(q_b, dq) / \\partial dq\\right)^{-1} v
-
-    (the identity for revolute, prismatic and continuous joints, whose chart is
-    global).  When the rotation part of dq on a spherical, free-flyer or planar
-    joint exceeds ``chart_radius``, integration stops (a ``solve_ivp`` event),
-    the base point moves to the current configuration and integration restarts.
-
-    The requested tolerances bound local errors per step, not the error of the
-    trajectory; ``.error`` estimates the latter by a second run at tolerances
-    :data:`ERROR_TOL_FACTOR` times tighter (see :class:`Simulation`).
+    with every scene element and gravity (:mod:`pinlin.nonlinear.dynamics`).  Prescribed joints
+    keep their constant velocity or follow their periodic motion exactly (their entries of q0 and v0
+    are replaced by q_p(t[0]), v_p(t[0])).  The state (dq, v_f) lives in a local chart
+    q = ``pin.integrate(q_b, dq)`` of the configuration manifold, re-centred when a joint's rotation
+    exceeds ``chart_radius`` (:mod:`pinlin.nonlinear.charts`).  The tolerances bound local errors per
+    step; ``.error`` estimates the trajectory's error by a second run at tolerances
+    :data:`ERROR_TOL_FACTOR` times tighter (see :class:`Simulation`).  The run uses the calling
+    thread's Pinocchio workspace, so one scene can be simulated from many threads at once.
 
     Parameters
     ----------
@@ -236,6 +226,17 @@ def simulate(
     IntegrationError
         The solver failed or the state became non-finite, in the run or in the
         comparison run (``t_reached`` says where).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> sim = pinlin.simulate(pinlin.Scene(robot), [0.1, 0.0], t=np.linspace(0.0, 1.0, 5))
+    >>> sim.shape, sim.integrator
+    ((5, 2), 'DOP853')
+    >>> np.round(sim[:, 0], 6)
+    array([ 0.1     ,  0.052513, -0.016845, -0.069088, -0.094171])
+    >>> bool(sim.error < 1e-8)
+    True
     """
     t_start = time.perf_counter()
     if not isinstance(scene, Scene):

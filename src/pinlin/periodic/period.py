@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from ..errors import NoPeriodError, TimePeriodicError
+from ..errors import InputError, TimePeriodicError
 from ..linearization.assembly import assemble
 from ..linearization.options import PERIODIC_TOL
 from ..linearization.periodicity import numeric_change
@@ -30,7 +30,7 @@ def period_sources(scene: Scene, q=None, *, periodic_tol: float = PERIODIC_TOL) 
 
     Raises
     ------
-    NoPeriodError
+    InputError
         A prismatic joint sliding at constant speed changes the equations: they depend on time without
         repeating.
     """
@@ -50,7 +50,7 @@ def period_sources(scene: Scene, q=None, *, periodic_tol: float = PERIODIC_TOL) 
     for name in moving:
         j = scene.robot.joint(name)
         if j.kind.removeprefix("JointModel").startswith("P"):
-            raise NoPeriodError(
+            raise InputError(
                 f"prescribed joint {name!r} slides at {scene.prescribed[name]:g} m/s and the equations depend "
                 f"on its position: they change with time without repeating, so there is no period"
             )
@@ -74,7 +74,7 @@ def scene_period(scene: Scene, q=None, *, periodic_tol: float = PERIODIC_TOL) ->
     ------
     QuasiPeriodicError
         Incommensurate periods (names the joints and periods).
-    NoPeriodError
+    InputError
         A prismatic joint at constant speed on which the equations depend.
     """
     return common_period(period_sources(scene, q, periodic_tol=periodic_tol))

@@ -22,7 +22,7 @@ import numpy as np
 import pinocchio as pin
 from scipy.integrate import solve_ivp
 
-from ..errors import NoPeriodError, OrbitLimitError, ParameterError, PeriodicOrbitError
+from ..errors import InputError, OrbitLimitError, ParameterError, PeriodicOrbitError
 from ..linearization.assembly import assemble
 from ..model.scene import Scene
 from ..nonlinear.charts import chart_groups
@@ -174,7 +174,7 @@ def _start(scene: Scene, q0, v0, period):
     forced = scene_period(scene, q)
     if forced is None:
         if period is None:
-            raise NoPeriodError("periodic_orbit: the scene is autonomous (nothing moves periodically): give "
+            raise InputError("periodic_orbit: the scene is autonomous (nothing moves periodically): give "
                                 "period=, a guess of the free oscillation's period [s]")
         T = float(period)
         if not (np.isfinite(T) and T > 0):
@@ -183,7 +183,7 @@ def _start(scene: Scene, q0, v0, period):
     if period is not None:
         k = float(period) / forced
         if not (np.isfinite(k) and round(k) >= 1 and abs(k - round(k)) <= 1e-12 * k):
-            raise NoPeriodError(f"periodic_orbit: period = {period!r} s is not a whole multiple of the scene's "
+            raise InputError(f"periodic_orbit: period = {period!r} s is not a whole multiple of the scene's "
                                 f"forcing period {forced:.12g} s: a forced scene has no periodic motion of it")
         forced *= round(k)
     return q, v, forced, False
@@ -292,7 +292,7 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, to
 
     Raises
     ------
-    NoPeriodError
+    InputError
         An autonomous scene without ``period``; a period that is not a multiple of the forcing's.
     QuasiPeriodicError
         Incommensurate prescribed motions.

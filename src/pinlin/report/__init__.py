@@ -11,6 +11,7 @@ One concept per module, in the order the report is made:
 - :mod:`.figure` -- :func:`write_plot`, the eigenvalue map and frequency responses;
 - :mod:`.outputs` -- the optional outputs (``--json``, ``--plot``, ``--animate``): checked
   before computing, written after the text;
+- :mod:`.scenes` -- the scenes analysed without a scene file (``--example``, the bundled ones);
 - :mod:`.sweep` -- ``pinlin sweep``: the ``[sweep]`` table, the sweep, its document, text and figure.
 
 The command line itself (argparse, exit codes) is :mod:`pinlin.cli`.

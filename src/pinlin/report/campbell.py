@@ -1,4 +1,4 @@
-"""``pinlin campbell``: frequencies and damping of a scene against the speed of a prescribed joint (issue 26).
+"""``pinlin campbell``: frequencies and damping of a scene against the speed of a prescribed joint.
 
 A Campbell study is a sweep (:mod:`pinlin.report.sweep`) of one prescribed
 velocity, ``prescribed.<joint>``: at every speed the scene is analysed as
@@ -109,6 +109,14 @@ def campbell_plan(spec: SceneSpec, joint: str | None = None, speeds=None) -> Swe
         A bad ``--joint`` or ``--speeds`` (named by the option).
     SceneFileError
         A bad ``[campbell]`` table, or no speeds anywhere (naming the file and ``campbell.<key>``).
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.campbell import campbell_plan
+    >>> plan = campbell_plan(load_scene(pinlin.data_path("scenes/rotating_ring.toml")), speeds=[0.0, 1.0, 2.0])
+    >>> plan.parameters[0].path, plan.parameters[0].unit, plan.parameters[0].values
+    ('prescribed.ring', 'rad/s', array([0., 1., 2.]))
     """
     table = spec.campbell if spec.campbell is not None else {}
     if not isinstance(table, Mapping):
@@ -137,6 +145,16 @@ def campbell_document(outcome: SweepOutcome) -> dict[str, Any]:
     [rad/s], ``damping_ratio`` -Re lam / |lam|, ``growth`` Re lam [1/s], per
     speed) and ``critical_speeds`` (each verdict change's exact value, error
     bound, kind, mechanism, verdicts, bracketing speeds and eigenvalue there).
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.campbell import campbell_document, campbell_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> plan = campbell_plan(load_scene(pinlin.data_path("scenes/rotating_ring.toml")), speeds=[0.0, 1.0, 2.0])
+    >>> doc = campbell_document(run_sweep(plan))
+    >>> sorted(doc["campbell"])
+    ['branches', 'critical_speeds', 'joint', 'speeds', 'unit']
     """
     doc = sweep_document(outcome)
     p = outcome.plan.parameters[0]
@@ -187,7 +205,19 @@ def _table(doc: dict, precision: int) -> list[str]:
 
 def render_campbell_text(doc: dict, precision: int = 6) -> str:
     """The text report of a :func:`campbell_document`: the verdict, tracked frequencies and damping ratios at
-    each speed, then the critical speeds."""
+    each speed, then the critical speeds.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.campbell import campbell_document, campbell_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> plan = campbell_plan(load_scene(pinlin.data_path("scenes/rotating_ring.toml")), speeds=[0.0, 1.0, 2.0])
+    >>> doc = campbell_document(run_sweep(plan))
+    >>> from pinlin.report.campbell import render_campbell_text
+    >>> render_campbell_text(doc).splitlines()[2]
+    "  speed of prescribed joint 'ring' [rad/s]: 3 values from 0 to 2"
+    """
     c = doc["campbell"]
     s = doc["scene"]
     out = [f"pinlin {doc['pinlin_version']} campbell: {s['robot']} from {s['urdf']}", f"  scene file: {s['source']}",
@@ -221,6 +251,18 @@ def write_campbell_plot(path: str, outcome: SweepOutcome, option: str = "--plot"
         Every speed failed (nothing to draw), or the file cannot be written (named ``option``).
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.campbell import campbell_plan, write_campbell_plot
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> plan = campbell_plan(load_scene(pinlin.data_path("scenes/rotating_ring.toml")), speeds=[0.0, 1.0, 2.0])
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "campbell.png"
+    >>> write_campbell_plot(str(path), run_sweep(plan))
+    >>> path.stat().st_size > 0
+    True
     """
     from .. import plot
 

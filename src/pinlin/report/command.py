@@ -22,7 +22,14 @@ NOT_INCLUDED = "Python start-up and imports not included"
 
 
 def duration(seconds: float) -> str:
-    """``<0.01 ms``, ``0.42 ms``, ``15.5 ms``, ``7.52 s``, ``125 s``."""
+    """``<0.01 ms``, ``0.42 ms``, ``15.5 ms``, ``7.52 s``, ``125 s``.
+
+    Examples
+    --------
+    >>> from pinlin.report.command import duration
+    >>> duration(0.0042), duration(3.5), duration(125)
+    ('4.2 ms', '3.5 s', '125 s')
+    """
     if seconds < 1e-5:
         return "<0.01 ms"
     if seconds < 1.0:
@@ -31,7 +38,17 @@ def duration(seconds: float) -> str:
 
 
 class Stopwatch:
-    """Wall time of one command from its start (:func:`time.perf_counter`), by named part."""
+    """Wall time of one command from its start (:func:`time.perf_counter`), by named part.
+
+    Examples
+    --------
+    >>> from pinlin.report.command import Stopwatch
+    >>> clock = Stopwatch()
+    >>> with clock.part("analysis"):
+    ...     pass
+    >>> clock.summary()
+    'Total ... ms: analysis <0.01 ms, other ... ms (Python start-up and imports not included)'
+    """
 
     def __init__(self) -> None:
         self.start = time.perf_counter()
@@ -60,7 +77,14 @@ _LITERAL = re.compile(r"``([^`]+)``")
 
 
 def plain_text(text: str) -> str:
-    """``text`` without reStructuredText markup: ````x```` is x, ``:func:`~pinlin.a.b``` is b (``:func:`a.b``` a.b)."""
+    """``text`` without reStructuredText markup: ````x```` is x, ``:func:`~pinlin.a.b``` is b (``:func:`a.b``` a.b).
+
+    Examples
+    --------
+    >>> from pinlin.report.command import plain_text
+    >>> plain_text("see :func:`pinlin.linearize` and :class:`~pinlin.Scene`")
+    'see pinlin.linearize and Scene'
+    """
 
     def role(match: re.Match) -> str:
         target = match.group(1)

@@ -43,7 +43,17 @@ STRUCTURE_MATRICES = ("M", "D", "S")
 
 def normalized_path(source: str) -> str:
     """An existing file as its absolute path without ``..`` or symbolic links; anything else
-    (``example:ur5``, a URDF given as a string) unchanged."""
+    (``example:ur5``, a URDF given as a string) unchanged.
+
+    Examples
+    --------
+    >>> from pinlin.report.document import normalized_path
+    >>> normalized_path("example:ur5")
+    'example:ur5'
+    >>> urdf = pinlin.data_path("urdf/double_pendulum.urdf")
+    >>> normalized_path(str(urdf.parent / ".." / "urdf" / urdf.name)) == str(urdf.resolve())
+    True
+    """
     try:
         path = Path(source)
         return str(path.resolve()) if path.is_file() else source
@@ -59,6 +69,13 @@ def scene_section(spec: SceneSpec) -> dict[str, Any]:
     Each element is its own fields (``to_jsonable`` of the element) with its
     scene-file ``kind``; ``prescribed_units`` the unit of each prescribed
     velocity ("rad/s" for a revolute joint, "m/s" for a prismatic one).
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> section = pinlin.report.scene_section(load_scene(pinlin.data_path("scenes/double_pendulum.toml")))
+    >>> section["dof_names"], section["dof_units"], [e["kind"] for e in section["elements"]]
+    (['joint1', 'joint2'], ['rad', 'rad'], ['spring', 'spring', 'follower'])
     """
     scene = spec.scene
     robot = scene.robot
@@ -98,6 +115,14 @@ def matrix_structure(modes: Modes) -> dict[str, Any]:
     ParameterError
         ``modes`` was computed from plain coefficient matrices (no mechanical
         split, so no definiteness of M, D, S).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> modes = pinlin.modal_analysis(pinlin.linearize(pinlin.Scene(robot), np.zeros(2)))
+    >>> structure = pinlin.report.matrix_structure(modes)
+    >>> {name: decision["kind"] for name, decision in structure.items()}
+    {'M': 'positive_definite', 'D': 'zero', 'S': 'positive_definite'}
     """
     facts = modes.structure
     decisions = {name: getattr(facts, f"definiteness_{name}", None) for name in STRUCTURE_MATRICES}
@@ -119,12 +144,21 @@ _BLAME = (
 
 def blame(spec: SceneSpec, exc: InputError) -> InputError:
     """``exc``, raised by an analysis of a scene read from a file, as a :class:`~pinlin.SceneFileError`
-    naming that file and the key that caused it (issue 13 item 9).
+    naming that file and the key that caused it, so that the user knows what to edit.
 
     A time-periodic scene blames ``prescribed.<joint>``, a start that is no
     equilibrium ``start``, a singular mass ``robot`` (its URDF), constraints
     ``constraint``; other input errors name the file only.  A spec that did not
     come from a file (``--example``) keeps ``exc`` as it is (returned unchanged).
+
+    Examples
+    --------
+    >>> from pinlin.report.document import blame
+    >>> from pinlin.model.scene_file import load_scene
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum.toml"))
+    >>> error = blame(spec, pinlin.SingularMassError("M is singular", ["joint2"]))
+    >>> type(error).__name__, error.key
+    ('SceneFileError', 'robot')
     """
     if isinstance(exc, SceneFileError) or not Path(spec.path).is_file():
         return exc
@@ -171,6 +205,15 @@ def analyze(spec: SceneSpec):
         Anything else the analyses refuse (see :func:`pinlin.find_equilibrium`,
         :func:`pinlin.linearize`, :func:`pinlin.modal_analysis`); input errors
         of a spec that did not come from a file keep their own type.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> report, sys_, modes = pinlin.report.analyze(load_scene(pinlin.data_path("scenes/double_pendulum.toml")))
+    >>> report["stability"]["kind"], report["modes"]["kind"]
+    ('marginally_stable', ['undamped', 'undamped', 'undamped', 'undamped'])
+    >>> sys_.n, len(modes.eigenvalues)
+    (2, 4)
     """
     try:
         return _analyze(spec)

@@ -1,4 +1,4 @@
-"""The energy section of the ``pinlin analyze`` report: for each mode, where its energy lives (issue 26).
+"""The energy section of the ``pinlin analyze`` report: for each mode, where its energy lives.
 
 :func:`energy_section` gives the report's ``energy`` list, one entry per mode (each
 eigenvalue with Im lam >= 0; a conjugate partner has the same shares): the mode's
@@ -43,6 +43,16 @@ def energy_section(modes, scene) -> list[dict[str, Any]]:
     ------
     ParameterError
         ``scene`` is not the scene of the analysed system (:func:`pinlin.spectral.energy.mode_energy`).
+
+    Examples
+    --------
+    >>> from pinlin.report.energy import energy_section
+    >>> from pinlin.model.scene_file import load_scene
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum.toml"))
+    >>> modes = pinlin.modal_analysis(pinlin.linearize(spec.scene, spec.q0))
+    >>> first = energy_section(modes, spec.scene)[0]
+    >>> first["mode"], first["dominant_body"], first["dominant_element"]
+    (1, 'link2', 'spring joint1')
     """
     out = []
     for k, lam in enumerate(modes.eigenvalues):
@@ -62,7 +72,17 @@ def energy_section(modes, scene) -> list[dict[str, Any]]:
 
 
 def energy_lines(report: dict) -> list[str]:
-    """The report's ``energy`` section as text: per mode its dominant body and element with their shares."""
+    """The report's ``energy`` section as text: per mode its dominant body and element with their shares.
+
+    Examples
+    --------
+    >>> from pinlin.report.energy import energy_lines
+    >>> from pinlin.model.scene_file import load_scene
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum.toml"))
+    >>> report, _, _ = pinlin.report.analyze(spec)
+    >>> print(energy_lines(report)[1])
+         1     0.632889 Hz  body link2 84%                 element spring joint1 15%
+    """
     entries = report.get("energy")
     if not entries:
         return []

@@ -48,6 +48,17 @@ def write_plot(path: str, sys_: LinearizedSystem, modes) -> None:
         matplotlib is not installed.
     ParameterError
         The file cannot be written (named ``--plot``, the option that gave it).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> sys = pinlin.linearize(pinlin.Scene(robot), np.zeros(2))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = pathlib.Path(folder) / "modes.png"
+    ...     pinlin.report.write_plot(str(path), sys, pinlin.modal_analysis(sys))
+    ...     path.stat().st_size > 0
+    True
     """
     try:
         # a Figure without pyplot: no global backend switch, nothing left open in a user's session

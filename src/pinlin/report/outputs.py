@@ -1,5 +1,5 @@
 """The optional outputs of the command line (``--json``, ``--plot``, ``--animate``): checked before anything
-is computed, written after the text report (issue 13 item 8).
+is computed, written after the text report (so that a failing figure never costs the report).
 
 Everything that can be known about an output before the analysis is checked
 first: the directory exists, the file is not a directory, the suffix names a
@@ -38,6 +38,18 @@ def check_output_path(path: str, option: str) -> Path:
     ------
     ParameterError
         Named ``option``: an empty name, a missing directory, a directory.
+
+    Examples
+    --------
+    >>> from pinlin.report.outputs import check_output_path
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> check_output_path(str(folder / "report.json"), "--json").name
+    'report.json'
+    >>> check_output_path(str(folder / "missing" / "report.json"), "--json")
+    Traceback (most recent call last):
+    ...
+    pinlin.errors.base.ParameterError: --json: cannot write .../missing/report.json: the directory ... does not exist
     """
     if not path or not path.strip():
         raise ParameterError(option, "expected a file name, got an empty one")
@@ -50,7 +62,16 @@ def check_output_path(path: str, option: str) -> Path:
 
 
 def check_json_path(path: str, option: str = "--json") -> Path:
-    """See :func:`check_output_path`."""
+    """See :func:`check_output_path`.
+
+    Examples
+    --------
+    >>> from pinlin.report.outputs import check_json_path
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> check_json_path(str(folder / "report.json")).suffix
+    '.json'
+    """
     return check_output_path(path, option)
 
 
@@ -70,6 +91,18 @@ def check_figure_path(path: str, option: str = "--plot") -> Path:
         matplotlib is not installed.
     ParameterError
         A path :func:`check_output_path` refuses, no suffix, or a format matplotlib cannot write.
+
+    Examples
+    --------
+    >>> from pinlin.report.outputs import check_figure_path
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> check_figure_path(str(folder / "modes.png")).name
+    'modes.png'
+    >>> check_figure_path(str(folder / "modes.xyz"))
+    Traceback (most recent call last):
+    ...
+    pinlin.errors.base.ParameterError: --plot: cannot write a figure as 'modes.xyz': the suffix must name a format, ...
     """
     p = check_output_path(path, option)
     _matplotlib(option)
@@ -92,6 +125,14 @@ def check_animation_path(path: str, option: str = "--animate") -> Path:
         matplotlib, or the writer the suffix needs (pillow, ffmpeg), is not installed.
     ParameterError
         A path :func:`check_output_path` refuses, or a suffix not in :data:`ANIMATION_WRITERS`.
+
+    Examples
+    --------
+    >>> from pinlin.report.outputs import check_animation_path
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> check_animation_path(str(folder / "mode1.html")).suffix
+    '.html'
     """
     p = check_output_path(path, option)
     writer = ANIMATION_WRITERS.get(p.suffix.lower())
@@ -114,6 +155,18 @@ def write_json(path: str, document: dict, option: str = "--json") -> None:
     ------
     ParameterError
         The file cannot be written (named ``option``).
+
+    Examples
+    --------
+    >>> from pinlin.report.outputs import write_json
+    >>> import pathlib, tempfile
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> write_json(str(folder / "doc.json"), {"error": 1.5e-16, "stable": True})
+    >>> print((folder / "doc.json").read_text())
+    {
+      "error": 1.5e-16,
+      "stable": true
+    }
     """
     try:
         with open(path, "w", encoding="utf-8") as f:
@@ -131,6 +184,18 @@ def write_animation(path: str, scene, sys, modes, row: int, option: str = "--ani
         ``row`` outside 1 .. 2n (named ``--mode``); the file cannot be written.
     PinlinError
         Whatever :func:`pinlin.plot.animate_mode` refuses.
+
+    Examples
+    --------
+    The row is checked before anything is drawn:
+
+    >>> from pinlin.report.outputs import write_animation
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> write_animation("mode9.html", scene, sys, pinlin.modal_analysis(sys), 9)
+    Traceback (most recent call last):
+    ...
+    pinlin.errors.base.ParameterError: --mode: ...
     """
     count = len(modes.eigenvalues)
     if not 1 <= row <= count:

@@ -1,4 +1,4 @@
-"""``pinlin analyze`` of a periodic scene: the periodic orbit and its Floquet analysis (issue 23; theory: Floquet).
+"""``pinlin analyze`` of a periodic scene: the periodic orbit and its Floquet analysis (theory: Floquet).
 
 A scene is periodic when a prescribed joint follows a periodic motion (``[prescribed] pivot = { amplitude = ...,
 omega = ... }``) or turns at a constant speed on which the equations depend (:func:`pinlin.scene_period`): its
@@ -25,7 +25,17 @@ PERIODIC_REPORT_VERSION = 1
 
 
 def is_periodic(spec: SceneSpec) -> bool:
-    """True when the scene's linearized equations are time-periodic at the file's start."""
+    """True when the scene's linearized equations are time-periodic at the file's start.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.periodic import is_periodic
+    >>> is_periodic(load_scene(pinlin.data_path("scenes/kapitza.toml")))
+    True
+    >>> is_periodic(load_scene(pinlin.data_path("scenes/double_pendulum.toml")))
+    False
+    """
     scene = spec.scene
     if scene.motions:
         return True
@@ -47,6 +57,15 @@ def analyze_periodic(spec: SceneSpec):
     ------
     PinlinError
         What :func:`pinlin.periodic_orbit` and :func:`pinlin.floquet_analysis` refuse.
+
+    Examples
+    --------
+    >>> from pinlin.report.periodic import analyze_periodic
+    >>> from pinlin.model.scene_file import load_scene
+    >>> spec = load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> report, orbit, floquet = analyze_periodic(spec)
+    >>> report["kind"], orbit.constant, round(orbit.period, 9)
+    ('periodic', True, 0.031415927)
     """
     t0 = time.perf_counter()
     orbit = periodic_orbit(spec.scene, spec.q0)
@@ -66,7 +85,17 @@ def analyze_periodic(spec: SceneSpec):
 
 def render_periodic_text(report: dict, orbit, flo, precision: int = 6) -> str:
     """The periodic report as text: scene, orbit, the multipliers' table (:meth:`FloquetAnalysis.table`) and
-    the verdict; ``precision`` is accepted for the command line's option (the table has its own digits)."""
+    the verdict; ``precision`` is accepted for the command line's option (the table has its own digits).
+
+    Examples
+    --------
+    >>> from pinlin.report.periodic import analyze_periodic, render_periodic_text
+    >>> from pinlin.model.scene_file import load_scene
+    >>> spec = load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> text = render_periodic_text(*analyze_periodic(spec))
+    >>> text.splitlines()[0]
+    'pinlin ...: kapitza (.../kapitza.toml), periodic'
+    """
     sc = report["scene"]
     lines = [f"pinlin {report['pinlin_version']}: {sc['robot']} ({sc['source']}), periodic",
              f"  free coordinates ({sc['n']}): {', '.join(sc['dof_names'])}"]
@@ -94,6 +123,15 @@ def check_periodic_options(plot, animate) -> None:
     ------
     ParameterError
         ``--plot`` or ``--animate`` given for a periodic scene (they draw eigenvalues and mode shapes).
+
+    Examples
+    --------
+    >>> from pinlin.report.periodic import check_periodic_options
+    >>> check_periodic_options(None, None)
+    >>> check_periodic_options("modes.png", None)
+    Traceback (most recent call last):
+    ...
+    pinlin.errors.base.ParameterError: --plot: draws eigenvalues or a mode shape; a periodic scene has ...
     """
     for option, value in (("--plot", plot), ("--animate", animate)):
         if value is not None:

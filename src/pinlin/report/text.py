@@ -1,4 +1,4 @@
-"""The human-readable report of ``pinlin analyze`` (from its JSON document; issue 17 part 6).
+"""The human-readable report of ``pinlin analyze`` (rendered from its JSON document, so the two never disagree).
 
 What the text promises, each checked by a test:
 
@@ -8,7 +8,7 @@ What the text promises, each checked by a test:
   the same below which an eigenvalue of A is not told from zero;
 - every printed matrix carries its unit (:func:`pinlin.report.units.matrix_unit`);
 - a mode's kind is the result's own (``Modes.kind``: "undamped" on the axis of
-  a system with D = 0, issue 25), never relabelled here;
+  a system with D = 0), never relabelled here;
 - the stability verdict is printed once, in its own section.
 """
 
@@ -43,7 +43,14 @@ def _float(value) -> float:
 
 
 def number(x: float, precision: int, *, zero_below: float = 0.0) -> str:
-    """``x`` to ``precision`` significant digits; 0 (never "-0") when ``|x| <= zero_below``."""
+    """``x`` to ``precision`` significant digits; 0 (never "-0") when ``|x| <= zero_below``.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import number
+    >>> number(3.14159265, 4), number(-1e-20, 4, zero_below=1e-12)
+    ('3.142', '0')
+    """
     x = _float(x)
     if abs(x) <= zero_below:  # also turns -0.0 into 0
         return "0"
@@ -51,7 +58,14 @@ def number(x: float, precision: int, *, zero_below: float = 0.0) -> str:
 
 
 def complex_text(lam: complex, precision: int = 6) -> str:
-    """A complex number as ``a+bi`` (``i``, as the stability verdicts write them; a real one as ``a``)."""
+    """A complex number as ``a+bi`` (``i``, as the stability verdicts write them; a real one as ``a``).
+
+    Examples
+    --------
+    >>> from pinlin.report.text import complex_text
+    >>> complex_text(-0.5 + 3.2j, 4), complex_text(2.0)
+    ('-0.5+3.2i', '2')
+    """
     lam = complex(lam)
     if lam.imag == 0:
         return number(lam.real, precision)
@@ -59,7 +73,14 @@ def complex_text(lam: complex, precision: int = 6) -> str:
 
 
 def plural(count: int, noun: str) -> str:
-    """``1 iteration``, ``3 iterations``."""
+    """``1 iteration``, ``3 iterations``.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import plural
+    >>> plural(1, "mode"), plural(3, "mode")
+    ('1 mode', '3 modes')
+    """
     return f"{count} {noun}" + ("" if count == 1 else "s")
 
 
@@ -68,6 +89,14 @@ def matrix_text(name: str, a: np.ndarray, names: Sequence[str], units: Sequence[
 
     Entries with ``|a_ij| <= rounding_bound(n, ||A||_2)`` (c n eps ||A||_2) are
     below what rounding in forming A can tell from zero.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import matrix_text
+    >>> print(matrix_text("M", np.array([[1.0, 0.2], [0.2, 0.5]]), ["joint1", "joint2"], ["rad", "rad"], 4))
+      M [kg m^2] =
+        joint1            1         0.2
+        joint2          0.2         0.5
     """
     unit = matrix_unit(name, units)
     if a.shape[0] > MAX_PRINTED_SIZE:
@@ -175,7 +204,7 @@ def _dominant(modes: dict, i: int) -> str:
 
 def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> str:
     """The mode table of a report's ``modes`` section: lam, |lam| in rad/s and Hz, zeta, eta, kappa, bound, multiplicity, kind,
-    dominant coordinates (their share of the mode's energy, issue 17).
+    dominant coordinates (their share of the mode's energy).
 
     The verdict is not part of it (the report prints it once, in its own section).
 
@@ -187,6 +216,15 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
         Significant digits of lam and |lam|.
     max_rows : int, optional
         Show at most this many eigenvalues (the lowest frequencies); None for all.
+
+    Examples
+    --------
+    >>> from pinlin.report.text import mode_table
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> modes = pinlin.modal_analysis(pinlin.linearize(pinlin.Scene(robot), np.zeros(2)))
+    >>> table = mode_table(modes.to_dict(), precision=4, max_rows=2)
+    >>> table.splitlines()[-2]
+    '... 2 more (higher frequencies)'
     """
     re = [_float(x) for x in modes["eigenvalues"]["re"]]
     k = len(re)
@@ -222,7 +260,7 @@ def mode_table(modes: dict, precision: int = 6, max_rows: int | None = None) -> 
 
 
 def _dissipation_lines(st: dict) -> list[str]:
-    """The dissipation table of a marginal verdict (``Stability.dissipation``, issue 25), one row per shape."""
+    """The dissipation table of a marginal verdict (``Stability.dissipation``), one row per shape."""
     rows = st.get("dissipation") or []
     if not rows:
         return []
@@ -244,6 +282,16 @@ def render_text(report: dict, precision: int = 6) -> str:
         The JSON document (version :data:`pinlin.report.REPORT_VERSION`).
     precision : int
         Significant digits of the printed matrices, configuration and eigenvalues.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> report, _, _ = pinlin.report.analyze(load_scene(pinlin.data_path("scenes/double_pendulum.toml")))
+    >>> text = pinlin.report.render_text(report, precision=4)
+    >>> text.splitlines()[0]
+    'pinlin ...: double_pendulum from .../double_pendulum.urdf'
+    >>> "Stability: MARGINALLY STABLE" in text
+    True
     """
     s = report["scene"]
     units = s.get("dof_units") or ["?"] * len(s["dof_names"])

@@ -56,6 +56,12 @@ def coordinate_units(robot: Robot, dofs: Sequence[int] | None = None) -> tuple[s
     robot : Robot
     dofs : sequence of int, optional
         Velocity indices to keep (a scene's ``free_dofs``); default all nv.
+
+    Examples
+    --------
+    >>> from pinlin.report.units import coordinate_units
+    >>> coordinate_units(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    ('rad', 'rad')
     """
     units: list[str] = []
     for name in robot.joint_names:
@@ -70,6 +76,14 @@ def matrix_unit(name: str, units: Sequence[str]) -> str:
     One unit when every coordinate has the same; otherwise each combination that
     occurs, labelled by the (row, column) coordinate units, so that every entry's
     unit can be read off.
+
+    Examples
+    --------
+    >>> from pinlin.report.units import matrix_unit
+    >>> matrix_unit("S", ["rad"]), matrix_unit("D", ["m"])
+    ('N m/rad', 'N s/m')
+    >>> matrix_unit("M", ["rad", "m"])
+    'kg m^2 (rad, rad), kg m (rad, m), kg m (m, rad), kg (m, m) for (row, column) units'
     """
     order = MATRIX_ORDERS[name]
     kinds = sorted(set(units))

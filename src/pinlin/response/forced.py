@@ -1,4 +1,4 @@
-"""Forced response by exact discretization of the first-order form (issue 5 part 2).
+"""Forced response by exact discretization of the first-order form (theory: responses).
 
 Between two samples the force is a polynomial of the time (a first-order hold,
 or a cubic spline); for such an input the state at the next sample is an exact
@@ -10,13 +10,13 @@ defective or not.
 from __future__ import annotations
 
 import time
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
 
-from ..errors import AccuracyWarning, ParameterError
+from ..errors import AccuracyWarning, ParameterError, warn_user
+from ..errors.deprecated import reordered_arguments
 from ..linearization.system import LinearizedSystem, check_system
 from ..numerics import check_integer, check_tolerance
 from ..numerics.arrays import check_samples, check_times, check_vector
@@ -72,6 +72,15 @@ class ForcedResponse(Result):
 
     ``to_dict()`` leaves out ``system`` and the ``*_internal`` arrays (equal to
     the outputs unless ``substeps > 1``).
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.2]], [[4.0]])
+    >>> resp = pinlin.forced_response(sys, np.linspace(0.0, 1.0, 11), lambda t: [np.sin(t)], substeps=4)
+    >>> resp.x.shape, resp.t_internal.shape, resp.interpolation
+    ((11, 1), (41,), 'linear')
+    >>> print(f"{resp.x[-1, 0]:.6f}")
+    0.123068
     """
 
     system: LinearizedSystem
@@ -123,6 +132,15 @@ def hold_matrices(A: np.ndarray, B: np.ndarray, h: float, degree: int) -> tuple[
     where Phi and Psi_j are blocks of the exponential of the block matrix
     [[A h, B h, 0, ...], [0, 0, I, ...], ..., [0, ..., 0]] (Van Loan 1978):
     the state of the augmented system is (z, u, du/ds, d^2u/ds^2, ...).
+
+    Examples
+    --------
+    >>> import scipy.linalg
+    >>> from pinlin.response.forced import hold_matrices
+    >>> A, B = np.array([[0.0, 1.0], [-4.0, -0.2]]), np.array([[0.0], [1.0]])
+    >>> Phi, Psi = hold_matrices(A, B, 0.1, 1)  # a first-order hold: Psi_0 and Psi_1
+    >>> bool(np.allclose(Phi, scipy.linalg.expm(0.1 * A))), [p.shape for p in Psi]
+    (True, [(2, 1), (2, 1)])
     """
     nz, m = B.shape
     size = nz + (degree + 1) * m
@@ -138,10 +156,28 @@ def hold_matrices(A: np.ndarray, B: np.ndarray, h: float, degree: int) -> tuple[
     return Phi, Psi
 
 
+def _old_order(args: tuple, kwargs: dict) -> bool:
+    """Whether a call uses the 0.3 order ``(sys, f, t, x0, v0)``: ``t`` given by keyword after a positional
+    force, or a first argument that is no time grid (None, a callable, a 2-D array of samples)."""
+    rest = args[1:]
+    if not rest:
+        return False
+    if "t" in kwargs:
+        return True
+    first = rest[0]
+    if first is None or callable(first):
+        return True
+    try:
+        return np.ndim(first) == 2
+    except ValueError:  # ragged: the checks of the new order name what is wrong
+        return False
+
+
+@reordered_arguments(("sys", "f", "t", "x0", "v0"), _old_order)
 def forced_response(
     sys: LinearizedSystem,
-    f,
     t,
+    f=None,
     x0=None,
     v0=None,
     *,
@@ -166,11 +202,13 @@ def forced_response(
     Parameters
     ----------
     sys : LinearizedSystem
+    t : (len(t),) array
+        Strictly increasing output times [s]; the initial state is at t[0].
     f : None, (len(t), n) array, or callable
         Generalized force [N, N m]: samples at t, or ``f(t) -> (n,)`` which is
         sampled ``substeps`` times per output interval.  None: free response.
-    t : (len(t),) array
-        Strictly increasing output times [s]; the initial state is at t[0].
+        The 0.3 order ``(sys, f, t, x0, v0)`` still works with a
+        :class:`DeprecationWarning` (``t`` second, as in :func:`free_response`).
     x0, v0 : (n,) arrays, optional
         Initial displacement and velocity; default zero.
     interpolation : {"linear", "cubic"}
@@ -192,6 +230,18 @@ def forced_response(
     ParameterError
         Wrong shapes, non-finite values, non-increasing t, a callable returning
         the wrong shape, substeps with sampled input, unknown interpolation.
+
+    Examples
+    --------
+    A unit step force on x'' + 0.2 x' + 4 x = f, from rest (static limit 1/4):
+
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.2]], [[4.0]])
+    >>> t = np.linspace(0.0, 1.0, 5)
+    >>> resp = pinlin.forced_response(sys, t, np.ones((5, 1)))
+    >>> np.round(resp.x[:, 0], 6)
+    array([0.      , 0.030103, 0.111252, 0.221579, 0.333312])
+    >>> resp.distinct_steps, bool(resp.error < 1e-12)
+    (1, True)
     """
     t_start = time.perf_counter()
     check_system(sys)
@@ -211,12 +261,11 @@ def forced_response(
     if callable(f) and len(tau) > 1:
         input_error = _input_error(f, tau, F, interpolation, n)
         if input_error > input_tol:
-            warnings.warn(
+            warn_user(
                 f"forced_response: the {interpolation} interpolation of the callable force is off by "
                 f"{input_error:.1e} (relative, at interval midpoints) > input_tol {input_tol:g}; "
                 f"increase substeps (now {substeps}) or use interpolation='cubic'",
                 AccuracyWarning,
-                stacklevel=2,
             )
     out = np.arange(0, len(tau), substeps)
     return ForcedResponse(

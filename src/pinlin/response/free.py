@@ -1,14 +1,14 @@
-"""Free vibration from the modal solution (theory: responses, issue 5 part 1)."""
+"""Free vibration from the modal solution (theory: responses)."""
 
 from __future__ import annotations
 
 import time
-import warnings
 from math import factorial
 
 import numpy as np
 
-from ..errors import AccuracyWarning, ComputationError, ParameterError
+from ..errors import AccuracyWarning, ComputationError, ParameterError, warn_user
+from ..errors.deprecated import renamed_keywords, reordered_arguments
 from ..frf.engine import DEFAULT_TOL
 from ..frf.expansion import ModalExpansion, complex_matmul, modal_expansion
 from ..linearization.system import LinearizedSystem, check_system
@@ -63,6 +63,15 @@ class FreeResponse(ResultArray):
         The modal analysis used (reuse it through ``modes=``; not in ``to_dict()``).
     elapsed : float
         Seconds, modal analysis included unless ``modes`` was given.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], None, [[4.0]])  # x = cos(2 t) / 10
+    >>> x = pinlin.free_response(sys, [0.0, np.pi / 6], [0.1])
+    >>> print(f"{x[-1, 0]:.6f} {x.xdot[-1, 0]:.6f}")
+    0.050000 -0.173205
+    >>> type(np.asarray(x)).__name__, x.t.shape
+    ('ndarray', (2,))
     """
 
     _fields = (
@@ -110,6 +119,16 @@ def modal_free_motion(expansion: ModalExpansion, x0: np.ndarray, v0: np.ndarray,
         real modes and Jordan terms: their imaginary part).
     residual : float
         The projection residual of the coefficients (see ``coefficients``).
+
+    Examples
+    --------
+    >>> from pinlin.frf.expansion import modal_expansion
+    >>> from pinlin.response.free import modal_free_motion
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], None, [[4.0]])  # x = cos(2 tau) / 10
+    >>> x, xdot, xddot, symmetry, residual = modal_free_motion(
+    ...     modal_expansion(sys, None), np.array([0.1]), np.array([0.0]), np.array([0.0, np.pi / 6]))
+    >>> print(f"{x[1, 0]:.6f} {xdot[1, 0]:.6f} {xddot[1, 0]:.6f}")
+    0.050000 -0.173205 -0.200000
     """
     c, d, residual = expansion.coefficients(x0.astype(complex), v0.astype(complex))
     lam, X = expansion.lam, expansion.right
@@ -200,15 +219,49 @@ def _relative_defect(sys: LinearizedSystem, x, xd, xdd) -> float:
     return float(np.max(num[ok] / scale[ok])) if np.any(ok) else 0.0
 
 
+def _old_order(args: tuple, kwargs: dict) -> bool:
+    """Whether a call uses the 0.3 order ``(sys, x0, v0, t)``: ``t`` given by keyword after positional
+    initial conditions, or a third that is an increasing time grid after a first that is None or an (n,)
+    vector, the third being no (n,) vector or (when n equals len(t)) the first not increasing."""
+    rest = args[1:]
+    if "t" in kwargs:
+        return bool(rest)
+    if len(rest) < 3:
+        return False
+    first, _, third = rest[:3]
+    if first is not None:
+        first = _real_array(first)
+        if first is None or first.shape != (getattr(args[0], "n", None),):
+            return False  # no (n,) vector first: the new order (its checks name what is wrong)
+    third = None if third is None else _real_array(third)
+    if third is None or third.ndim != 1 or not _increasing(third):
+        return False
+    return first is None or third.size != first.size or not _increasing(first)
+
+
+def _real_array(values) -> np.ndarray | None:
+    try:
+        a = np.asarray(values)
+    except (TypeError, ValueError):
+        return None
+    return a if a.dtype.kind in "iuf" else None
+
+
+def _increasing(a: np.ndarray) -> bool:
+    return bool(np.all(np.diff(a) > 0))
+
+
+@renamed_keywords(tol="rtol")
+@reordered_arguments(("sys", "x0", "v0", "t"), _old_order)
 def free_response(
     sys: LinearizedSystem,
+    t,
     x0,
     v0=None,
-    t=None,
     *,
     t0: float = 0.0,
     modes=None,
-    tol: float = DEFAULT_TOL,
+    rtol: float = DEFAULT_TOL,
 ) -> FreeResponse:
     """Free vibration x(t) of M x'' + (D + G) x' + (S + N) x = 0 by the modal solution (theory: responses).
 
@@ -219,35 +272,28 @@ def free_response(
                \\left((\\lambda_k M + C)\\, x_0 + M v_0\\right),
         \\qquad y_k^T L'(\\lambda_k)\\, x_k = 1,
 
-    with the eigenvalues, right and normalized left vectors of
-    :func:`pinlin.modal_analysis`.  A defective eigenvalue (a rigid-body mode:
-    lam = 0 with chains of length two; coalescing roots at flutter onset or
-    critical damping) contributes the exponential polynomial of its Jordan
-    chains (:func:`pinlin.jordan_chains`, theory: spectrum),
-    exp(lam0 t) sum_{j<=i} t^j/j! x_{i-j}, with coefficients fitted to the
-    part of the initial state the other modes leave (see
-    :mod:`pinlin.frf.expansion`).  The coefficients from the left vectors
-    are then refined (iterative refinement on the initial state) so that the
-    expansion reproduces (x0, v0) to rounding even for non-normal systems whose
-    left vectors are less accurate than their right ones.  Either way the
-    solution is exact up to the accuracy of the eigen-data: no time stepping.
-    The derivatives x', x'' come from the same expansion, so the equation's
-    defect is a genuine check.  The returned array is read-only.
+    with the eigenvalues, right and normalized left vectors of :func:`pinlin.modal_analysis`.  A
+    defective eigenvalue contributes the exponential polynomial of its Jordan chains
+    (:func:`pinlin.jordan_chains`); the coefficients are refined on the initial state.  The solution
+    is exact up to the accuracy of the eigen-data (no time stepping), and x', x'' come from the same
+    expansion, so the equation's defect is a genuine check (theory: responses).  The returned array
+    is read-only.
 
     Parameters
     ----------
     sys : LinearizedSystem
-    x0, v0 : (n,) arrays
-        Displacement and velocity at t0 (None: zero).
     t : (len(t),) array
         Strictly increasing times [s] (they may start before or after t0).
+    x0, v0 : (n,) arrays
+        Displacement and velocity at t0 (None: zero).  The 0.3 order ``(sys, x0, v0, t)`` still works
+        with a :class:`DeprecationWarning` where the arguments tell it apart (always with ``t=``).
     t0 : float
         Time of the initial conditions [s].
     modes : Modes, optional
         A modal analysis of ``sys`` to reuse.
-    tol : float
-        An :class:`~pinlin.AccuracyWarning` is issued when ``defect``,
-        ``initial_defect`` or ``symmetry_defect`` exceeds it.
+    rtol : float
+        The relative accuracy aimed at: an :class:`~pinlin.AccuracyWarning` is issued when
+        ``defect``, ``initial_defect`` or ``symmetry_defect`` exceeds it (``tol`` before 0.4).
 
     Returns
     -------
@@ -262,6 +308,18 @@ def free_response(
     ComputationError
         The spectral data cannot be turned into an expansion (ambiguous Jordan structure), or the
         motion or its error figures overflow double precision.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.2]], [[4.0]])  # x'' + 0.2 x' + 4 x = 0
+    >>> t = np.linspace(0.0, 1.0, 5)
+    >>> x = pinlin.free_response(sys, t, [0.1])
+    >>> x.shape, x.method
+    ((5, 1), 'modal')
+    >>> np.round(x[:, 0], 6)
+    array([ 0.1     ,  0.087959,  0.055499,  0.011368, -0.033325])
+    >>> bool(x.error < 1e-12)
+    True
     """
     t_start = time.perf_counter()
     check_system(sys)
@@ -277,7 +335,7 @@ def free_response(
         raise ParameterError("t0", f"expected a time [s], got {t0!r:.80}") from None
     if not np.isfinite(t0):
         raise ParameterError("t0", f"must be finite, got {t0!r}")
-    tol = check_tolerance(tol, "tol")
+    rtol = check_tolerance(rtol, "rtol")
 
     expansion = modal_expansion(sys, modes)
     tau = times - t0
@@ -304,14 +362,13 @@ def free_response(
             f"free_response: the error figures overflow (defect {defect}, initial defect {initial}); "
             f"rescale the initial state"
         )
-    if worst > tol:
-        warnings.warn(
+    if worst > rtol:
+        warn_user(
             f"free_response: the {method} solution has defect {defect:.1e}, initial defect {initial:.1e}, "
-            f"symmetry defect {symmetry:.1e} (largest above tol {tol:g}); the eigen-data may be ill-conditioned "
-            f"(max eigenvalue condition {np.max(expansion.modes.condition):.1e}); forced_response(sys, None, "
-            f"...) gives the exact discretization instead",
+            f"symmetry defect {symmetry:.1e} (largest above rtol {rtol:g}); the eigen-data may be ill-conditioned "
+            f"(max eigenvalue condition {np.max(expansion.modes.condition):.1e}); forced_response(sys, t, "
+            f"None, ...) gives the exact discretization instead",
             AccuracyWarning,
-            stacklevel=2,
         )
     return FreeResponse(
         x,

@@ -31,6 +31,12 @@ def check_interpolation(value) -> int:
     ------
     ParameterError
         ``value`` is not one of :data:`INTERPOLATIONS`.
+
+    Examples
+    --------
+    >>> from pinlin.response.sampled_force import check_interpolation
+    >>> check_interpolation("linear"), check_interpolation("cubic")
+    (1, 3)
     """
     if not isinstance(value, str) or value not in INTERPOLATIONS:
         raise ParameterError("interpolation", f"expected one of {sorted(INTERPOLATIONS)}, got {value!r}")
@@ -48,6 +54,14 @@ class SampledForce:
     values : (K, n) ndarray
         Generalized forces [N, N m].
     interpolation : {"linear", "cubic"}
+
+    Examples
+    --------
+    >>> from pinlin.response.sampled_force import SampledForce
+    >>> t = np.linspace(0.0, 1.0, 5)
+    >>> force = SampledForce(t, (t**2)[:, None], "linear")
+    >>> force(np.array([0.125])), force.degree  # halfway between 0 and 0.0625
+    (array([[0.03125]]), 1)
     """
 
     t: np.ndarray
@@ -108,6 +122,13 @@ def sample_callable(f, times: np.ndarray, n: int, label: str = "f") -> np.ndarra
     ------
     ParameterError
         A call that does not give n finite real numbers (the time is named).
+
+    Examples
+    --------
+    >>> from pinlin.response.sampled_force import sample_callable
+    >>> sample_callable(lambda t: [np.sin(t), 1.0], np.array([0.0, np.pi / 2]), 2)
+    array([[0., 1.],
+           [1., 1.]])
     """
     out = np.empty((len(times), n))
     for i, ti in enumerate(times):

@@ -1,4 +1,5 @@
-"""The points of a sweep's grid, checked and counted before any is built (issue 26).
+"""The points of a sweep's grid, checked and counted before any is built (a
+typo in a grid fails at once, not after hours of points).
 
 A mapping ``name -> values`` stands for the Cartesian product of its axes.
 :class:`GridPoints` gives its points by index without building the product, so
@@ -24,7 +25,15 @@ MAX_POINTS = 10_000
 
 
 class GridPoints(Sequence):
-    """The points of the Cartesian product of ``axes`` (the last name varies fastest), made on demand."""
+    """The points of the Cartesian product of ``axes`` (the last name varies fastest), made on demand.
+
+    Examples
+    --------
+    >>> from pinlin.studies.grid import GridPoints
+    >>> points = GridPoints(("m", "k"), ([1.0, 2.0], [3.0, 4.0, 5.0]))
+    >>> len(points), points[4], points[-1]
+    (6, {'m': 2.0, 'k': 4.0}, {'m': 2.0, 'k': 5.0})
+    """
 
     def __init__(self, names: tuple[str, ...], axes: tuple[Sequence, ...]):
         self.names = names
@@ -74,6 +83,13 @@ def grid_points(grid, max_points: int | None = MAX_POINTS) -> tuple[tuple[str, .
         An empty or malformed grid, a parameter name that is not a string (the
         points are passed as keyword arguments), more than
         ``max_points`` points, a ``max_points`` that is not a positive integer or None.
+
+    Examples
+    --------
+    >>> from pinlin.studies.grid import grid_points
+    >>> names, points, shape, axes = grid_points({"m": [1.0, 2.0], "k": [3.0, 4.0, 5.0]})
+    >>> names, shape, points[1], axes["k"]
+    (('m', 'k'), (2, 3), {'m': 1.0, 'k': 4.0}, array([3., 4., 5.]))
     """
     if max_points is not None and (isinstance(max_points, bool) or not isinstance(max_points, (int, np.integer))
                                    or max_points < 1):

@@ -32,6 +32,17 @@ class TextBar:
         Number of points.
     stream : text stream, optional
         Where the bar is written; default stderr.
+   
+
+    Examples
+    --------
+    >>> import io
+    >>> from pinlin.studies.progress import TextBar
+    >>> stream = io.StringIO()
+    >>> bar = TextBar(3, stream)
+    >>> bar.update(); bar.update(2); bar.close()
+    >>> stream.getvalue().split(chr(13))[-1][:42]  # the last redraw
+    'sweep [##############################] 3/3'
     """
 
     def __init__(self, total: int, stream: TextIO | None = None):
@@ -89,6 +100,13 @@ def progress_bar(total: int, progress, stream: TextIO | None = None):
         An unknown ``progress``.
     MissingDependencyError
         ``progress="tqdm"`` without tqdm installed.
+
+    Examples
+    --------
+    >>> import io
+    >>> from pinlin.studies.progress import progress_bar
+    >>> progress_bar(3, None) is None, type(progress_bar(3, "text", io.StringIO())).__name__
+    (True, 'TextBar')
     """
     if progress is None:
         progress = total > PROGRESS_MIN_POINTS

@@ -37,6 +37,14 @@ class RayExecutor(Executor):
     Ray must be initialized (``ray.init()``) before the first ``submit``, or Ray
     starts a local instance itself.  ``shutdown`` cancels nothing and leaves
     Ray running: the Ray session belongs to the caller.
+
+    Examples
+    --------
+    Building one needs no Ray (it is imported on the first ``submit``):
+
+    >>> executor = pinlin.studies.RayExecutor(num_cpus=1, max_retries=0)
+    >>> executor
+    RayExecutor(num_cpus=1, max_retries=0)
     """
 
     def __init__(self, **options: Any):

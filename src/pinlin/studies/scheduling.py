@@ -19,9 +19,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ParameterError, PinlinError
+from ..errors import ParameterError, PinlinError, SweepTimeoutError
 from ..results import Result
-from .sweep_result import SweepFailure, SweepTimeoutError
+from .sweep_result import SweepFailure
 
 __all__ = ["call_point", "run_points", "function_name"]
 
@@ -30,7 +30,14 @@ Item = tuple[Any, "float | None", float]
 
 
 def function_name(function: Callable) -> str:
-    """The qualified name of a callable, for ``method`` strings."""
+    """The qualified name of a callable, for ``method`` strings.
+
+    Examples
+    --------
+    >>> from pinlin.studies.scheduling import function_name
+    >>> function_name(np.linalg.norm)
+    'norm'
+    """
     return getattr(function, "__qualname__", None) or getattr(function, "__name__", None) or repr(function)
 
 
@@ -45,7 +52,15 @@ def headline_error(value) -> float | None:
 
 
 def call_point(function: Callable, point: dict) -> Item:
-    """``function(**point)`` with its figures taken here, where it ran: (value or failure, error, elapsed [s])."""
+    """``function(**point)`` with its figures taken here, where it ran: (value or failure, error, elapsed [s]).
+
+    Examples
+    --------
+    >>> from pinlin.studies.scheduling import call_point
+    >>> value, error, elapsed = call_point(lambda x: 2 * x, {"x": 3.0})
+    >>> value, error
+    (6.0, None)
+    """
     t0 = time.perf_counter()
     try:
         value = function(**point)
@@ -107,6 +122,13 @@ def run_points(function: Callable, points: list[dict], executor: Executor | None
         The executor's ``submit`` returned something that is not a ``concurrent.futures.Future``.
     SweepTimeoutError
         Points not finished after ``timeout`` seconds (cancelled unless already running).
+
+    Examples
+    --------
+    >>> from pinlin.studies.scheduling import run_points
+    >>> items = run_points(lambda x: 2 * x, [{"x": 1.0}, {"x": 2.0}], None, lambda i, item: None, "raise")
+    >>> [value for value, error, elapsed in items]
+    [2.0, 4.0]
     """
     if executor is None:
         return _serial(function, points, report, on_error)

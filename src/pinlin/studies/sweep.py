@@ -24,11 +24,11 @@ from typing import Any, TextIO
 
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SweepTimeoutError
 from .grid import MAX_POINTS, grid_points
 from .progress import PROGRESS_MIN_POINTS, PROGRESS_WIDTH, progress_bar
 from .scheduling import call_point, function_name, run_points
-from .sweep_result import SweepFailure, SweepResult, SweepTimeoutError
+from .sweep_result import SweepFailure, SweepResult
 
 __all__ = [
     "sweep",
@@ -72,6 +72,14 @@ def chunk_size_for(points: int, executor: Executor, chunk_size: int | None = Non
     ------
     ParameterError
         ``chunk_size`` is not a positive integer.
+
+    Examples
+    --------
+    >>> from concurrent.futures import ThreadPoolExecutor
+    >>> from pinlin.studies.sweep import chunk_size_for
+    >>> with ThreadPoolExecutor(max_workers=2) as executor:
+    ...     chunk_size_for(100, executor), chunk_size_for(100, executor, chunk_size=10)
+    (7, 10)
     """
     if chunk_size is not None:
         if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
@@ -197,6 +205,17 @@ def sweep(
     PinlinError
         Whatever ``function`` raised at the first failing point, with
         ``on_error="raise"``.
+
+    Examples
+    --------
+    The natural frequency of x'' m + 4 x = 0 over the mass:
+
+    >>> def omega(m):
+    ...     sys = pinlin.LinearizedSystem.from_matrices([[m]], None, [[4.0]])
+    ...     return float(np.max(pinlin.modal_analysis(sys).eigenvalues.imag))
+    >>> result = pinlin.sweep(omega, {"m": [1.0, 4.0, 16.0]})
+    >>> np.round(result.collect(), 6), result.points[1]
+    (array([2. , 1. , 0.5]), {'m': 4.0})
     """
     t0 = time.perf_counter()
     if not callable(function):

@@ -14,46 +14,11 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..errors import ComputationError, ParameterError, PinlinError
+from ..errors import ParameterError, PinlinError
 from ..extras import import_pandas
 from ..results import Result
 
-__all__ = ["SweepResult", "SweepFailure", "SweepTimeoutError"]
-
-
-def _rebuild_exception(cls: type, args: tuple, state: dict) -> BaseException:
-    """An exception restored without calling its ``__init__`` (whose signature may differ from ``args``)."""
-    exc = cls.__new__(cls)
-    exc.args = args
-    exc.__dict__.update(state)
-    return exc
-
-
-class SweepTimeoutError(ComputationError, TimeoutError):
-    """Points of a sweep did not finish within its ``timeout`` (cancelled, except those already running: an
-    executor cannot stop a call once started).
-
-    Attributes
-    ----------
-    timeout : float
-        The seconds waited.
-    pending : tuple of int
-        Indices (grid order) of the points not finished.
-    points : tuple of dict
-        Those points.
-    """
-
-    #: Points named in the message; the rest are counted.
-    SHOWN = 5
-
-    def __init__(self, timeout: float, pending, points):
-        self.timeout = float(timeout)
-        self.pending = tuple(int(i) for i in pending)
-        self.points = tuple(dict(p) for p in points)
-        shown = ", ".join(f"#{i} {p}" for i, p in zip(self.pending[: self.SHOWN], self.points))
-        more = f" and {len(self.pending) - self.SHOWN} more" if len(self.pending) > self.SHOWN else ""
-        super().__init__(f"timeout: {len(self.pending)} points not finished after {self.timeout:g} s "
-                         f"(cancelled unless already running): {shown}{more}")
+__all__ = ["SweepResult", "SweepFailure"]
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -73,6 +38,17 @@ class SweepFailure(Result):
         Wall time [s] of the failed call, measured where it ran.
     error : None
         A failed point computed no value, so it has no error figure.
+
+    Examples
+    --------
+    A massless point fails (a singular mass matrix); ``on_error="record"`` keeps it:
+
+    >>> def omega(m):
+    ...     return pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices([[m]], None, [[4.0]]))
+    >>> result = pinlin.sweep(omega, {"m": [1.0, 0.0]}, on_error="record")
+    >>> failure = result.failures[0]
+    >>> failure.point, type(failure.exception).__name__, failure.exception.joints
+    ({'m': 0.0}, 'SingularMassError', ('x1',))
     """
 
     point: Mapping[str, Any]
@@ -85,21 +61,11 @@ class SweepFailure(Result):
     def __repr__(self) -> str:
         return f"SweepFailure({dict(self.point)}, {type(self.exception).__name__}: {self.exception})"
 
-    def __reduce__(self):
-        exc = self.exception
-        rebuilt = (_rebuild_exception, (type(exc), exc.args, dict(exc.__dict__)))
-        return (_rebuild_failure, (dict(self.point), rebuilt, self.method, self.elapsed))
-
     def to_dict(self) -> dict[str, Any]:
         """The failure as JSON-serializable data; the exception as its type name and message."""
         out = super().to_dict()
         out["exception"] = {"type": type(self.exception).__name__, "message": str(self.exception)}
         return out
-
-
-def _rebuild_failure(point, rebuilt, method, elapsed) -> SweepFailure:
-    function, args = rebuilt
-    return SweepFailure(point, function(*args), method, elapsed)
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -133,6 +99,17 @@ class SweepResult(Result):
         documents, relative unless documented otherwise; NaN if one of them is
         NaN); None when no value carries an error figure (the function returned
         plain arrays or numbers, or every point failed).
+
+    Examples
+    --------
+    >>> result = pinlin.sweep(lambda m, k: np.sqrt(k / m), {"m": [1.0, 4.0], "k": [1.0, 4.0, 9.0]})
+    >>> result.names, result.shape
+    (('m', 'k'), (2, 3))
+    >>> result.collect()  # one axis per name, the last varying fastest
+    array([[1. , 2. , 3. ],
+           [0.5, 1. , 1.5]])
+    >>> result.error is None  # plain numbers carry no error figure
+    True
     """
 
     names: tuple[str, ...]

@@ -20,6 +20,7 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from ..errors import ParameterError
+from ..errors.deprecated import deprecated_names, renamed_keywords
 from ..numerics.arrays import readonly
 from ..results import Result
 
@@ -29,7 +30,7 @@ __all__ = [
     "mac",
     "one_per_conjugate_pair",
     "DEFAULT_EIGENVALUE_WEIGHT",
-    "CONJUGATE_RTOL",
+    "CONJUGATE_TOL",
     "IMAG_SIGN_RTOL",
 ]
 
@@ -40,14 +41,22 @@ __all__ = [
 DEFAULT_EIGENVALUE_WEIGHT = 0.5
 #: Columns j, k of tracked eigenvalues are a conjugate pair when lam_k = conj(lam_j) to this relative
 #: distance at every step: far above rounding of computed pairs (~1e-15), far below distinct modes.
-CONJUGATE_RTOL = 1e-8
+CONJUGATE_TOL = 1e-8
 #: An unpaired column counts as Im lambda >= 0 when Im lambda >= -this * (1 + |lambda|): rounding of a
 #: real eigenvalue's zero imaginary part.
 IMAG_SIGN_RTOL = 1e-12
 
 
 def mac(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
-    """Modal assurance criterion between the columns of X (n, a) and Y (n, b): (a, b) in [0, 1]."""
+    """Modal assurance criterion between the columns of X (n, a) and Y (n, b): (a, b) in [0, 1].
+
+    Examples
+    --------
+    >>> from pinlin.studies import mac
+    >>> mac(np.eye(2), np.array([[1.0, 1.0], [0.0, 1.0]]))
+    array([[1. , 0.5],
+           [0. , 0.5]])
+    """
     X = np.asarray(X)
     Y = np.asarray(Y)
     cross = np.abs(X.conj().T @ Y) ** 2
@@ -83,6 +92,17 @@ class TrackedModes(Result):
         ``1 - min(match)``, without shapes ``max(jump)``.
     elapsed : float
         Wall time [s] of :func:`track_modes`.
+
+    Examples
+    --------
+    >>> from pinlin.studies import track_modes
+    >>> tracked = track_modes([[1.0, 2.0], [2.5, 1.5], [3.1, 1.1]])  # by eigenvalue distance alone
+    >>> tracked.eigenvalues.real
+    array([[1. , 2. ],
+           [1.5, 2.5],
+           [1.1, 3.1]])
+    >>> tracked.order.tolist(), tracked.vectors is None
+    ([[0, 1], [1, 0], [1, 0]], True)
     """
 
     eigenvalues: np.ndarray
@@ -159,6 +179,20 @@ def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = DEFAULT
     ------
     ParameterError
         Shapes that do not agree, non-finite values, a negative weight.
+
+    Examples
+    --------
+    Two modes cross between the steps; sorted eigenvalues hide it, the shapes show it:
+
+    >>> from pinlin.studies import track_modes
+    >>> lam = np.array([[1.0, 2.0], [1.8, 2.2]])
+    >>> shapes = np.array([np.eye(2), np.eye(2)[:, ::-1]])
+    >>> tracked = track_modes(lam, shapes)
+    >>> tracked.eigenvalues.real
+    array([[1. , 2. ],
+           [2.2, 1.8]])
+    >>> float(tracked.error)
+    0.0
     """
     t0 = time.perf_counter()
     lam, X = _checked(eigenvalues, vectors, eigenvalue_weight)
@@ -192,7 +226,8 @@ def track_modes(eigenvalues, vectors=None, *, eigenvalue_weight: float = DEFAULT
     )
 
 
-def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
+@renamed_keywords(rtol="conjugate_tol")
+def one_per_conjugate_pair(lam, conjugate_tol: float = CONJUGATE_TOL) -> list[int]:
     """Columns of tracked eigenvalues (steps, m) to draw: one of each conjugate pair.
 
     Columns j and k are a pair when lam[:, k] = conj(lam[:, j]) at every step
@@ -204,13 +239,20 @@ def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
     ----------
     lam : (steps, m) array_like
         Tracked eigenvalues [1/s] (``TrackedModes.eigenvalues``).
-    rtol : float
-        Relative distance within which two columns are conjugates (see :data:`CONJUGATE_RTOL`).
+    conjugate_tol : float
+        Relative distance within which two columns are conjugates (see :data:`CONJUGATE_TOL`;
+        ``rtol`` before 0.4).
 
     Raises
     ------
     ParameterError
         ``lam`` not two-dimensional.
+
+    Examples
+    --------
+    >>> from pinlin.studies import one_per_conjugate_pair
+    >>> one_per_conjugate_pair(np.array([[1j, -1j, -0.5], [2j, -2j, -0.4]]))
+    [0, 2]
     """
     lam = np.asarray(lam, dtype=complex)
     if lam.ndim != 2:
@@ -225,9 +267,12 @@ def one_per_conjugate_pair(lam, rtol: float = CONJUGATE_RTOL) -> list[int]:
         dist[j] = np.inf
         dist[list(used)] = np.inf
         k = int(np.argmin(dist))
-        if dist[k] <= rtol:
+        if dist[k] <= conjugate_tol:
             used.update((j, k))
             keep.append(j if lam[:, j].imag.sum() >= lam[:, k].imag.sum() else k)
         elif np.all(lam[:, j].imag >= -IMAG_SIGN_RTOL * (1 + np.abs(lam[:, j]))):
             keep.append(j)
     return sorted(keep)
+
+
+__getattr__ = deprecated_names(__name__, {"CONJUGATE_RTOL": (f"{__name__}.CONJUGATE_TOL", lambda: CONJUGATE_TOL)})

@@ -1,4 +1,4 @@
-"""``pinlin sweep``: a scene over one or two parameters (issue 17 part 4).
+"""``pinlin sweep``: a scene over one or two parameters.
 
 One concept per module, in the order the sweep is made:
 

@@ -54,6 +54,19 @@ def sweep_document(outcome: SweepOutcome) -> dict[str, Any]:
     parameter values of its rows), ``changes`` (verdict changes and their
     boundaries), ``method``, ``error`` (the largest backward error of the points),
     ``notes`` and ``elapsed``.
+
+    Examples
+    --------
+    >>> import json
+    >>> from pinlin.report.sweep.document import sweep_document
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> doc = sweep_document(run_sweep(plan))
+    >>> len(doc["points"]), len(json.dumps(doc, allow_nan=False)) > 0
+    (4, True)
     """
     plan = outcome.plan
     tracked = None

@@ -100,6 +100,20 @@ def write_sweep_plot(path: str, outcome: SweepOutcome) -> None:
     ParameterError
         Nothing to draw (every point failed), or the file cannot be written
         (named ``--plot``, the option that gave it).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from pinlin.report.sweep.figure import write_sweep_plot
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "sweep.png"
+    >>> write_sweep_plot(str(path), run_sweep(plan))
+    >>> path.stat().st_size > 0
+    True
     """
     try:
         import matplotlib.pyplot as plt

@@ -1,6 +1,6 @@
 """The ``[sweep]`` table of a scene file: which parameter, which values, and the scene at each value.
 
-Format (issue 17 part 4)::
+Format::
 
     [sweep]
     parameter = "follower.tip.force"   # see the paths below
@@ -48,7 +48,7 @@ from ..units import coordinate_units
 __all__ = ["SweepParameter", "SweepPlan", "sweep_plan", "MAX_POINTS", "ELEMENT_KINDS", "SWEEP_FORMAT"]
 
 #: The format of the ``[sweep]`` table and its parameter paths, as ``pinlin sweep --help`` prints it.
-SWEEP_FORMAT = __doc__.split("Format (issue 17 part 4)::\n", 1)[1]
+SWEEP_FORMAT = __doc__.split("Format::\n", 1)[1]
 
 #: Most points of one sweep (both parameters together): a modal analysis each, so 10 000 points are
 #: minutes for a small scene; more is a typing error more often than a plan.  The API's default cap
@@ -85,6 +85,17 @@ class SweepParameter:
         One entry of a vector field (``field[i]``).
     direction : ndarray or None
         A vector or matrix field is ``value * direction``.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> parameter = plan.parameters[0]
+    >>> parameter.path, parameter.unit, parameter.target, parameter.direction
+    ('follower.tip.force', 'N', 'element', array([0., 0., 1.]))
     """
 
     path: str
@@ -99,7 +110,18 @@ class SweepParameter:
 
 @dataclass(frozen=True)
 class SweepPlan:
-    """The swept parameters (one, or two for a stability map) of a scene spec."""
+    """The swept parameters (one, or two for a stability map) of a scene spec.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> len(plan.parameters), plan.boundaries
+    (1, True)
+    """
 
     spec: SceneSpec
     parameters: tuple[SweepParameter, ...]
@@ -307,6 +329,16 @@ def sweep_plan(spec: SceneSpec, table, *, options: bool = False) -> SweepPlan:
         a bad direction; the message names the file and the key (``sweep.values``).
     ParameterError
         The same, for a table made of options (``options=True``), named by the option.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> plan.parameters[0].values
+    array([ 0., 10., 20., 30.])
     """
     if table is None:
         raise SceneFileError("no [sweep] table: give one in the scene file, or --parameter and --values",

@@ -52,6 +52,17 @@ class VerdictChange:
         From :func:`pinlin.critical_parameter` (None when not asked for, or when it failed).
     failure : str or None
         Why no boundary was found (the error of ``critical_parameter``).
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> change = run_sweep(plan).changes[0]
+    >>> change.between, change.verdicts, round(change.boundary.value, 6)
+    ((10.0, 20.0), ('marginally_stable', 'flutter'), 16.432898)
     """
 
     between: tuple[float, float]
@@ -80,6 +91,17 @@ class SweepOutcome:
     elapsed : float
         Wall time [s] of the whole sweep, boundaries included.
     notes : list of str
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> outcome = run_sweep(plan)
+    >>> len(outcome.changes), outcome.tracked.eigenvalues.shape
+    (1, (4, 4))
     """
 
     plan: SweepPlan
@@ -103,6 +125,17 @@ def system_at(plan: SweepPlan, values) -> LinearizedSystem:
     ------
     PinlinError
         The scene refuses the values, no equilibrium is found, or the linearization fails.
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> from pinlin.report.sweep.run import system_at
+    >>> system_at(plan, [5.0]).nonzero
+    ('M', 'S', 'N')
     """
     spec = plan.spec
     scene = plan.scene_at(values)
@@ -185,6 +218,16 @@ def run_sweep(plan: SweepPlan, *, executor=None) -> SweepOutcome:
 
     A point or a boundary that fails does not stop the sweep: its error is
     recorded in the outcome (``result.values``, ``changes[k].failure``).
+
+    Examples
+    --------
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> [change.verdicts for change in run_sweep(plan).changes]
+    [('marginally_stable', 'flutter')]
     """
     t0 = time.perf_counter()
     grid = {p.path: p.values for p in plan.parameters}
@@ -199,6 +242,13 @@ def run_sweep(plan: SweepPlan, *, executor=None) -> SweepOutcome:
 
 
 def headline(values: list[Any]) -> float | None:
-    """The largest backward error of the points that succeeded (None when none did)."""
+    """The largest backward error of the points that succeeded (None when none did).
+
+    Examples
+    --------
+    >>> from pinlin.report.sweep.run import headline
+    >>> headline([]) is None
+    True
+    """
     errors = [v.error for v in values if isinstance(v, Modes)]
     return max(errors) if errors else None

@@ -87,6 +87,18 @@ def render_sweep_text(doc: dict, precision: int = 6) -> str:
         The sweep document.
     precision : int
         Significant digits of parameter values and eigenvalues.
+
+    Examples
+    --------
+    >>> from pinlin.report.sweep.document import sweep_document
+    >>> from pinlin.report.sweep.text import render_sweep_text
+    >>> from pinlin.model.scene_file import load_scene
+    >>> from pinlin.report.sweep.parameters import sweep_plan
+    >>> from pinlin.report.sweep.run import run_sweep
+    >>> spec = load_scene(pinlin.data_path("scenes/double_pendulum_flutter.toml"))
+    >>> plan = sweep_plan(spec, {"parameter": "follower.tip.force", "values": [0.0, 10.0, 20.0, 30.0]})
+    >>> render_sweep_text(sweep_document(run_sweep(plan))).splitlines()[2]
+    '  follower.tip.force [N]: 4 values from 0 to 30'
     """
     s = doc["scene"]
     out = [f"pinlin {doc['pinlin_version']} sweep: {s['robot']} from {s['urdf']}", f"  scene file: {s['source']}"]
