@@ -17,8 +17,10 @@ an (s m) x (s m) system with m right-hand columns.  Each accepted step [t_0, t_0
 is its error estimate (Richardson: the local error is C h^{2s+1}).  A step is accepted when E <= rtol ||P||_2,
 and no step exceeds h ||D^-1 A D||_2 = :data:`MAX_STEP_NORM` (D balancing A(0)), where the estimate is
 trusted.  When A has the first-order form [[0, I], [X, Y]] of a second-order system at every node, the
-positions are eliminated from the stage equations (an (s n)-square solve instead of (2 s n)).  Each accepted
-step costs 3 s evaluations of A (none reused: the half steps' nodes differ from the whole step's).
+positions are eliminated from the stage equations (an (s n)-square solve instead of (2 s n)).  Each step tried
+costs 3 s evaluations of A (none reused: the half steps' nodes differ from the whole step's).  One kernel,
+:func:`try_steps`, takes a stack of steps; the sequential controller here tries a stack of one, the grid of
+:mod:`.collocation_grid` every pending step of a round.
 """
 
 from __future__ import annotations
@@ -33,8 +35,8 @@ import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
 
-__all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "integrate_transitions", "group_segments",
-           "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
+__all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "Trial", "try_steps", "two_norms", "integrate_transitions",
+           "group_segments", "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
 
 #: Rounding error of one step's transition, in units of eps ||P||_2 times sqrt(s m): the stage solve and the
 #: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15,
@@ -168,27 +170,85 @@ def stage_solve(An: np.ndarray, h: np.ndarray, a: np.ndarray, b: np.ndarray,
     return P, Z
 
 
-class _Stepper:
-    """The collocation step for one problem size: tableau, block pattern and the evaluation counter."""
+@dataclass(frozen=True)
+class Trial:
+    """A stack of B steps tried at once.
 
-    def __init__(self, A: Callable[[float], np.ndarray], m: int, stages: int):
-        self.A, self.m, self.s = A, m, stages
-        self.c, self.a, self.b = gauss_legendre(stages)
-        self.evaluations = 0
-        self.n = m // 2 if m % 2 == 0 else 0
-        # E_v = [0, I] is the top block row of A in first-order form of a second-order system
-        self.top = np.hstack([np.zeros((self.n, self.n)), np.eye(self.n)]) if self.n else None
+    Attributes
+    ----------
+    steps : list of Step
+        The accepted ones, in the order of the stack.
+    accepted : (B,) bool ndarray
+        ||E||_2 <= rtol ||P||_2 and h ||D^-1 A D||_2 <= 1.2 ``max_step_norm`` at the middle node.
+    ratio : (B,) ndarray
+        ||E||_2 / (rtol ||P||_2), for the step-size controller.
+    rate : (B,) ndarray
+        ||D^-1 A D||_2 at each step's middle node [1/s].
+    evaluations : int
+        Times A was evaluated at (3 s per step).
+    """
 
-    def evaluate(self, times: np.ndarray) -> np.ndarray:
-        self.evaluations += len(times)
-        return np.stack([self.A(float(t)) for t in times])
+    steps: list
+    accepted: np.ndarray
+    ratio: np.ndarray
+    rate: np.ndarray
+    evaluations: int
 
-    def step(self, t0: float, h: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(P, stage transitions, A at the nodes) of one Gauss step from t0 of length h."""
-        An = self.evaluate(t0 + self.c * h)
-        second = bool(self.n) and all(np.array_equal(A[:self.n], self.top) for A in An)
-        P, Z = stage_solve(An[None], np.array([h]), self.a, self.b, second)
-        return P[0], Z[0], An
+
+def two_norms(X: np.ndarray) -> np.ndarray:
+    """The 2-norms of a stack of matrices (..., m, m) -> (...)."""
+    return np.linalg.norm(X, 2, axis=(-2, -1))
+
+
+def try_steps(A: Callable[[np.ndarray], np.ndarray], t0: np.ndarray, h: np.ndarray, *, stages: int, rtol: float,
+              scaling: np.ndarray, max_step_norm: float, second_order: bool | None = None,
+              coefficient_error: np.ndarray | None = None) -> Trial:
+    """Each step [t0_k, t0_k + h_k] taken whole and as two halves, with one evaluation of A at all their
+    nodes and one stacked stage solve; the Richardson estimate, the rounding floor and the accept test.
+
+    ``A``: times [s] (1-d array) -> (len(times), m, m).  ``scaling``: D^-1 A D = ``A * scaling``
+    (:func:`balancing`).  ``second_order``: A has the form [[0, I], [X, Y]] at every time; None: decided
+    from the values at the nodes.  ``coefficient_error``: carried by every accepted step (see :class:`Step`).
+
+    Raises
+    ------
+    IntegrationError
+        A step's transition is not finite.
+    """
+    c, a, b = gauss_legendre(stages)
+    B, s = t0.size, stages
+    half = h / 2
+    nodes = np.concatenate([t0[:, None] + c[None] * h[:, None], t0[:, None] + c[None] * half[:, None],
+                            (t0 + half)[:, None] + c[None] * half[:, None]], axis=1)      # (B, 3 s)
+    values = A(nodes.ravel())
+    m = values.shape[-1]
+    if second_order is None:
+        n = m // 2
+        top = np.eye(n, m, n)        # [0, I]: the top block row of a second-order system's first-order form
+        second_order = m % 2 == 0 and bool(np.all(values[:, :n] == top))
+    P3, Z3 = stage_solve(values.reshape(B * 3, s, m, m), np.stack([h, half, half], axis=1).ravel(), a, b,
+                         second_order)
+    P3, Z3 = P3.reshape(B, 3, m, m), Z3.reshape(B, 3, s, m, m)
+    whole, P1, P2 = P3[:, 0], P3[:, 1], P3[:, 2]
+    P = P2 @ P1
+    difference = (P - whole) / (4.0 ** s - 1)
+    estimate, norm = two_norms(difference), two_norms(P)
+    if not np.all(np.isfinite(estimate)):
+        bad = int(np.argmin(np.isfinite(estimate)))
+        raise IntegrationError(f"the step transition at t = {t0[bad]:.6g} s is not finite", float(t0[bad]))
+    rate = two_norms(values.reshape(B, 3, s, m, m)[:, 0, s // 2] * scaling)
+    ratio = estimate / (rtol * norm)
+    accepted = (ratio <= 1.0) & (h * rate <= 1.2 * max_step_norm)
+    steps = []
+    if accepted.any():
+        k = np.flatnonzero(accepted)
+        rounding = ROUNDING_FACTOR * _EPS * np.sqrt(s * m) * (two_norms(P1[k]) * two_norms(P2[k]) + norm[k])
+        stage = np.concatenate([Z3[k, 1], Z3[k, 2] @ P1[k, None]], axis=1)     # t0 -> each half's nodes
+        weights = np.concatenate([b, b])[None, :] * half[k, None]
+        steps = [Step(float(t0[j]), float(h[j]), P[j], difference[j], float(rounding[i]),
+                      float(estimate[j] + rounding[i]), nodes[j, s:], stage[i], weights[i], coefficient_error,
+                      float(norm[j]), float(estimate[j])) for i, j in enumerate(k)]
+    return Trial(steps, accepted, ratio, rate, nodes.size)
 
 
 def balancing(A0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -248,8 +308,13 @@ def integrate_transitions(
         The step size fell below 1e-12 T (non-smooth or singular coefficients).
     """
     start = time.perf_counter()
-    st = _Stepper(A, m, stages)
-    A0 = st.evaluate(np.array([0.0]))[0]
+    counted = [0]
+
+    def values(times):
+        counted[0] += len(times)
+        return np.stack([A(float(t)) for t in times])
+
+    A0 = values(np.array([0.0]))[0]
     d, scaling = balancing(A0)
     t, h = 0.0, _initial_step(A0 * scaling, period, stages, rtol)
     cap = max_step_norm / max(float(np.linalg.norm(A0 * scaling, 2)), 1e-300)
@@ -266,35 +331,20 @@ def integrate_transitions(
             raise IntegrationError(
                 f"step size {h:.3g} s fell below 1e-12 T at t = {t:.6g} s: the coefficients are not smooth "
                 f"enough (or not finite) for rtol = {rtol:g}", t)
-        whole, _, A_nodes = st.step(t, h)
-        middle = A_nodes[len(A_nodes) // 2] * scaling     # one node: the cap is a heuristic, an SVD per node is not
-        cap = max_step_norm / max(float(np.linalg.norm(middle, 2)), 1e-300)
-        if h > 1.2 * cap:
-            rejected += 1   # outside the asymptotic range the Richardson estimate is not trusted
-            continue
-        P1, Z1, A1 = st.step(t, h / 2)
-        P2, Z2, A2 = st.step(t + h / 2, h / 2)
-        P = P2 @ P1
-        norm = float(np.linalg.norm(P, 2))
-        difference = (P - whole) / (4.0 ** stages - 1)
-        estimate = float(np.linalg.norm(difference, 2))
-        if not np.isfinite(estimate):
-            raise IntegrationError(f"the step transition at t = {t:.6g} s is not finite", t)
-        ratio = estimate / (rtol * norm)
-        if ratio <= 1.0:
-            rounding = ROUNDING_FACTOR * _EPS * np.sqrt(stages * m) * (
-                np.linalg.norm(P1, 2) * np.linalg.norm(P2, 2) + norm)
-            nodes = np.concatenate([t + st.c * h / 2, t + h / 2 + st.c * h / 2])
-            stage = np.concatenate([Z1, Z2 @ P1])
-            weights = np.concatenate([st.b, st.b]) * h / 2
-            steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, weights,
-                              None, norm, estimate))
+        trial = try_steps(values, np.array([t]), np.array([h]), stages=stages, rtol=rtol, scaling=scaling,
+                          max_step_norm=max_step_norm)
+        # one node: the cap is a heuristic, an SVD per node is not
+        cap = max_step_norm / max(float(trial.rate[0]), 1e-300)
+        if trial.accepted[0]:
+            steps.extend(trial.steps)
             t += h
         else:
             rejected += 1
-        h *= min(2.0, max(0.2, 0.9 * max(ratio, 1e-30) ** (-1.0 / (2 * stages + 1))))
+            if h > 1.2 * cap:
+                continue    # outside the asymptotic range the Richardson estimate is not trusted: h = cap
+        h *= min(2.0, max(0.2, 0.9 * max(float(trial.ratio[0]), 1e-30) ** (-1.0 / (2 * stages + 1))))
     segments, factors = group_segments(steps, growth, d)
-    return Transitions(steps, segments, factors, st.evaluations, rejected)
+    return Transitions(steps, segments, factors, counted[0], rejected)
 
 
 def group_segments(steps: list, growth: float, d: np.ndarray, lookahead: int = 16) -> tuple[list, list]:
