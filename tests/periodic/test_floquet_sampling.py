@@ -283,13 +283,13 @@ def test_the_damping_scale_is_at_least_sqrt_m_k():
 
 def test_block_errors_carry_the_measured_stiffness_error_through_the_mass():
     from pinlin.periodic.sampled import block_errors, second_order_scales
-    from pinlin.periodic.second_order import first_order_stack
+    from pinlin.linearization.state_form import first_order_form
 
     def triple(t):   # M = 2 and C = 0.05 constant (their errors are rounding), K = 2 + 0.3 exp(cos t)
         return np.array([[[2.0]], [[0.05]], [[2.0 + 0.3 * np.exp(np.cos(t))]]])
     samples = sample_periodic(triple, TWO_PI, tol=1e-7, scales=second_order_scales)
     S = samples.samples
-    A = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * TWO_PI / S.shape[0])
+    A = first_order_form(S[:, 0], S[:, 1], S[:, 2])[0]
     # d(M^-1 K) = M^-1 dK with dK = (measured relative error) (largest |K| = 2 + 0.3 e) and ||M^-1|| = 1 / 2
     expected = samples.error[2] * (2.0 + 0.3 * np.e) / 2.0
     assert samples.error[2] > 1e-10

@@ -20,9 +20,9 @@ from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 
 from ..linearization.assembly import assemble
+from ..linearization.state_form import first_order_form
 from ..model.scene import Scene
 from ..nonlinear.dynamics import FreeDynamics
 
@@ -50,13 +50,9 @@ class Point:
     K: np.ndarray
 
     def first_order(self) -> np.ndarray:
-        """A = [[0, I], [-M^-1 K, -M^-1 C]] (2n, 2n), by a Cholesky solve with M."""
-        n = self.M.shape[0]
-        X = scipy.linalg.cho_solve(scipy.linalg.cho_factor(self.M), np.hstack([self.K, self.C]))
-        A = np.zeros((2 * n, 2 * n))
-        A[:n, n:] = np.eye(n)
-        A[n:, :n], A[n:, n:] = -X[:, :n], -X[:, n:]
-        return A
+        """A = [[0, I], [-M^-1 K, -M^-1 C]] (2n, 2n), by
+        :func:`~pinlin.linearization.state_form.first_order_form`."""
+        return first_order_form(self.M, self.C, self.K)[0]
 
 
 def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray, t: float,

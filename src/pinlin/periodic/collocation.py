@@ -35,8 +35,8 @@ import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
 
-__all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "Trial", "try_steps", "two_norms", "integrate_transitions",
-           "group_segments", "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
+__all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "Trial", "try_steps", "two_norms",
+           "integrate_transitions", "group_segments", "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
 
 #: Rounding error of one step's transition, in units of eps ||P||_2 times sqrt(s m): the stage solve and the
 #: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15,

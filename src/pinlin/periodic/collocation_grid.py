@@ -2,9 +2,10 @@
 evaluate at many times at once (an interpolant of sampled coefficients, :mod:`.sampling`) (theory: Floquet).
 
 The same Gauss-Legendre step and Richardson estimate as :mod:`.collocation`, by its kernel
-:func:`~.collocation.try_steps` (each step taken whole and as two halves, E = (P_1/2 P_1/2' - P_h) / (2^(2s) - 1), accepted when ||E||_2 <= rtol ||P||_2 and
-h ||D^-1 A D||_2 <= :data:`~.collocation.MAX_STEP_NORM` at its middle node), but every pending step of a round
-is taken at once: one evaluation of A at all their nodes and one stacked solve.  The first grid is uniform,
+:func:`~.collocation.try_steps` (each step taken whole and as two halves,
+E = (P_1/2 P_1/2' - P_h) / (2^(2s) - 1), accepted when ||E||_2 <= rtol ||P||_2 and
+h ||D^-1 A D||_2 <= :data:`~.collocation.MAX_STEP_NORM` at its middle node), but every pending step of a
+round is taken at once: one evaluation of A at all their nodes and one stacked solve.  The first grid is uniform,
 with the step the cap allows at the largest rate seen on a probe of A over the period (and no longer than
 the order-based first step of :mod:`.collocation`); a rejected step is split in two for the next round.
 Where evaluating A costs a Pinocchio pass, the sequential controller of :mod:`.collocation` wastes fewer

@@ -17,10 +17,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError, SamplingError
+from ..linearization.state_form import first_order_form
 from .collocation import Transitions, integrate_transitions
 from .collocation_grid import integrate_on_grid
 from .sampling import PeriodicSamples, group_norms, sample_periodic
-from .second_order import SecondOrderA, first_order_stack, lagrangian_defect, structure_defect
+from .second_order import SecondOrderA, lagrangian_defect, structure_defect
 
 __all__ = ["SAMPLING", "Integrated", "first_order_transitions", "second_order_transitions", "check_sampling",
            "second_order_scales", "counted_errors", "block_errors", "SAMPLING_FLOOR"]
@@ -158,7 +159,7 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
         tr = integrate_transitions(A, T, 2 * n, **options)
         return _at_nodes(tr, samples, A.defect)
     S = samples.samples
-    A_samples = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * T / S.shape[0])
+    A_samples = first_order_form(S[:, 0], S[:, 1], S[:, 2], times=np.arange(S.shape[0]) * T / S.shape[0])[0]
     defect = structure_defect(S[:, 0], S[:, 1], S[:, 2], S[0, 0], S[0, 1])
     errors = block_errors(samples, A_samples, n)
     lagrangian = float("nan")
@@ -169,7 +170,7 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
 
     def A(times):
         F = samples(times)
-        return first_order_stack(F[:, 0], F[:, 1], F[:, 2], times)
+        return first_order_form(F[:, 0], F[:, 1], F[:, 2], times=times)[0]
 
     tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=errors, probe=A_samples,
                            A0=A_samples[0], **options)

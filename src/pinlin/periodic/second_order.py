@@ -3,9 +3,9 @@
 
 .. math::  A = \\begin{bmatrix} 0 & I \\\\ -M^{-1} K & -M^{-1} C \\end{bmatrix}
 
-by solves with M (no inverse).  The system counts as conservative when M is symmetric and constant, C is
-skew and constant and K symmetric: :func:`structure_defect` measures how far sampled coefficients are from
-that, each part relative (max-norms).  A time-varying M or G is conservative too when the equations are the
+by solves with M (no inverse: :func:`~pinlin.linearization.state_form.first_order_form`).  The system counts
+as conservative when M is symmetric and constant, C is skew and constant and K symmetric:
+:func:`structure_defect` measures how far sampled coefficients are from that, each part relative (max-norms).  A time-varying M or G is conservative too when the equations are the
 variational equations of a Lagrangian L = x'^T M x' / 2 + x'^T F x - x^T S x / 2 (M, S symmetric, F any):
 Euler-Lagrange gives
 
@@ -20,9 +20,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import SingularMassError
+from ..linearization.state_form import first_order_form
 
-__all__ = ["SecondOrderA", "first_order_stack", "structure_defect", "lagrangian_defect"]
+__all__ = ["SecondOrderA", "structure_defect", "lagrangian_defect"]
 
 _TINY = float(np.finfo(float).tiny)
 
@@ -40,21 +40,6 @@ def structure_defect(M: np.ndarray, C: np.ndarray, K: np.ndarray, M0: np.ndarray
     return float(max(p.max() for p in parts))
 
 
-def first_order_stack(M: np.ndarray, C: np.ndarray, K: np.ndarray, times) -> np.ndarray:
-    """A (B, 2n, 2n) from stacks M, C, K (B, n, n); SingularMassError naming the first time where M is
-    singular."""
-    B, n = M.shape[0], M.shape[1]
-    try:
-        X = np.linalg.solve(M, np.concatenate([K, C], axis=2))
-    except np.linalg.LinAlgError:
-        bad = next(k for k in range(B) if np.linalg.matrix_rank(M[k]) < n)
-        raise SingularMassError(f"M is singular at t = {float(times[bad]):.6g} s", ()) from None
-    A = np.zeros((B, 2 * n, 2 * n))
-    A[:, :n, n:] = np.eye(n)
-    A[:, n:, :] = -X
-    return A
-
-
 class SecondOrderA:
     """t -> A(t) from checked callables M, C, K, recording the largest conservative-structure defect seen
     (:func:`structure_defect` against M(0), C(0)); it stops measuring once the defect passes ``give_up``
@@ -68,7 +53,7 @@ class SecondOrderA:
 
     def __call__(self, t: float) -> np.ndarray:
         M, C, K = self.fM(t), self.fC(t), self.fK(t)
-        A = first_order_stack(M[None], C[None], K[None], [t])[0]
+        A = first_order_form(M, C, K, times=[t])[0]
         if self.defect <= self.give_up:    # once clearly not conservative, stop measuring
             self.defect = max(self.defect, structure_defect(M[None], C[None], K[None], self.M0, self.C0))
         return A
