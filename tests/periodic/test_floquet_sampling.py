@@ -312,7 +312,7 @@ def test_the_lagrangian_structure_is_decided_at_the_structure_tolerance(factor, 
     # a damping d = 1e-11 I breaks sym(C) = M' by d; over the 16 samples |C| <= 0.9 (0.7 cos t - 0.2 at t = pi)
     # and |M| <= 2.5, the rate 16 / 2: the defect is 1e-11 / (0.9 + 8 * 2.5) in units of eps
     defect = 1e-11 / (0.9 + 8 * 2.5) / np.finfo(float).eps
-    result = _lagrangian_analysis(damping=1e-11, structure_tolerance=factor * defect)
+    result = _lagrangian_analysis(damping=1e-11, structure_tol=factor * defect)
     assert result.evaluations == 16 and result.conservative == conservative
 
 
@@ -336,13 +336,13 @@ def test_the_grid_counts_the_evaluations_it_makes():
 
 
 def test_non_finite_samples_are_named():
+    from pinlin.periodic.options import FloquetOptions
     from pinlin.periodic.sampled import second_order_transitions
-    options = dict(rtol=1e-13, stages=6, growth=1e3, max_steps=20000, max_time=600.0)
 
     def triple(t):   # an unchecked coefficient function (a scene's) that breaks at t = pi / 2
         return np.array([[[1.0]], [[0.0]], [[np.nan if abs(t - np.pi / 2) < 1e-12 else 2.0]]])
     with pytest.raises(ParameterError, match="K: non-finite entries at t = 1.5708 s"):
-        second_order_transitions(triple, None, TWO_PI, 1, options, "spectral", 256, 1e-14)
+        second_order_transitions(triple, None, TWO_PI, 1, FloquetOptions(sampling="spectral"))
 
 
 def test_the_grid_refuses_non_finite_coefficients():

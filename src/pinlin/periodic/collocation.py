@@ -34,6 +34,7 @@ import numpy as np
 import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
+from .options import GROWTH, MAX_STEPS, MAX_TIME, RTOL, STAGES
 
 __all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "Trial", "try_steps", "two_norms",
            "integrate_transitions", "group_segments", "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
@@ -272,11 +273,11 @@ def integrate_transitions(
     period: float,
     m: int,
     *,
-    rtol: float = 1e-13,
-    stages: int = 6,
-    growth: float = 1e3,
-    max_steps: int = 20000,
-    max_time: float = 600.0,
+    rtol: float = RTOL,
+    stages: int = STAGES,
+    growth: float = GROWTH,
+    max_steps: int = MAX_STEPS,
+    max_time: float = MAX_TIME,
     max_step_norm: float = MAX_STEP_NORM,
 ) -> Transitions:
     """Step transitions over [0, period] to a relative tolerance, grouped into well-conditioned segments.

@@ -21,6 +21,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import IntegrationBudgetError, IntegrationError
+from .options import GROWTH, MAX_STEPS, MAX_TIME, RTOL, STAGES
 from .collocation import MAX_STEP_NORM, Transitions, balancing, group_segments, try_steps, two_norms
 
 __all__ = ["integrate_on_grid", "PROBES"]
@@ -57,11 +58,11 @@ def integrate_on_grid(
     period: float,
     m: int,
     *,
-    rtol: float = 1e-13,
-    stages: int = 6,
-    growth: float = 1e3,
-    max_steps: int = 20000,
-    max_time: float = 600.0,
+    rtol: float = RTOL,
+    stages: int = STAGES,
+    growth: float = GROWTH,
+    max_steps: int = MAX_STEPS,
+    max_time: float = MAX_TIME,
     max_step_norm: float = MAX_STEP_NORM,
     second_order: bool = False,
     coefficient_error: np.ndarray | None = None,

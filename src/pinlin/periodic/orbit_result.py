@@ -15,7 +15,7 @@ from ..results import Result
 __all__ = ["PeriodicOrbit"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class PeriodicOrbit(Result):
     """A T-periodic motion q*(t) of a scene's free coordinates (forced, or an autonomous orbit).
 

@@ -14,7 +14,7 @@ from ..spectral.stability.verdict import Stability
 __all__ = ["FloquetAnalysis"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class FloquetAnalysis(Result):
     """Floquet multipliers of y' = A(t) y, A T-periodic, with error bounds, exponents, frequencies, verdict.
 

@@ -20,14 +20,12 @@ from ..errors import ParameterError, SamplingError
 from ..linearization.state_form import first_order_form
 from .collocation import Transitions, integrate_transitions
 from .collocation_grid import integrate_on_grid
+from .options import FloquetOptions
 from .sampling import PeriodicSamples, group_norms, sample_periodic
 from .second_order import SecondOrderA, lagrangian_defect, structure_defect
 
-__all__ = ["SAMPLING", "Integrated", "first_order_transitions", "second_order_transitions", "check_sampling",
-           "second_order_scales", "counted_errors", "block_errors", "SAMPLING_FLOOR"]
-
-#: The accepted modes of ``sampling``.
-SAMPLING = ("auto", "spectral", "nodes")
+__all__ = ["Integrated", "first_order_transitions", "second_order_transitions", "second_order_scales",
+           "counted_errors", "block_errors", "SAMPLING_FLOOR"]
 
 #: Smallest relative interpolation tolerance, in units of eps: the samples' own rounding (a Pinocchio pass
 #: is accurate to a few eps of its norms) must not decide whether the interpolant converged.
@@ -52,14 +50,6 @@ class Integrated:
     lagrangian: float = float("nan")
 
 
-def check_sampling(sampling, max_samples) -> None:
-    if sampling not in SAMPLING:
-        raise ParameterError("sampling", f"expected one of {', '.join(map(repr, SAMPLING))}, got {sampling!r}")
-    if not (isinstance(max_samples, (int, np.integer)) and not isinstance(max_samples, bool)
-            and 16 <= max_samples <= 65536):
-        raise ParameterError("max_samples", f"expected an int in 16..65536, got {max_samples!r}")
-
-
 def second_order_scales(samples: np.ndarray) -> np.ndarray:
     """Scales of the M, C, K groups: ||M||, max(||C||, sqrt(||M|| ||K||)), ||K|| (largest Frobenius norms
     over the samples).  sqrt(||M|| ||K||) has the units of C: a light damping is computed from terms of that
@@ -69,16 +59,16 @@ def second_order_scales(samples: np.ndarray) -> np.ndarray:
     return np.array([M, max(C, np.sqrt(M * K)), K])
 
 
-def _sample(F, T, rtol, sampling, max_samples, names, scales=group_norms) -> PeriodicSamples | None:
-    if sampling == "nodes":
+def _sample(F, T, options: FloquetOptions, names, scales=group_norms) -> PeriodicSamples | None:
+    if options.sampling == "nodes":
         return None
-    tol = max(rtol, SAMPLING_FLOOR * _EPS)
-    samples = sample_periodic(F, T, tol=tol, max_samples=int(max_samples), scales=scales)
+    tol = max(options.rtol, SAMPLING_FLOOR * _EPS)
+    samples = sample_periodic(F, T, tol=tol, max_samples=options.max_samples, scales=scales)
     finite = np.isfinite(samples.samples).all(axis=(2, 3))                  # (N, groups)
     if not finite.all():
         j, g = np.argwhere(~finite)[0]
         raise ParameterError(names[g], f"non-finite entries at t = {j * T / samples.samples.shape[0]:.6g} s")
-    if not samples.converged and sampling == "spectral":
+    if not samples.converged and options.sampling == "spectral":
         raise SamplingError(
             f"sampling='spectral': the trigonometric interpolant of the coefficients did not reach the relative "
             f"error {tol:.2g} with {samples.evaluations} samples (measured errors after each doubling: "
@@ -102,11 +92,17 @@ def _described(samples: PeriodicSamples, tr: Transitions) -> str:
             f"{len(tr.steps)} steps")
 
 
-def first_order_transitions(func, T: float, m: int, options: dict, sampling: str, max_samples: int) -> Integrated:
+def _integration(options: FloquetOptions) -> dict:
+    """The integrators' keywords from the options (the same for both integrators)."""
+    return dict(rtol=options.rtol, stages=options.stages, growth=options.growth, max_steps=options.max_steps,
+                max_time=options.max_time)
+
+
+def first_order_transitions(func, T: float, m: int, options: FloquetOptions) -> Integrated:
     """The transitions of y' = A(t) y, A = ``func`` (checked callable)."""
-    samples = _sample(lambda t: func(t)[None], T, options["rtol"], sampling, max_samples, ("A",))
+    samples = _sample(lambda t: func(t)[None], T, options, ("A",))
     if samples is None or not samples.converged:
-        return _at_nodes(integrate_transitions(func, T, m, **options), samples, float("nan"))
+        return _at_nodes(integrate_transitions(func, T, m, **_integration(options)), samples, float("nan"))
     n = m // 2
     top = np.hstack([np.zeros((n, n)), np.eye(n)]) if m % 2 == 0 else None
     second = top is not None and bool(np.all(samples.samples[:, 0, :n] == top))
@@ -120,7 +116,7 @@ def first_order_transitions(func, T: float, m: int, options: dict, sampling: str
     counted = float(counted_errors(samples.error)[0])
     error = np.array([[counted * float(samples.scale[0])]]) if counted else None
     tr = integrate_on_grid(A, T, m, second_order=second, coefficient_error=error, probe=samples.samples[:, 0],
-                           A0=samples.samples[0, 0], **options)
+                           A0=samples.samples[0, 0], **_integration(options))
     return Integrated(tr, samples.evaluations, samples, float("nan"), _described(samples, tr))
 
 
@@ -149,14 +145,15 @@ def block_errors(samples: PeriodicSamples, A: np.ndarray, n: int) -> np.ndarray 
     return np.array([[0.0, 0.0], [float(np.max(inv * (eK + eM * X))), float(np.max(inv * (eC + eM * Y)))]])
 
 
-def second_order_transitions(triple, fallback, T: float, n: int, options: dict, sampling: str,
-                             max_samples: int, give_up: float) -> Integrated:
+def second_order_transitions(triple, fallback, T: float, n: int, options: FloquetOptions) -> Integrated:
     """The transitions of M x'' + C x' + K x = 0: ``triple(t)`` -> (3, n, n) stacked M, C, K (one evaluation);
-    ``fallback()`` -> (fM, fC, fK) checked callables for the nodes (made only when they are needed)."""
-    samples = _sample(triple, T, options["rtol"], sampling, max_samples, ("M", "C", "K"), second_order_scales)
+    ``fallback()`` -> (fM, fC, fK) checked callables for the nodes (made only when they are needed).  The
+    conservative-structure defect is measured up to ``options.structure_tol`` eps."""
+    give_up = options.structure_tol * _EPS
+    samples = _sample(triple, T, options, ("M", "C", "K"), second_order_scales)
     if samples is None or not samples.converged:
         A = SecondOrderA(*fallback(), n, give_up)
-        tr = integrate_transitions(A, T, 2 * n, **options)
+        tr = integrate_transitions(A, T, 2 * n, **_integration(options))
         return _at_nodes(tr, samples, A.defect)
     S = samples.samples
     A_samples = first_order_form(S[:, 0], S[:, 1], S[:, 2], times=np.arange(S.shape[0]) * T / S.shape[0])[0]
@@ -173,5 +170,5 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
         return first_order_form(F[:, 0], F[:, 1], F[:, 2], times=times)[0]
 
     tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=errors, probe=A_samples,
-                           A0=A_samples[0], **options)
+                           A0=A_samples[0], **_integration(options))
     return Integrated(tr, samples.evaluations, samples, defect, _described(samples, tr), lagrangian)

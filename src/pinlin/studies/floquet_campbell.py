@@ -26,7 +26,7 @@ from .tracking import TrackedModes, track_modes
 __all__ = ["FloquetCampbell", "floquet_campbell"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class FloquetCampbell(Result):
     """Floquet exponents of a periodic family over a range of speeds.
 
@@ -58,7 +58,6 @@ class FloquetCampbell(Result):
     error: float
     elapsed: float
     method: str = "Floquet analysis at each speed, exponents identified by harmonic content, tracked"
-
 
     def __repr__(self) -> str:
         return (f"FloquetCampbell(steps={self.speeds.size}, modes={self.exponents.shape[1]}, "
@@ -107,5 +106,5 @@ def floquet_campbell(func: Callable[[float], FloquetAnalysis], speeds) -> Floque
     tracked = track_modes(np.array(rows))
     exponents = np.asarray(tracked.eigenvalues)
     bound = np.take_along_axis(np.array(bounds), np.asarray(tracked.order), axis=1)
-    return FloquetCampbell(readonly(w), readonly(exponents), readonly(bound), tuple(kinds), tracked,
-                           worst, time.perf_counter() - t0)
+    return FloquetCampbell(speeds=readonly(w), exponents=readonly(exponents), error_bound=readonly(bound),
+                           stable=tuple(kinds), tracked=tracked, error=worst, elapsed=time.perf_counter() - t0)
