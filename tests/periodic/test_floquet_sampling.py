@@ -1,5 +1,5 @@
-"""Spectral sampling of periodic coefficients (issue 23's speed target): the trigonometric interpolant, its
-measured error, the grid integrator, the bound of the interpolant's error, and the fallback to the nodes.
+"""Spectral sampling of periodic coefficients (what makes Floquet analysis of a scene fast): the trigonometric
+interpolant, its measured error, the grid integrator, the bound of the interpolant's error, and the fallback to the nodes.
 
 References: exact trigonometric polynomials, a DFT written out by hand, the scalar variation-of-constants
 formula, an mpmath Taylor integration (``mpmath.odefun``, 25 digits) of coefficients that are not trigonometric

@@ -1,4 +1,4 @@
-"""Periodic reference motions by shooting and the variational coefficients along them (issue 23 parts 2-3).
+"""Periodic reference motions by shooting and the variational coefficients along them.
 
 - A pendulum on a horizontally vibrating pivot, x_p = A sin(omega t), small amplitude: the forced orbit
   against the linear harmonic response J theta'' + c theta' + k theta = m l x_p'' (k = m g l, J = m l^2).

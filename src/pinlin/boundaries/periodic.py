@@ -1,4 +1,4 @@
-"""Stability boundaries of periodic families ``func(p) -> FloquetAnalysis`` (issue 23; theory: Floquet).
+"""Stability boundaries of periodic families ``func(p) -> FloquetAnalysis`` (theory: Floquet).
 
 A periodic motion loses stability where a Floquet multiplier leaves the unit circle.  The boundary is
 the root of one continuous function of p whose sign is the verdict's class, and which crosses zero
@@ -33,7 +33,10 @@ from ..periodic import FloquetAnalysis
 from .critical_result import CriticalParameter
 from .evaluation import VERDICT_CLASS, call_family, check_parameter
 
-__all__ = ["periodic_critical_parameter", "stability_function", "is_periodic_family"]
+__all__ = ["periodic_critical_parameter", "stability_function", "is_periodic_family", "MAX_EVALUATIONS"]
+
+#: Most Floquet analyses a boundary search makes.
+MAX_EVALUATIONS = 60
 
 
 def is_periodic_family(value) -> bool:
@@ -107,7 +110,8 @@ class _Family:
         return flo
 
 
-def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = None, max_evaluations: int = 60,
+def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = None,
+                                max_evaluations: int = MAX_EVALUATIONS,
                                 first: tuple[float, FloquetAnalysis] | None = None) -> CriticalParameter:
     """The parameter in ``bracket`` where the Floquet verdict of ``func(p)`` changes class.
 
@@ -119,7 +123,8 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
     bracket : (float, float)
         Two values whose verdicts differ in class (stable against divergence or flutter).
     tol : float, optional
-        Absolute tolerance of Brent's iteration [unit of p]; default: 4 eps |p| (rounding).
+        Absolute tolerance of Brent's iteration [unit of p]; default: 4 eps |p| (rounding).  Reached through
+        :func:`pinlin.critical_parameter`, whose keyword it is.
     max_evaluations : int
         Most Floquet analyses allowed.
     first : (float, FloquetAnalysis), optional
@@ -177,7 +182,8 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
     return CriticalParameter(
         value=float(root), kind=unstable.stability.kind, mechanism="multiplier crossing",
         eigenvalue=s[0][2], error_bound=bound, bracket=(float(min(near)), float(max(near))), verdicts=verdicts,
-        verified=bool(verified and info.converged), evaluations=family.calls, function_calls=family.calls, steps=tuple(steps),
+        verified=bool(verified and info.converged), evaluations=family.calls, function_calls=family.calls,
+        steps=tuple(steps),
         method="Brent's method on the Floquet stability function (multipliers' distance from the unit circle)",
         elapsed=time.perf_counter() - t0,
         notes=(("conservative: sigma = max |Re (mu + 1/mu) / 2| - 1",) if ends[0].conservative else ()),

@@ -145,16 +145,14 @@ def stage_solve(An: np.ndarray, h: np.ndarray, a: np.ndarray, b: np.ndarray,
         P = np.eye(m) + hh[:, None, None] * np.sum((An * b[None, :, None, None]) @ Z, axis=1)
     else:
         n = m // 2
-        X, Y = np.ascontiguousarray(An[:, :, n:, :n]), An[:, :, n:, n:]
+        X, Y = An[:, :, n:, :n], An[:, :, n:, n:]
         aa = (a[:, None, :] * a.T[None, :, :]).reshape(s * s, s)      # aa[i k, j] = a_ij a_jk
         XX = (aa @ X.reshape(B, s, n * n)).reshape(B, s, s, n, n)
-        # L = I - h a_ik Y_k - h^2 XX_ik in place: block (i, k) of the (s n)-square matrix
-        L = np.empty((B, s, n, s, n))        # C order: the reshapes below are views
-        np.multiply(-a[None, :, None, :, None], Y.transpose(0, 2, 1, 3)[:, None], out=L)
-        L *= hh[:, None, None, None, None]
-        L -= (hh * hh)[:, None, None, None, None] * XX.transpose(0, 1, 3, 2, 4)
-        L = L.reshape(B, s * n, s * n)
-        L.reshape(B, -1)[:, ::s * n + 1] += 1.0
+        # L = I - h a_ik Y_k - h^2 XX_ik: block (i, k) of the (s n)-square matrix
+        h5 = hh[:, None, None, None, None]
+        blocks = (-a[None, :, None, :, None] * Y.transpose(0, 2, 1, 3)[:, None]) * h5 - h5 * h5 * XX.transpose(
+            0, 1, 3, 2, 4)
+        L = np.eye(s * n) + blocks.reshape(B, s * n, s * n)
         rhs = np.zeros((B, s, n, 2 * n))
         rhs[..., :n] = hh[:, None, None, None] * (a @ X.reshape(B, s, n * n)).reshape(B, s, n, n)
         rhs[..., n:] = np.eye(n)

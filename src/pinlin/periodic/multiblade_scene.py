@@ -14,16 +14,18 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 from ..errors import ParameterError
+from ..errors.deprecated import renamed_keywords
 from ..model.scene import Scene
 from .coefficients import variational_coefficients
-from .multiblade import MULTIBLADE_TOLERANCE, multiblade_transform_matrices
+from .multiblade import VARIATION_TOL, multiblade_transform_matrices
 from .orbit_result import PeriodicOrbit
 
 __all__ = ["multiblade_transform"]
 
 
+@renamed_keywords(tolerance="variation_tol")
 def multiblade_transform(scene: Scene, orbit: PeriodicOrbit, blades: Sequence[str], *, rotor: str,
-                         psi0: float = 0.0, tolerance: float = MULTIBLADE_TOLERANCE):
+                         psi0: float = 0.0, variation_tol: float = VARIATION_TOL):
     """The scene's linearized equations along ``orbit`` in multi-blade (Coleman) coordinates.
 
     .. math::  \\beta_k = \\beta_0 + \\sum_j (\\beta_{jc} \\cos j\\psi_k + \\beta_{js} \\sin j\\psi_k)
@@ -41,8 +43,9 @@ def multiblade_transform(scene: Scene, orbit: PeriodicOrbit, blades: Sequence[st
         The prescribed joint that turns the blades.
     psi0 : float
         Azimuth of the first blade at t = 0 [rad].
-    tolerance : float
-        Largest relative change of the transformed matrices over a revolution.
+    variation_tol : float
+        Largest relative change of the transformed matrices over a revolution (``tolerance`` is its
+        deprecated spelling).
 
     Returns
     -------
@@ -72,4 +75,4 @@ def multiblade_transform(scene: Scene, orbit: PeriodicOrbit, blades: Sequence[st
         rows.append(index[name])
     co = variational_coefficients(scene, orbit)
     return multiblade_transform_matrices(co.M, co.C, co.K, rows, omega, psi0=psi0,
-                                         dof_names=list(scene.dof_names), tolerance=tolerance)
+                                         dof_names=list(scene.dof_names), variation_tol=variation_tol)

@@ -1,4 +1,4 @@
-"""Campbell diagrams of periodic systems: Floquet exponents against a speed (issue 23 part 5; theory: Floquet).
+"""Campbell diagrams of periodic systems: Floquet exponents against a speed (theory: Floquet).
 
 At each speed the Floquet analysis gives exponents lambda_k = log(mu_k) / T, defined modulo i 2 pi / T; the
 representative is the one whose frequency carries most of the mode's energy (``FloquetAnalysis.frequencies``,
