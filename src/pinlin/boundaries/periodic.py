@@ -40,7 +40,15 @@ MAX_EVALUATIONS = 60
 
 
 def is_periodic_family(value) -> bool:
-    """True when ``value`` (a family's value at one p) is a Floquet analysis."""
+    """True when ``value`` (a family's value at one p) is a Floquet analysis.
+
+    Examples
+    --------
+    >>> from pinlin.boundaries.periodic import is_periodic_family
+    >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, [[2.0]], 1.0)
+    >>> is_periodic_family(flo), is_periodic_family(pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.0]], [[2.0]]))
+    (True, False)
+    """
     return isinstance(value, FloquetAnalysis)
 
 
@@ -49,6 +57,15 @@ def stability_function(flo: FloquetAnalysis) -> tuple[float, float, complex]:
 
     Negative: stable; positive: unstable; the error bound is the multipliers' bounds carried into sigma
     (first order: |d log|mu|| <= b / |mu|, |d c| <= b |1 - 1 / mu^2| / 2).
+
+    Examples
+    --------
+    >>> from pinlin.boundaries.periodic import stability_function
+    >>> def mathieu(delta):
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[delta + 0.3 * np.cos(t)]], 2 * np.pi)
+    >>> inside, outside = stability_function(mathieu(0.25))[0], stability_function(mathieu(0.5))[0]
+    >>> print(inside > 0, outside < 0)       # unstable in the tongue, stable outside
+    True True
     """
     keep = ~np.asarray(flo.trivial, dtype=bool)
     mu = np.asarray(flo.multipliers)[keep]
@@ -144,6 +161,18 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
         The ends have the same verdict class or one is "undecided".
     SystemFunctionError
         ``func`` raised, returned something else, or the budget ran out.
+
+    Examples
+    --------
+    The lower edge of Mathieu's first tongue of instability, b_1(q) / 4 at q = 0.6 (scipy.special.mathieu_b):
+
+    >>> import scipy.special
+    >>> from pinlin.boundaries.periodic import periodic_critical_parameter
+    >>> def mathieu(delta):
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[delta + 0.3 * np.cos(t)]], 2 * np.pi)
+    >>> crit = periodic_critical_parameter(mathieu, (0.05, 0.25))
+    >>> print(f"{crit.value:.6f}", f"{scipy.special.mathieu_b(1, 0.6) / 4:.6f}", crit.verified)
+    0.089568 0.089568 True
     """
     t0 = time.perf_counter()
     lo, hi = (check_parameter(x, "bracket") for x in bracket)

@@ -96,6 +96,15 @@ def floquet_from_first_order(A, period, *, rtol: float = RTOL, stages: int = STA
         The integration could not meet ``rtol`` within the budget.
     SamplingError
         ``sampling="spectral"`` and the interpolant did not converge within ``max_samples``.
+
+    Examples
+    --------
+    The damped Mathieu equation in first-order form; Liouville's formula gives det Phi(T) = exp(-0.1 T):
+
+    >>> A = lambda t: [[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), -0.1]]
+    >>> flo = pinlin.floquet_from_first_order(A, 2 * np.pi)
+    >>> print(flo.stability.kind, f"{np.prod(flo.multipliers).real:.6f}", f"{np.exp(-0.1 * 2 * np.pi):.6f}")
+    asymptotically_stable 0.533488 0.533488
     """
     start = time.perf_counter()
     T = check_period(period)
@@ -226,6 +235,14 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = RTOL, stages: in
         M(t) singular at a sampled time.
     IntegrationBudgetError, IntegrationError, SamplingError
         As :func:`floquet_from_first_order`.
+
+    Examples
+    --------
+    Mathieu's equation x'' + (1.3 + 0.4 cos t) x = 0, conservative and stable:
+
+    >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[1.3 + 0.4 * np.cos(t)]], 2 * np.pi)
+    >>> print(flo.stability.kind, flo.conservative, np.round(np.abs(flo.multipliers), 6))
+    marginally_stable True [1. 1.]
     """
     start = time.perf_counter()
     fM, shape = coefficient("M", M)

@@ -41,7 +41,14 @@ _CHECK_FRACTIONS = (0.0, 0.0731, 0.1912, 0.3377, 0.4809, 0.6254, 0.7718, 0.9105)
 
 
 def multiblade_names(N: int) -> list:
-    """Names of the multi-blade coordinates of N blades, in the order of z."""
+    """Names of the multi-blade coordinates of N blades, in the order of z.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.multiblade import multiblade_names
+    >>> multiblade_names(4)
+    ['blade_collective', 'blade_cos1', 'blade_sin1', 'blade_differential']
+    """
     names = ["blade_collective"]
     for j in range(1, (N - 1) // 2 + 1):
         names += [f"blade_cos{j}", f"blade_sin{j}"]
@@ -117,6 +124,15 @@ def multiblade_transform_matrices(M, C, K, blades, omega, *, psi0: float = 0.0, 
     MultibladeNotExactError
         The transformed matrices change with time (N = 2, dissimilar or unequally spaced blades): use
         Floquet analysis (:func:`pinlin.periodic.floquet_analysis_matrices`) instead.
+
+    Examples
+    --------
+    Three identical uncoupled blades (M = I, K = 4 I) turning at 3 rad/s: collective and cyclic coordinates,
+    the cyclic ones with the gyroscopic coupling 2 Omega and the stiffness lowered by Omega^2:
+
+    >>> sys = pinlin.multiblade_transform_matrices(np.eye(3), np.zeros((3, 3)), 4.0 * np.eye(3), [0, 1, 2], 3.0)
+    >>> print(sys.dof_names, np.diag(sys.K) + 0.0, np.round(sys.G[1, 2] / sys.M[1, 1], 6))
+    ('blade_collective', 'blade_cos1', 'blade_sin1') [12.  -7.5 -7.5] 6.0
     """
     from ..linearization import LinearizedSystem
 

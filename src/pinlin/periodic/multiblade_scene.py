@@ -61,6 +61,31 @@ def multiblade_transform(scene: Scene, orbit: PeriodicOrbit, blades: Sequence[st
     MultibladeNotExactError
         The transform leaves time-dependent coefficients (N = 2, dissimilar or unequally spaced blades):
         analyse the scene with :func:`pinlin.floquet_analysis` instead.
+
+    Examples
+    --------
+    Three lag-hinged blades on a hub that moves on springs in x and y, turning at 3 rad/s:
+
+    >>> I = '<inertia ixx="1e-3" iyy="1e-3" izz="1e-3" ixy="0" ixz="0" iyz="0"/>'
+    >>> def body(name, m, x=0.0):
+    ...     return f'<link name="{name}"><inertial><origin xyz="{x} 0 0"/><mass value="{m}"/>{I}</inertial></link>'
+    >>> def joint(name, kind, parent, child, axis, xyz="0 0 0", yaw=0.0):
+    ...     return (f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+    ...             f'<origin xyz="{xyz}" rpy="0 0 {yaw}"/><axis xyz="{axis}"/>'
+    ...             f'<limit lower="-9" upper="9" effort="9" velocity="9"/></joint>')
+    >>> parts = ['<robot name="rotor"><link name="world"/>', body("sx", 5.0), body("sy", 0.1), body("hub", 0.1),
+    ...          joint("x", "prismatic", "world", "sx", "1 0 0"), joint("y", "prismatic", "sx", "sy", "0 1 0"),
+    ...          joint("spin", "continuous", "sy", "hub", "0 0 1")]
+    >>> for k, a in enumerate(2 * np.pi * np.arange(3) / 3):
+    ...     parts += [body(f"b{k}", 1.0, 0.5),
+    ...               joint(f"lag{k}", "revolute", "hub", f"b{k}", "0 0 1", f"{0.2 * np.cos(a)} {0.2 * np.sin(a)} 0", a)]
+    >>> robot = pinlin.load_urdf_string("".join(parts) + "</robot>")
+    >>> springs = [pinlin.JointSpring(j, 400.0 if j in "xy" else 20.0) for j in ("x", "y", "lag0", "lag1", "lag2")]
+    >>> scene = pinlin.Scene(robot, springs, gravity=(0.0, 0.0, 0.0), prescribed={"spin": 3.0})
+    >>> orbit = pinlin.periodic_orbit(scene, scene.neutral())
+    >>> sys = pinlin.multiblade_transform(scene, orbit, ["lag0", "lag1", "lag2"], rotor="spin")
+    >>> sys.dof_names
+    ('x', 'y', 'blade_collective', 'blade_cos1', 'blade_sin1')
     """
     if rotor not in scene.prescribed:
         raise ParameterError("rotor", f"{rotor!r} is not a joint prescribed at a constant speed in this scene; "

@@ -323,6 +323,15 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
         The orbit leaves a free joint's position limits.
     ParameterError
         Not a scene; constraints or curved joints (free-flyer, spherical, planar); a bad period guess.
+
+    Examples
+    --------
+    The bundled pendulum on a vertically vibrating pivot (Kapitza): hanging, it stays at rest:
+
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> print(orbit.constant, f"{orbit.period:.6f}")
+    True 0.031416
     """
     start = time.perf_counter()
     q, v, T, autonomous = _start(scene, q0, v0, period)

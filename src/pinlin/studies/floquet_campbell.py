@@ -48,6 +48,14 @@ class FloquetCampbell(Result):
     elapsed : float
         Seconds [s].
     method : str
+
+    Examples
+    --------
+    >>> def analysis(w):     # a damped Mathieu equation whose pumping grows with w
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], [[0.05]], lambda t: [[1.3 + 0.4 * w * np.cos(t)]], 2 * np.pi)
+    >>> camp = pinlin.floquet_campbell(analysis, [0.5, 1.0, 1.5])
+    >>> print(camp.speeds.tolist(), len(camp.stable), camp.error < 1e-10)
+    [0.5, 1.0, 1.5] 3 True
     """
 
     speeds: np.ndarray
@@ -84,6 +92,14 @@ def floquet_campbell(func: Callable[[float], FloquetAnalysis], speeds) -> Floque
         Fewer than two speeds, or non-finite ones.
     SystemFunctionError
         ``func`` raised, returned something else or analyses of different sizes.
+
+    Examples
+    --------
+    >>> def analysis(w):     # a damped Mathieu equation whose pumping grows with w
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], [[0.05]], lambda t: [[1.3 + 0.4 * w * np.cos(t)]], 2 * np.pi)
+    >>> camp = pinlin.floquet_campbell(analysis, [0.5, 1.0, 1.5])
+    >>> print(camp.exponents.shape, camp.stable[0], np.round(camp.exponents.real[0] + 0.0, 6))
+    (3, 2) asymptotically_stable [-0.025 -0.025]
     """
     t0 = time.perf_counter()
     w = np.asarray(speeds, dtype=float).ravel()
