@@ -17,7 +17,8 @@ import pinlin
 from pinlin import ParameterError, PinlinError, SamplingError
 from pinlin.periodic import floquet_analysis_matrices, floquet_from_first_order
 from pinlin.periodic.bounds import coefficient_terms
-from pinlin.periodic.collocation import Step, gauss_legendre, integrate_transitions
+from pinlin.periodic.collocation import integrate_transitions
+from pinlin.periodic.gauss_step import Step, gauss_legendre
 from pinlin.periodic.collocation_grid import integrate_on_grid
 from pinlin.periodic.sampling import sample_periodic
 

@@ -24,7 +24,15 @@ NULL_MOTION_SHARE = 0.3
 
 
 def null_motion(M: np.ndarray, names) -> tuple[float, list[str]]:
-    """Smallest eigenvalue of a symmetric M and the coordinates its eigenvector moves."""
+    """Smallest eigenvalue of a symmetric M and the coordinates its eigenvector moves.
+
+    Examples
+    --------
+    >>> from pinlin.linearization.state_form import null_motion
+    >>> value, moved = null_motion(np.diag([1e-12, 1.0]), ["x", "y"])
+    >>> print(f"{value:.1e}", moved)
+    1.0e-12 ['x']
+    """
     w, V = np.linalg.eigh(M)
     return float(w[0]), [names[i] for i in np.flatnonzero(np.abs(V[:, 0]) > NULL_MOTION_SHARE)]
 

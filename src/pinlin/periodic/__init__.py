@@ -8,7 +8,9 @@ One concept per module:
   error measured on fresh samples;
 - :mod:`.second_order` -- M, C, K in first-order form, and the tests of their conservative structure
   (constant, or a time-varying Lagrangian system);
-- :mod:`.collocation` -- step transitions of y' = A(t) y by Gauss-Legendre collocation with step doubling,
+- :mod:`.gauss_step` -- the Gauss-Legendre collocation step with step doubling and its accept test, on a
+  stack of steps;
+- :mod:`.collocation` -- step transitions of y' = A(t) y step by step,
   grouped into well-conditioned segments;
 - :mod:`.collocation_grid` -- the same on a step grid refined in rounds, for coefficients cheap at many times;
 - :mod:`.sampled` -- the transitions from sampled coefficients (or, where they do not converge, at the nodes);

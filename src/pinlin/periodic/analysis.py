@@ -27,7 +27,7 @@ from .options import (GROWTH, HARMONICS, MAX_SAMPLES, MAX_STEPS, MAX_TIME, RTOL,
 from .result import FloquetAnalysis
 from .sampled import Integrated, first_order_transitions, second_order_transitions
 
-__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "floquet_second_order", "SYMPLECTIC_TOL"]
+__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "SYMPLECTIC_TOL"]
 
 #: Relative defect ||Phi^T Omega Phi - Omega|| / (||Phi||^2 ||Omega||) allowed for ``conservative=True``
 #: (the integration's own error is about rtol per step; a damping of 1e-8 relative already exceeds it).

@@ -2,7 +2,7 @@
 evaluate at many times at once (an interpolant of sampled coefficients, :mod:`.sampling`) (theory: Floquet).
 
 The same Gauss-Legendre step and Richardson estimate as :mod:`.collocation`, by its kernel
-:func:`~.collocation.try_steps` (each step taken whole and as two halves,
+:func:`~.gauss_step.try_steps` (each step taken whole and as two halves,
 E = (P_1/2 P_1/2' - P_h) / (2^(2s) - 1), accepted when ||E||_2 <= rtol ||P||_2 and
 h ||D^-1 A D||_2 <= :data:`~.collocation.MAX_STEP_NORM` at its middle node), but every pending step of a
 round is taken at once: one evaluation of A at all their nodes and one stacked solve.  The first grid is uniform,
@@ -22,7 +22,8 @@ import numpy as np
 
 from ..errors import IntegrationBudgetError, IntegrationError
 from .options import GROWTH, MAX_STEPS, MAX_TIME, RTOL, STAGES
-from .collocation import MAX_STEP_NORM, Transitions, balancing, group_segments, try_steps, two_norms
+from .collocation import MAX_STEP_NORM, Transitions, balancing, group_segments
+from .gauss_step import try_steps, two_norms
 
 __all__ = ["integrate_on_grid", "PROBES"]
 
@@ -95,6 +96,17 @@ def integrate_on_grid(
         The next round would take the steps past ``max_steps`` (rounds are not split), or ``max_time`` spent.
     IntegrationError
         Coefficients not finite at t = 0 or at a probe, a step below 1e-12 T, or a non-finite transition.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation_grid import integrate_on_grid
+    >>> def A(times):         # Mathieu's equation at many times at once
+    ...     out = np.zeros((np.size(times), 2, 2))
+    ...     out[:, 0, 1], out[:, 1, 0] = 1.0, -(1.3 + 0.4 * np.cos(times))
+    ...     return out
+    >>> tr = integrate_on_grid(A, 2 * np.pi, 2, second_order=True)
+    >>> print(len(tr.steps), tr.rejected, tr.steps[0].t0, f"{tr.steps[-1].t0 + tr.steps[-1].h:.6f}")
+    7 0 0.0 6.283185
     """
     start = time.perf_counter()
     evaluations = (A0 is None) + (probe is None) * PROBES

@@ -29,7 +29,17 @@ _TINY = float(np.finfo(float).tiny)
 
 def structure_defect(M: np.ndarray, C: np.ndarray, K: np.ndarray, M0: np.ndarray, C0: np.ndarray) -> float:
     """max of asym(M), asym(K) (relative to M, K) and sym(C), M - M0, C - C0 (relative to |M| + |C| + |K|)
-    over stacks (B, n, n) of coefficients: 0 for a conservative system with constant M and G."""
+    over stacks (B, n, n) of coefficients: 0 for a conservative system with constant M and G.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.second_order import structure_defect
+    >>> M, C, K = np.eye(2)[None], np.array([[[0.0, 1.0], [-1.0, 0.0]]]), np.diag([2.0, 3.0])[None]
+    >>> structure_defect(M, C, K, M[0], C[0])                   # constant M, skew C, symmetric K
+    0.0
+    >>> print(f"{structure_defect(M, C + 0.1 * np.eye(2), K, M[0], C[0]):.4f}")   # a damping 0.1: 0.2 / 5
+    0.0400
+    """
     def size(X):
         return np.abs(X).max(axis=(-2, -1))
     sM, sK = size(M) + _TINY, size(K) + _TINY
@@ -43,7 +53,16 @@ def structure_defect(M: np.ndarray, C: np.ndarray, K: np.ndarray, M0: np.ndarray
 class SecondOrderA:
     """t -> A(t) from checked callables M, C, K, recording the largest conservative-structure defect seen
     (:func:`structure_defect` against M(0), C(0)); it stops measuring once the defect passes ``give_up``
-    (the structure test's tolerance)."""
+    (the structure test's tolerance).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.second_order import SecondOrderA
+    >>> A = SecondOrderA(lambda t: np.eye(1), lambda t: np.zeros((1, 1)), lambda t: np.array([[2.0 + np.cos(t)]]), 1,
+    ...                  give_up=1e-14)
+    >>> print(A(0.0).tolist(), A.defect)
+    [[0.0, 1.0], [-3.0, 0.0]] 0.0
+    """
 
     def __init__(self, fM, fC, fK, n, give_up: float):
         self.fM, self.fC, self.fK, self.n = fM, fC, fK, n
@@ -64,7 +83,16 @@ def lagrangian_defect(M: np.ndarray, C: np.ndarray, K: np.ndarray, dM: np.ndarra
     """max of ||sym(C) - M'|| and ||skew(K) - skew(C)' / 2|| over stacks (B, n, n) of samples and their time
     derivatives, relative to |C| + rate |M| and |K| + rate |C| (max-norms; ``rate`` [1/s] the highest
     frequency of the interpolant, N / 2 times 2 pi / T, by which differentiation amplifies rounding): 0 for the
-    variational equation of a Lagrangian system."""
+    variational equation of a Lagrangian system.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.second_order import lagrangian_defect
+    >>> M, dM = np.eye(2)[None], np.zeros((1, 2, 2))
+    >>> C = dC = np.zeros((1, 2, 2))
+    >>> lagrangian_defect(M, C, np.diag([2.0, 3.0])[None], dM, dC, 1.0)
+    0.0
+    """
     def size(X):
         return float(np.abs(X).max())
     swap = (0, 2, 1)
