@@ -37,7 +37,8 @@ def null_motion(M: np.ndarray, names) -> tuple[float, list[str]]:
     return float(w[0]), [names[i] for i in np.flatnonzero(np.abs(V[:, 0]) > NULL_MOTION_SHARE)]
 
 
-def first_order_form(M, C, K, F=None, *, times=None) -> tuple[np.ndarray, np.ndarray | None, float | np.ndarray]:
+def first_order_form(M, C, K, F=None, *, times=None,
+                     residual: bool = True) -> tuple[np.ndarray, np.ndarray | None, float | np.ndarray | None]:
     """A, B of the first-order form and the relative residual of the solves, for one system or a stack.
 
     Parameters
@@ -48,13 +49,15 @@ def first_order_form(M, C, K, F=None, *, times=None) -> tuple[np.ndarray, np.nda
         Input matrix (generalized forces f = F u); None: no B.
     times : (B,) array_like or None
         The time [s] of each matrix (one for a single system), named in the error when M is singular there.
+    residual : bool
+        Compute ``error`` (one more product; the Floquet integrators, which form A at every node, skip it).
 
     Returns
     -------
     A : (..., 2n, 2n) ndarray
     B : (..., 2n, k) ndarray or None
-    error : float or (B,) ndarray
-        ||M X - Y||_F / (||M||_F ||X||_F + ||Y||_F) for X = M^-1 Y, Y = [K, C, F]: the backward error of the
+    error : float, (B,) ndarray or None
+        None when ``residual`` is False, else ||M X - Y||_F / (||M||_F ||X||_F + ||Y||_F) for X = M^-1 Y, Y = [K, C, F]: the backward error of the
         solves (0 where Y = 0).
 
     Raises
@@ -81,12 +84,7 @@ def first_order_form(M, C, K, F=None, *, times=None) -> tuple[np.ndarray, np.nda
         X = np.linalg.solve(M, Y)
     except np.linalg.LinAlgError:
         raise _singular(M, times) from None
-
-    def fro(Z):
-        return np.linalg.norm(Z, axis=(-2, -1))
-    denom = fro(M) * fro(X) + fro(Y)
-    residual = fro(M @ X - Y)
-    error = np.divide(residual, denom, out=np.zeros_like(residual), where=denom > 0)
+    error = _residual(M, X, Y) if residual else None
     A = np.zeros((*M.shape[:-2], 2 * n, 2 * n))
     A[..., :n, n:] = np.eye(n)
     # (+ 0.0: -X of an exact zero is -0., which python-control and every printout would show as "-0")
@@ -95,7 +93,17 @@ def first_order_form(M, C, K, F=None, *, times=None) -> tuple[np.ndarray, np.nda
     if F is not None:
         B = np.zeros((*M.shape[:-2], 2 * n, Y.shape[-1] - 2 * n))
         B[..., n:, :] = X[..., 2 * n :] + 0.0
-    return A, B, float(error) if error.ndim == 0 else error
+    return A, B, error
+
+
+def _residual(M: np.ndarray, X: np.ndarray, Y: np.ndarray) -> float | np.ndarray:
+    """||M X - Y||_F / (||M||_F ||X||_F + ||Y||_F) per matrix (0 where Y = 0)."""
+    def fro(Z):
+        return np.linalg.norm(Z, axis=(-2, -1))
+    denom = fro(M) * fro(X) + fro(Y)
+    norm = fro(M @ X - Y)
+    error = np.divide(norm, denom, out=np.zeros_like(norm), where=denom > 0)
+    return float(error) if error.ndim == 0 else error
 
 
 def _singular(M: np.ndarray, times) -> SingularMassError:

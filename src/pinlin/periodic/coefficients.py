@@ -60,7 +60,7 @@ class Point:
     def first_order(self) -> np.ndarray:
         """A = [[0, I], [-M^-1 K, -M^-1 C]] (2n, 2n), by
         :func:`~pinlin.linearization.state_form.first_order_form`."""
-        return first_order_form(self.M, self.C, self.K)[0]
+        return first_order_form(self.M, self.C, self.K, residual=False)[0]
 
 
 def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray, t: float,

@@ -259,7 +259,9 @@ def try_steps(A: Callable[[np.ndarray], np.ndarray], t0: np.ndarray, h: np.ndarr
     steps = []
     if accepted.any():
         k = np.flatnonzero(accepted)
-        rounding = ROUNDING_FACTOR * _EPS * np.sqrt(s * m) * (two_norms(P1[k]) * two_norms(P2[k]) + norm[k])
+        # the halves' norms by Frobenius (an upper bound of their 2-norms, without an SVD each)
+        halves = np.linalg.norm(P1[k], axis=(1, 2)) * np.linalg.norm(P2[k], axis=(1, 2))
+        rounding = ROUNDING_FACTOR * _EPS * np.sqrt(s * m) * (halves + norm[k])
         stage = np.concatenate([Z3[k, 1], Z3[k, 2] @ P1[k, None]], axis=1)     # t0 -> each half's nodes
         weights = np.concatenate([b, b])[None, :] * half[k, None]
         steps = [Step(float(t0[j]), float(h[j]), P[j], difference[j], float(rounding[i]),

@@ -210,7 +210,8 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: Floque
         tr = integrate_transitions(A, T, 2 * n, **_integration(options))
         return _at_nodes(tr, samples, A.defect)
     S = samples.samples
-    A_samples = first_order_form(S[:, 0], S[:, 1], S[:, 2], times=np.arange(S.shape[0]) * T / S.shape[0])[0]
+    A_samples = first_order_form(S[:, 0], S[:, 1], S[:, 2], times=np.arange(S.shape[0]) * T / S.shape[0],
+                                 residual=False)[0]
     defect = structure_defect(S[:, 0], S[:, 1], S[:, 2], S[0, 0], S[0, 1])
     errors = block_errors(samples, A_samples, n)
     lagrangian = float("nan")
@@ -221,7 +222,7 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: Floque
 
     def A(times):
         F = samples(times)
-        return first_order_form(F[:, 0], F[:, 1], F[:, 2], times=times)[0]
+        return first_order_form(F[:, 0], F[:, 1], F[:, 2], times=times, residual=False)[0]
 
     tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=errors, probe=A_samples,
                            A0=A_samples[0], **_integration(options))
