@@ -1,4 +1,4 @@
-"""Stability boundaries of periodic families (issue 23 part 5): Mathieu's tongues, a damped Mathieu equation,
+"""Stability boundaries of periodic families: Mathieu's tongues, a damped Mathieu equation,
 Kapitza's critical frequency.
 
 References: the Mathieu characteristic values a_r(q), b_r(q) (scipy.special; McLachlan, Theory and
@@ -148,3 +148,4 @@ def test_the_error_bound_is_its_documented_formula():
         w = crit.error_bound / 10
         assert "undecided" in (kind(crit.value - w), kind(crit.value + w)) or \
             (kind(crit.value - w) == "stable") == (kind(crit.value + w) == "stable")
+

@@ -101,3 +101,17 @@ def test_undamped_rotor_is_lagrangian_with_time_varying_mass():
     damped, _ = lag_rotor(3, Omega=Omega)
     with pytest.raises(ParameterError, match="conservative: the monodromy is not symplectic"):
         floquet_analysis_matrices(*damped, T, conservative=True)
+
+
+def test_variation_tol_decides_and_tolerance_is_its_deprecated_spelling():
+    (M, C, K), _ = lag_rotor(3, blade_changes={1: 1.0 + 1e-6})     # blades dissimilar by 1e-6 (relative)
+    with pytest.raises(MultibladeNotExactError, match=r"variation_tol 1e-10") as info:
+        multiblade_transform_matrices(M, C, K, [2, 3, 4], 3.0)
+    variation = info.value.variation
+    assert 1e-8 < variation < 1e-5
+    loose = multiblade_transform_matrices(M, C, K, [2, 3, 4], 3.0, variation_tol=10 * variation)
+    with pytest.warns(DeprecationWarning, match=r"multiblade_transform_matrices\(tolerance=...\) .* use variation_tol="):
+        old = multiblade_transform_matrices(M, C, K, [2, 3, 4], 3.0, tolerance=10 * variation)
+    assert_allclose(old.M, loose.M, rtol=0, atol=0)
+    with pytest.raises(MultibladeNotExactError):
+        multiblade_transform_matrices(M, C, K, [2, 3, 4], 3.0, variation_tol=0.5 * variation)

@@ -1,5 +1,5 @@
-"""Spectral sampling of periodic coefficients (issue 23's speed target): the trigonometric interpolant, its
-measured error, the grid integrator, the bound of the interpolant's error, and the fallback to the nodes.
+"""Spectral sampling of periodic coefficients (what makes Floquet analysis of a scene fast): the trigonometric
+interpolant, its measured error, the grid integrator, the bound of the interpolant's error, and the fallback to the nodes.
 
 References: exact trigonometric polynomials, a DFT written out by hand, the scalar variation-of-constants
 formula, an mpmath Taylor integration (``mpmath.odefun``, 25 digits) of coefficients that are not trigonometric
@@ -17,7 +17,8 @@ import pinlin
 from pinlin import ParameterError, PinlinError, SamplingError
 from pinlin.periodic import floquet_analysis_matrices, floquet_from_first_order
 from pinlin.periodic.bounds import coefficient_terms
-from pinlin.periodic.collocation import Step, gauss_legendre, integrate_transitions
+from pinlin.periodic.collocation import integrate_transitions
+from pinlin.periodic.gauss_step import Step, gauss_legendre
 from pinlin.periodic.collocation_grid import integrate_on_grid
 from pinlin.periodic.sampling import sample_periodic
 
@@ -283,13 +284,13 @@ def test_the_damping_scale_is_at_least_sqrt_m_k():
 
 def test_block_errors_carry_the_measured_stiffness_error_through_the_mass():
     from pinlin.periodic.sampled import block_errors, second_order_scales
-    from pinlin.periodic.second_order import first_order_stack
+    from pinlin.linearization.state_form import first_order_form
 
     def triple(t):   # M = 2 and C = 0.05 constant (their errors are rounding), K = 2 + 0.3 exp(cos t)
         return np.array([[[2.0]], [[0.05]], [[2.0 + 0.3 * np.exp(np.cos(t))]]])
     samples = sample_periodic(triple, TWO_PI, tol=1e-7, scales=second_order_scales)
     S = samples.samples
-    A = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * TWO_PI / S.shape[0])
+    A = first_order_form(S[:, 0], S[:, 1], S[:, 2])[0]
     # d(M^-1 K) = M^-1 dK with dK = (measured relative error) (largest |K| = 2 + 0.3 e) and ||M^-1|| = 1 / 2
     expected = samples.error[2] * (2.0 + 0.3 * np.e) / 2.0
     assert samples.error[2] > 1e-10
@@ -312,7 +313,7 @@ def test_the_lagrangian_structure_is_decided_at_the_structure_tolerance(factor, 
     # a damping d = 1e-11 I breaks sym(C) = M' by d; over the 16 samples |C| <= 0.9 (0.7 cos t - 0.2 at t = pi)
     # and |M| <= 2.5, the rate 16 / 2: the defect is 1e-11 / (0.9 + 8 * 2.5) in units of eps
     defect = 1e-11 / (0.9 + 8 * 2.5) / np.finfo(float).eps
-    result = _lagrangian_analysis(damping=1e-11, structure_tolerance=factor * defect)
+    result = _lagrangian_analysis(damping=1e-11, structure_tol=factor * defect)
     assert result.evaluations == 16 and result.conservative == conservative
 
 
@@ -336,13 +337,13 @@ def test_the_grid_counts_the_evaluations_it_makes():
 
 
 def test_non_finite_samples_are_named():
+    from pinlin.periodic.options import FloquetOptions
     from pinlin.periodic.sampled import second_order_transitions
-    options = dict(rtol=1e-13, stages=6, growth=1e3, max_steps=20000, max_time=600.0)
 
     def triple(t):   # an unchecked coefficient function (a scene's) that breaks at t = pi / 2
         return np.array([[[1.0]], [[0.0]], [[np.nan if abs(t - np.pi / 2) < 1e-12 else 2.0]]])
     with pytest.raises(ParameterError, match="K: non-finite entries at t = 1.5708 s"):
-        second_order_transitions(triple, None, TWO_PI, 1, options, "spectral", 256, 1e-14)
+        second_order_transitions(triple, None, TWO_PI, 1, FloquetOptions(sampling="spectral"))
 
 
 def test_the_grid_refuses_non_finite_coefficients():

@@ -1,4 +1,4 @@
-"""Mathieu's equation through a multibody model (theory: Floquet; issue 23 part 3b): a point-mass pendulum
+"""Mathieu's equation through a multibody model (theory: Floquet): a point-mass pendulum
 on a pivot moving vertically, z_p = A sin(omega t + phi).
 
 Derivation (tests/periodic/scene_cases.py): J theta'' + m l (g + z_p'') sin theta = 0 with J = m l^2, so

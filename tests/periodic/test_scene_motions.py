@@ -1,4 +1,4 @@
-"""Periodic prescribed motions (issue 23 part 1): Harmonic, FourierMotion, PeriodicMotion, the scene's
+"""Periodic prescribed motions: Harmonic, FourierMotion, PeriodicMotion, the scene's
 period (least common multiple, quasi-periodic refused), scene files, and linearize's refusal."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Periodic reference motions by shooting and the variational coefficients along them (issue 23 parts 2-3).
+"""Periodic reference motions by shooting and the variational coefficients along them.
 
 - A pendulum on a horizontally vibrating pivot, x_p = A sin(omega t), small amplitude: the forced orbit
   against the linear harmonic response J theta'' + c theta' + k theta = m l x_p'' (k = m g l, J = m l^2).
@@ -65,7 +65,7 @@ def test_large_swing_period_is_the_elliptic_integral():
     q0 = np.zeros(scene.model.nq)
     q0[2] = theta0
     omega0 = math.sqrt(G / L)
-    orbit = pinlin.periodic_orbit(scene, q0, period=1.3 * 2 * math.pi / omega0, tol=1e-12)
+    orbit = pinlin.periodic_orbit(scene, q0, period=1.3 * 2 * math.pi / omega0, residual_tol=1e-12)
     assert orbit.autonomous and not orbit.constant
     k = math.sin(orbit.q0[2] / 2)
     exact = 4 * scipy.special.ellipk(k**2) / omega0

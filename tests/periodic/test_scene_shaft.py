@@ -1,4 +1,4 @@
-"""The asymmetric shaft through URDF scenes (theory: Floquet reference case; issue 23 part 3d).
+"""The asymmetric shaft through URDF scenes (theory: Floquet reference case).
 
 A disk of mass m held by two springs k1, k2 (rest length R, unloaded at the centre) from anchors at (R, 0)
 and (0, R) on a rotor turning at Omega: along the rotor's x and y the disk sees k1 and k2.

@@ -1,4 +1,4 @@
-"""Campbell diagrams of periodic systems (issue 23 part 5): Floquet exponents against the rotor speed.
+"""Campbell diagrams of periodic systems : Floquet exponents against the rotor speed.
 
 Reference: the three-bladed lag-hinged rotor on an anisotropic hub (Coleman and Feingold, NACA TR 1351, 1958;
 the hand-derived matrices of tests/periodic/floquet_cases.py): in multi-blade coordinates it is time-invariant,

@@ -1,4 +1,4 @@
-"""Stability boundaries of periodic families ``func(p) -> FloquetAnalysis`` (issue 23; theory: Floquet).
+"""Stability boundaries of periodic families ``func(p) -> FloquetAnalysis`` (theory: Floquet).
 
 A periodic motion loses stability where a Floquet multiplier leaves the unit circle.  The boundary is
 the root of one continuous function of p whose sign is the verdict's class, and which crosses zero
@@ -33,11 +33,22 @@ from ..periodic import FloquetAnalysis
 from .critical_result import CriticalParameter
 from .evaluation import VERDICT_CLASS, call_family, check_parameter
 
-__all__ = ["periodic_critical_parameter", "stability_function", "is_periodic_family"]
+__all__ = ["periodic_critical_parameter", "stability_function", "is_periodic_family", "MAX_EVALUATIONS"]
+
+#: Most Floquet analyses a boundary search makes.
+MAX_EVALUATIONS = 60
 
 
 def is_periodic_family(value) -> bool:
-    """True when ``value`` (a family's value at one p) is a Floquet analysis."""
+    """True when ``value`` (a family's value at one p) is a Floquet analysis.
+
+    Examples
+    --------
+    >>> from pinlin.boundaries.periodic import is_periodic_family
+    >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, [[2.0]], 1.0)
+    >>> is_periodic_family(flo), is_periodic_family(pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.0]], [[2.0]]))
+    (True, False)
+    """
     return isinstance(value, FloquetAnalysis)
 
 
@@ -46,6 +57,15 @@ def stability_function(flo: FloquetAnalysis) -> tuple[float, float, complex]:
 
     Negative: stable; positive: unstable; the error bound is the multipliers' bounds carried into sigma
     (first order: |d log|mu|| <= b / |mu|, |d c| <= b |1 - 1 / mu^2| / 2).
+
+    Examples
+    --------
+    >>> from pinlin.boundaries.periodic import stability_function
+    >>> def mathieu(delta):
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[delta + 0.3 * np.cos(t)]], 2 * np.pi)
+    >>> inside, outside = stability_function(mathieu(0.25))[0], stability_function(mathieu(0.5))[0]
+    >>> print(inside > 0, outside < 0)       # unstable in the tongue, stable outside
+    True True
     """
     keep = ~np.asarray(flo.trivial, dtype=bool)
     mu = np.asarray(flo.multipliers)[keep]
@@ -107,7 +127,8 @@ class _Family:
         return flo
 
 
-def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = None, max_evaluations: int = 60,
+def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = None,
+                                max_evaluations: int = MAX_EVALUATIONS,
                                 first: tuple[float, FloquetAnalysis] | None = None) -> CriticalParameter:
     """The parameter in ``bracket`` where the Floquet verdict of ``func(p)`` changes class.
 
@@ -119,7 +140,8 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
     bracket : (float, float)
         Two values whose verdicts differ in class (stable against divergence or flutter).
     tol : float, optional
-        Absolute tolerance of Brent's iteration [unit of p]; default: 4 eps |p| (rounding).
+        Absolute tolerance of Brent's iteration [unit of p]; default: 4 eps |p| (rounding).  Reached through
+        :func:`pinlin.critical_parameter`, whose keyword it is.
     max_evaluations : int
         Most Floquet analyses allowed.
     first : (float, FloquetAnalysis), optional
@@ -139,6 +161,18 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
         The ends have the same verdict class or one is "undecided".
     SystemFunctionError
         ``func`` raised, returned something else, or the budget ran out.
+
+    Examples
+    --------
+    The lower edge of Mathieu's first tongue of instability, b_1(q) / 4 at q = 0.6 (scipy.special.mathieu_b):
+
+    >>> import scipy.special
+    >>> from pinlin.boundaries.periodic import periodic_critical_parameter
+    >>> def mathieu(delta):
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[delta + 0.3 * np.cos(t)]], 2 * np.pi)
+    >>> crit = periodic_critical_parameter(mathieu, (0.05, 0.25))
+    >>> print(f"{crit.value:.6f}", f"{scipy.special.mathieu_b(1, 0.6) / 4:.6f}", crit.verified)
+    0.089568 0.089568 True
     """
     t0 = time.perf_counter()
     lo, hi = (check_parameter(x, "bracket") for x in bracket)
@@ -177,7 +211,8 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
     return CriticalParameter(
         value=float(root), kind=unstable.stability.kind, mechanism="multiplier crossing",
         eigenvalue=s[0][2], error_bound=bound, bracket=(float(min(near)), float(max(near))), verdicts=verdicts,
-        verified=bool(verified and info.converged), evaluations=family.calls, function_calls=family.calls, steps=tuple(steps),
+        verified=bool(verified and info.converged), evaluations=family.calls, function_calls=family.calls,
+        steps=tuple(steps),
         method="Brent's method on the Floquet stability function (multipliers' distance from the unit circle)",
         elapsed=time.perf_counter() - t0,
         notes=(("conservative: sigma = max |Re (mu + 1/mu) / 2| - 1",) if ends[0].conservative else ()),

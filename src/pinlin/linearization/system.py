@@ -352,12 +352,14 @@ class LinearizedSystem(Result):
         return np.tensordot(self.basis, x, axes=(1, 0))
 
     def first_order(self, F=None) -> tuple[np.ndarray, np.ndarray, float]:
-        """A (2n x 2n) and B (2n x m) of z' = A z + B u with z = (x, x'), and the solves' relative residual.
+        """(A, B, residual) of z' = A z + B u, z = (x, x'), f = F u (F n x m, default I): first_order_form.
 
-        ``F`` (n x m, default the identity) maps the inputs u to generalized forces
-        f = F u; see :func:`~pinlin.linearization.state_form.first_order_form`.
+        Examples
+        --------
+        >>> print(pinlin.LinearizedSystem.from_matrices([[2.0]], [[0.4]], [[8.0]]).first_order()[0].tolist())
+        [[0.0, 1.0], [-4.0, -0.2]]
         """
-        return first_order_form(self.M, self.C, self.K, np.eye(self.n) if F is None else np.asarray(F, float))
+        return first_order_form(self.M, self.C, self.K, np.eye(self.n) if F is None else F)
 
     # ------------------------------------------------------------------ dynamic stiffness
 

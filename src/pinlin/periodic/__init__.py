@@ -2,12 +2,15 @@
 
 One concept per module:
 
+- :mod:`.options` -- :class:`FloquetOptions`, the pipeline's numerical options and their defaults, checked once;
 - :mod:`.inputs` -- checked coefficient functions t -> matrix and the period;
 - :mod:`.sampling` -- the trigonometric interpolant of periodic coefficients from equispaced samples, its
   error measured on fresh samples;
 - :mod:`.second_order` -- M, C, K in first-order form, and the tests of their conservative structure
   (constant, or a time-varying Lagrangian system);
-- :mod:`.collocation` -- step transitions of y' = A(t) y by Gauss-Legendre collocation with step doubling,
+- :mod:`.gauss_step` -- the Gauss-Legendre collocation step with step doubling and its accept test, on a
+  stack of steps;
+- :mod:`.collocation` -- step transitions of y' = A(t) y step by step,
   grouped into well-conditioned segments;
 - :mod:`.collocation_grid` -- the same on a step grid refined in rounds, for coefficients cheap at many times;
 - :mod:`.sampled` -- the transitions from sampled coefficients (or, where they do not converge, at the nodes);
@@ -36,12 +39,13 @@ from .analysis import floquet_analysis_matrices, floquet_from_first_order
 from .coefficients import VariationalCoefficients, variational_coefficients
 from .multiblade import multiblade_transform_matrices
 from .multiblade_scene import multiblade_transform
+from .options import FloquetOptions
 from .orbit_result import PeriodicOrbit
 from .period import scene_period
 from .result import FloquetAnalysis
 from .scene_floquet import floquet_analysis
 from .shooting import periodic_orbit
 
-__all__ = ["FloquetAnalysis", "floquet_from_first_order", "floquet_analysis_matrices",
-           "multiblade_transform_matrices", "multiblade_transform", "PeriodicOrbit", "periodic_orbit", "floquet_analysis",
-           "variational_coefficients", "VariationalCoefficients", "scene_period"]
+__all__ = ["FloquetAnalysis", "FloquetOptions", "floquet_from_first_order", "floquet_analysis_matrices",
+           "multiblade_transform_matrices", "multiblade_transform", "PeriodicOrbit", "periodic_orbit",
+           "floquet_analysis", "variational_coefficients", "VariationalCoefficients", "scene_period"]

@@ -15,39 +15,25 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError
+from ..errors.deprecated import renamed_keywords
 from ..numerics.arrays import readonly
 from .bounds import multiplier_bounds, relative_condition
 from .cyclic import cyclic_eigen
 from .floquet_verdict import floquet_verdict
 from .harmonics import harmonic_content
 from .inputs import check_period, coefficient
+from .options import (GROWTH, HARMONICS, MAX_SAMPLES, MAX_STEPS, MAX_TIME, RTOL, SAFETY, SAMPLING, STAGES,
+                      STRUCTURE_TOL, FloquetOptions)
 from .result import FloquetAnalysis
-from .sampled import Integrated, check_sampling, first_order_transitions, second_order_transitions
+from .sampled import Integrated, first_order_transitions, second_order_transitions
 
-__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "floquet_second_order", "STRUCTURE_TOLERANCE",
-           "SYMPLECTIC_TOLERANCE"]
-
-#: Relative size [units of eps] below which an asymmetric part of K, a symmetric part of C or a change of
-#: M or C over time counts as rounding in the conservative-structure test.
-STRUCTURE_TOLERANCE = 100.0
+__all__ = ["floquet_from_first_order", "floquet_analysis_matrices", "SYMPLECTIC_TOL"]
 
 #: Relative defect ||Phi^T Omega Phi - Omega|| / (||Phi||^2 ||Omega||) allowed for ``conservative=True``
 #: (the integration's own error is about rtol per step; a damping of 1e-8 relative already exceeds it).
-SYMPLECTIC_TOLERANCE = 1e-9
+SYMPLECTIC_TOL = 1e-9
 
 _EPS = float(np.finfo(float).eps)
-
-
-def _check_options(rtol, stages, growth, harmonics, safety, sampling="auto", max_samples=256):
-    check_sampling(sampling, max_samples)
-    checks = (("rtol", rtol, 1e-16 <= rtol < 1e-2, "in [1e-16, 1e-2)"),
-              ("stages", stages, isinstance(stages, (int, np.integer)) and 2 <= stages <= 12, "an int in 2..12"),
-              ("growth", growth, 10.0 <= growth <= 1e8, "in [10, 1e8]"),
-              ("harmonics", harmonics, isinstance(harmonics, (int, np.integer)) and harmonics >= 0, "an int >= 0"),
-              ("safety", safety, 1.0 <= safety < 1e6, "in [1, 1e6)"))
-    for name, value, ok, expected in checks:
-        if not (isinstance(value, (int, float, np.integer, np.floating)) and np.isfinite(value) and ok):
-            raise ParameterError(name, f"expected {expected}, got {value!r}")
 
 
 def _trivial_mask(mu: np.ndarray, autonomous: bool, conservative: bool) -> tuple[np.ndarray, str]:
@@ -61,10 +47,11 @@ def _trivial_mask(mu: np.ndarray, autonomous: bool, conservative: bool) -> tuple
     return mask, f"; trivial multiplier(s) of the autonomous orbit set apart: {shown}"
 
 
-def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
-                             harmonics: int = 16, autonomous: bool = False, symplectic_form=None, rows=None,
-                             safety: float = 10.0, max_steps: int = 20000, max_time: float = 600.0,
-                             sampling: str = "auto", max_samples: int = 256) -> FloquetAnalysis:
+def floquet_from_first_order(A, period, *, rtol: float = RTOL, stages: int = STAGES, growth: float = GROWTH,
+                             harmonics: int = HARMONICS, autonomous: bool = False, symplectic_form=None,
+                             rows=None, safety: float = SAFETY, max_steps: int = MAX_STEPS,
+                             max_time: float = MAX_TIME, sampling: str = SAMPLING,
+                             max_samples: int = MAX_SAMPLES) -> FloquetAnalysis:
     """Floquet multipliers, exponents, frequencies and verdict of y' = A(t) y with A T-periodic.
 
     .. math::  \\Phi' = A(t)\\,\\Phi,\\quad \\Phi(0) = I, \\qquad \\mu_k \\in \\mathrm{eig}\\,\\Phi(T),
@@ -109,10 +96,20 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         The integration could not meet ``rtol`` within the budget.
     SamplingError
         ``sampling="spectral"`` and the interpolant did not converge within ``max_samples``.
+
+    Examples
+    --------
+    The damped Mathieu equation in first-order form; Liouville's formula gives det Phi(T) = exp(-0.1 T):
+
+    >>> A = lambda t: [[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), -0.1]]
+    >>> flo = pinlin.floquet_from_first_order(A, 2 * np.pi)
+    >>> print(flo.stability.kind, f"{np.prod(flo.multipliers).real:.6f}", f"{np.exp(-0.1 * 2 * np.pi):.6f}")
+    asymptotically_stable 0.533488 0.533488
     """
     start = time.perf_counter()
     T = check_period(period)
-    _check_options(rtol, stages, growth, harmonics, safety, sampling, max_samples)
+    options = FloquetOptions(rtol=rtol, stages=stages, growth=growth, harmonics=harmonics, safety=safety,
+                             max_steps=max_steps, max_time=max_time, sampling=sampling, max_samples=max_samples)
     func, shape = coefficient("A", A)
     m = shape[0]
     form = None
@@ -124,14 +121,12 @@ def floquet_from_first_order(A, period, *, rtol: float = 1e-13, stages: int = 6,
         rows = np.asarray(rows)
         if rows.ndim != 1 or rows.size == 0 or rows.dtype.kind not in "iu" or rows.min() < 0 or rows.max() >= m:
             raise ParameterError("rows", f"expected a non-empty 1-d array of indices in 0..{m - 1}, got {rows!r}")
-    options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
-    integrated = first_order_transitions(func, T, m, options, sampling, max_samples)
-    return _analyse(integrated, T, m, lambda monodromy: form, options, harmonics=int(harmonics), rows=rows,
-                    autonomous=autonomous, safety=safety, start=start, what="first-order A(t)")
+    integrated = first_order_transitions(func, T, m, options)
+    return _analyse(integrated, T, m, lambda monodromy: form, options, rows=rows, autonomous=autonomous,
+                    start=start, what="first-order A(t)")
 
 
-def _analyse(integrated: Integrated, T, m, form_after, options, *, harmonics, rows, autonomous, safety, start,
-             what):
+def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, *, rows, autonomous, start, what):
     """The pipeline on the integrated transitions; ``form_after(monodromy)`` gives Omega (or None)."""
     tr = integrated.transitions
     eig = cyclic_eigen(tr.factors)
@@ -142,20 +137,22 @@ def _analyse(integrated: Integrated, T, m, form_after, options, *, harmonics, ro
     form = form_after(monodromy)
     trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
     stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
-                                condition=relative_condition(tr, eig), safety=safety, trivial_note=note)
+                                condition=relative_condition(tr, eig), safety=options.safety, trivial_note=note)
     step_errors = np.array([s.error for s in tr.steps])
     rel = step_errors / np.array([s.norm for s in tr.steps])
     times = np.array([s.t0 for s in tr.steps] + [T])
-    stages = options["stages"]
+    stages = options.stages
     method = (f"Floquet ({what}): {integrated.description}; Gauss-Legendre collocation s = {stages} (order "
-              f"{2 * stages}) with step doubling, rtol = {options['rtol']:g}; multipliers of the "
+              f"{2 * stages}) with step doubling, rtol = {options.rtol:g}; multipliers of the "
               f"{len(tr.factors)}-segment product from the lifted block-cyclic eigenproblem")
     return FloquetAnalysis(
-        readonly(eig.multipliers), readonly(bound), readonly(b_int), readonly(b_eig),
-        readonly(np.log(eig.multipliers.astype(complex)) / T), readonly(trivial), form is not None, stability,
-        readonly(monodromy), T,
-        len(tr.factors), len(tr.steps), integrated.evaluations, readonly(times), readonly(step_errors),
-        float(rel.max()), time.perf_counter() - start, method, _DeferredHarmonics(tr, eig, T, harmonics, rows))
+        multipliers=readonly(eig.multipliers), error_bound=readonly(bound), integration_bound=readonly(b_int),
+        eigensolver_bound=readonly(b_eig), exponents=readonly(np.log(eig.multipliers.astype(complex)) / T),
+        trivial=readonly(trivial), conservative=form is not None, stability=stability,
+        monodromy=readonly(monodromy), period=T, segments=len(tr.factors), steps=len(tr.steps),
+        evaluations=integrated.evaluations, step_times=readonly(times), step_errors=readonly(step_errors),
+        integration_error=float(rel.max()), elapsed=time.perf_counter() - start, method=method,
+        deferred=_DeferredHarmonics(tr, eig, T, options.harmonics, rows))
 
 
 @dataclass(frozen=True, eq=False)
@@ -182,32 +179,34 @@ def _symplectic_defect(monodromy: np.ndarray, form: np.ndarray) -> float:
 
 
 def _check_symplectic(monodromy: np.ndarray, form: np.ndarray) -> None:
-    """ParameterError unless ||Phi^T Omega Phi - Omega|| <= SYMPLECTIC_TOLERANCE ||Phi||^2 ||Omega||."""
+    """ParameterError unless ||Phi^T Omega Phi - Omega|| <= SYMPLECTIC_TOL ||Phi||^2 ||Omega||."""
     defect = _symplectic_defect(monodromy, form)
-    if not defect <= SYMPLECTIC_TOLERANCE:
+    if not defect <= SYMPLECTIC_TOL:
         raise ParameterError("conservative", f"the monodromy is not symplectic for Omega = [[G, M], [-M, 0]] at "
-                                             f"t = 0 (relative defect {defect:.2e} > {SYMPLECTIC_TOLERANCE:g}):"
+                                             f"t = 0 (relative defect {defect:.2e} > {SYMPLECTIC_TOL:g}):"
                                              f" the system is not conservative")
 
 
-def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: int = 6, growth: float = 1e3,
-                              harmonics: int = 16, autonomous: bool = False, conservative: bool | None = None,
-                              safety: float = 10.0, structure_tolerance: float = STRUCTURE_TOLERANCE,
-                              max_steps: int = 20000, max_time: float = 600.0, sampling: str = "auto",
-                              max_samples: int = 256) -> FloquetAnalysis:
+@renamed_keywords(structure_tolerance="structure_tol")
+def floquet_analysis_matrices(M, C, K, period, *, rtol: float = RTOL, stages: int = STAGES, growth: float = GROWTH,
+                              harmonics: int = HARMONICS, autonomous: bool = False,
+                              conservative: bool | None = None, safety: float = SAFETY,
+                              structure_tol: float = STRUCTURE_TOL, max_steps: int = MAX_STEPS,
+                              max_time: float = MAX_TIME, sampling: str = SAMPLING,
+                              max_samples: int = MAX_SAMPLES) -> FloquetAnalysis:
     """Floquet analysis of M(t) x'' + C(t) x' + K(t) x = 0 with T-periodic M, C, K.
 
     In first-order form y = (x, x'), A = [[0, I], [-M^-1 K, -M^-1 C]] (solves with M, no inverse).  The
     system counts as conservative when, at every time sampled (the samples of the interpolant, or the
     integrator's nodes), M is symmetric and constant,
-    C = G is skew and constant and K symmetric, each within ``structure_tolerance`` eps (relative): then
+    C = G is skew and constant and K symmetric, each within ``structure_tol`` eps (relative): then
     Phi(T) is symplectic for Omega = [[G, M], [-M, 0]] (y1^T Omega y2 = x1^T M v2 - v1^T M x2 + x1^T G x2,
     the canonical form with p = M v + G x / 2) and the verdict uses it.  A time-varying M or G with the
     matching D = M', N = G' / 2 (the variational equation of a Lagrangian system: C = M' + F - F^T,
     K = S + F') is conservative too, with the same Omega at t = 0: where the coefficients were sampled
     (their interpolant exact to rounding) the identities sym(C) = M' and skew(K) = skew(C)' / 2 are tested
     on the interpolant's derivatives at every sample (a trigonometric polynomial of degree below N that
-    vanishes at 2 N points vanishes), confirmed by Phi^T Omega Phi = Omega to :data:`SYMPLECTIC_TOLERANCE`;
+    vanishes at 2 N points vanishes), confirmed by Phi^T Omega Phi = Omega to :data:`SYMPLECTIC_TOL`;
     evaluated at the nodes there are no derivatives: pass ``conservative=True`` (checked the same way).
     Harmonic content counts the position components.  Other parameters as :func:`floquet_from_first_order`.
 
@@ -223,8 +222,9 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
         system; False: never use structure in the verdict.
     rtol, stages, growth, harmonics, autonomous, safety, max_steps, max_time, sampling, max_samples
         As :func:`floquet_from_first_order` (M, C and K are sampled together: one evaluation is one triple).
-    structure_tolerance : float
-        Relative tolerance, in units of eps, of the tests of the conservative structure.
+    structure_tol : float
+        Relative threshold, in units of eps, of the tests of the conservative structure
+        (``structure_tolerance`` is its deprecated spelling).
 
     Raises
     ------
@@ -235,6 +235,14 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
         M(t) singular at a sampled time.
     IntegrationBudgetError, IntegrationError, SamplingError
         As :func:`floquet_from_first_order`.
+
+    Examples
+    --------
+    Mathieu's equation x'' + (1.3 + 0.4 cos t) x = 0, conservative and stable:
+
+    >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[1.3 + 0.4 * np.cos(t)]], 2 * np.pi)
+    >>> print(flo.stability.kind, flo.conservative, np.round(np.abs(flo.multipliers), 6))
+    marginally_stable True [1. 1.]
     """
     start = time.perf_counter()
     fM, shape = coefficient("M", M)
@@ -242,39 +250,33 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = 1e-13, stages: i
     zero = np.zeros((n, n))
     fC, _ = coefficient("C", zero if C is None else C, shape)
     fK, _ = coefficient("K", zero if K is None else K, shape)
+    options = FloquetOptions(rtol=rtol, stages=stages, growth=growth, harmonics=harmonics, safety=safety,
+                             max_steps=max_steps, max_time=max_time, sampling=sampling, max_samples=max_samples,
+                             structure_tol=structure_tol)
     return floquet_second_order(lambda t: np.stack([fM(t), fC(t), fK(t)]), lambda: (fM, fC, fK), n, period,
-                                start=start, rtol=rtol, stages=stages, growth=growth, harmonics=harmonics,
-                                autonomous=autonomous, conservative=conservative, safety=safety,
-                                structure_tolerance=structure_tolerance, max_steps=max_steps, max_time=max_time,
-                                sampling=sampling, max_samples=max_samples)
+                                options, start=start, autonomous=autonomous, conservative=conservative)
 
 
-def floquet_second_order(triple, fallback, n: int, period, *, start: float, rtol: float = 1e-13, stages: int = 6,
-                         growth: float = 1e3, harmonics: int = 16, autonomous: bool = False,
-                         conservative: bool | None = None, safety: float = 10.0,
-                         structure_tolerance: float = STRUCTURE_TOLERANCE, max_steps: int = 20000,
-                         max_time: float = 600.0, sampling: str = "auto", max_samples: int = 256,
+def floquet_second_order(triple, fallback, n: int, period, options: FloquetOptions, *, start: float,
+                         autonomous: bool = False, conservative: bool | None = None,
                          what: str = "M, C, K") -> FloquetAnalysis:
     """:func:`floquet_analysis_matrices` on validated coefficients: ``triple(t)`` -> (3, n, n) stacked M, C, K
     (one evaluation), ``fallback()`` -> (M, C, K) checked callables for the integrator's nodes; ``start`` the
     ``time.perf_counter()`` the run's elapsed time counts from."""
     T = check_period(period)
-    _check_options(rtol, stages, growth, harmonics, safety, sampling, max_samples)
     if conservative not in (None, True, False):
         raise ParameterError("conservative", f"expected None, True or False, got {conservative!r}")
     M0, C0, _ = triple(0.0)
     form = np.block([[(C0 - C0.T) / 2, M0], [-M0, np.zeros((n, n))]])
-    options = dict(rtol=rtol, stages=int(stages), growth=growth, max_steps=max_steps, max_time=max_time)
-    integrated = second_order_transitions(triple, fallback, T, n, options, sampling, max_samples,
-                                          structure_tolerance * _EPS)
+    integrated = second_order_transitions(triple, fallback, T, n, options)
+    structure_tol = options.structure_tol * _EPS
 
     def form_after(monodromy):
         if conservative is None:
-            if integrated.defect <= structure_tolerance * _EPS:
+            if integrated.defect <= structure_tol:
                 return form
             # a time-varying Lagrangian system (from the interpolant's derivatives), confirmed on Phi(T)
-            if integrated.lagrangian <= structure_tolerance * _EPS and _symplectic_defect(monodromy, form) <= \
-                    SYMPLECTIC_TOLERANCE:
+            if integrated.lagrangian <= structure_tol and _symplectic_defect(monodromy, form) <= SYMPLECTIC_TOL:
                 return form
             return None
         if conservative:
@@ -282,5 +284,5 @@ def floquet_second_order(triple, fallback, n: int, period, *, start: float, rtol
             return form
         return None
 
-    return _analyse(integrated, T, 2 * n, form_after, options, harmonics=int(harmonics), rows=np.arange(n),
-                    autonomous=autonomous, safety=safety, start=start, what=what)
+    return _analyse(integrated, T, 2 * n, form_after, options, rows=np.arange(n), autonomous=autonomous,
+                    start=start, what=what)

@@ -84,7 +84,22 @@ def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray) -> np.ndarray:
 
     with Phi(t_i, t_0) = Z_i the stage transitions, Phi(t_1, t_i) = P Z_i^-1, w_i the quadrature weights and
     E the step's block bound on dA (rows split into E's blocks).  ``R``, ``L``: (S, m, modes) the modes at
-    each step's start and the left vectors at its end."""
+    each step's start and the left vectors at its end.
+
+    Examples
+    --------
+    y' = -y integrated with a coefficient known to 1e-6: over a step of 0.5 s the transition's error is
+    h e^{-h} 1e-6 to first order (variation of constants):
+
+    >>> from pinlin.periodic.bounds import coefficient_terms
+    >>> from pinlin.periodic.gauss_step import try_steps
+    >>> A = lambda times: np.full((np.size(times), 1, 1), -1.0)
+    >>> trial = try_steps(A, np.array([0.0]), np.array([0.5]), stages=4, rtol=1e-10, scaling=np.ones((1, 1)),
+    ...                   max_step_norm=2.0, coefficient_error=np.array([[1e-6]]))
+    >>> term = coefficient_terms(trial.steps, np.ones((1, 1, 1)), np.ones((1, 1, 1)))
+    >>> print(f"{term[0]:.6e}", f"{0.5 * np.exp(-0.5) * 1e-6:.6e}")
+    3.032653e-07 3.032653e-07
+    """
     Z = np.stack([step.stage for step in steps])                              # (S, nodes, m, m), real
     P = np.stack([step.P for step in steps])
     S, nodes, m = Z.shape[:3]
@@ -123,6 +138,18 @@ def multiplier_bounds(tr: Transitions, eig: CyclicEigen) -> tuple[np.ndarray, np
     -------
     bound, integration, eigensolver : ndarray (m,)
         Absolute bounds (same unit as mu: none); ``bound = integration + eigensolver``.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import integrate_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])       # Mathieu, undamped
+    >>> tr = integrate_transitions(A, 2 * np.pi, 2)
+    >>> from pinlin.periodic.cyclic import cyclic_eigen
+    >>> eig = cyclic_eigen(tr.factors)
+    >>> from pinlin.periodic.bounds import multiplier_bounds
+    >>> bound, integration, eigensolver = multiplier_bounds(tr, eig)
+    >>> print(bool(np.all(bound == integration + eigensolver)), bool(np.all(bound < 1e-10)))
+    True True
     """
     K = len(tr.factors)
     overlap = np.abs(np.einsum("kjp,kjp->k", eig.left.conj(), eig.right))   # |w^H z|
@@ -139,6 +166,17 @@ def relative_condition(tr: Transitions, eig: CyclicEigen) -> np.ndarray:
     transition of relative size delta (||E_j|| <= delta ||Phi_j||),
 
     .. math::  \\kappa_k = K \\sum_j \\|w_j\\| \\|\\Phi_j\\| \\|z_{j-1}\\| / (|\\lambda| |w^H z|).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import integrate_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])       # Mathieu, undamped
+    >>> tr = integrate_transitions(A, 2 * np.pi, 2)
+    >>> from pinlin.periodic.cyclic import cyclic_eigen
+    >>> eig = cyclic_eigen(tr.factors)
+    >>> from pinlin.periodic.bounds import relative_condition
+    >>> print(np.round(relative_condition(tr, eig), 3))
+    [1.19 1.19]
     """
     K = len(tr.factors)
     overlap = np.maximum(np.abs(np.einsum("kjp,kjp->k", eig.left.conj(), eig.right)), np.finfo(float).tiny)

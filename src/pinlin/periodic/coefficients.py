@@ -20,9 +20,9 @@ from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg
 
 from ..linearization.assembly import assemble
+from ..linearization.state_form import first_order_form
 from ..model.scene import Scene
 from ..nonlinear.dynamics import FreeDynamics
 
@@ -41,6 +41,14 @@ class Point:
         The full acceleration (prescribed joints: a_p(t); constant-speed ones 0).
     M, C, K : (n, n) ndarray
         dr/da, dr/dv, dr/dq on the free coordinates.
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> p = pinlin.variational_coefficients(spec.scene, orbit).point(0.0)
+    >>> print(p.M.shape, p.first_order().shape, np.round(p.a_free + 0.0, 6))
+    (1, 1) (2, 2) [0.]
     """
 
     a_free: np.ndarray
@@ -50,13 +58,9 @@ class Point:
     K: np.ndarray
 
     def first_order(self) -> np.ndarray:
-        """A = [[0, I], [-M^-1 K, -M^-1 C]] (2n, 2n), by a Cholesky solve with M."""
-        n = self.M.shape[0]
-        X = scipy.linalg.cho_solve(scipy.linalg.cho_factor(self.M), np.hstack([self.K, self.C]))
-        A = np.zeros((2 * n, 2 * n))
-        A[:n, n:] = np.eye(n)
-        A[n:, :n], A[n:, n:] = -X[:, :n], -X[:, n:]
-        return A
+        """A = [[0, I], [-M^-1 K, -M^-1 C]] (2n, 2n), by
+        :func:`~pinlin.linearization.state_form.first_order_form`."""
+        return first_order_form(self.M, self.C, self.K, residual=False)[0]
 
 
 def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray, t: float,
@@ -64,7 +68,19 @@ def evaluate_point(scene: Scene, dyn: FreeDynamics, q: np.ndarray, v: np.ndarray
     """The coefficients at (q, v) and time t; q and v (full, nq and nv) get the prescribed motions at t
     (in place).  ``dyn``: the thread's :class:`~pinlin.nonlinear.dynamics.FreeDynamics` of ``scene``.
     ``at_rest``: the free coordinates stay at an equilibrium (a constant orbit), so their acceleration is
-    exactly 0 and the forward-dynamics pass is skipped."""
+    exactly 0 and the forward-dynamics pass is skipped.
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> from pinlin.nonlinear.dynamics import FreeDynamics
+    >>> from pinlin.periodic.coefficients import evaluate_point
+    >>> q, v = orbit.state(0.0)
+    >>> p = evaluate_point(spec.scene, FreeDynamics(spec.scene), q.copy(), v.copy(), 0.0, at_rest=True)
+    >>> print(np.round(p.M, 6), np.round(p.a_free + 0.0, 6))
+    [[0.004]] [0.]
+    """
     a_p = dyn.apply_motions(t, q, v)
     a_f = np.zeros(scene.n) if at_rest else dyn.acceleration(q, v, a_p)
     free = scene.free_dofs
@@ -91,6 +107,15 @@ class VariationalCoefficients:
     ----------
     evaluations : int
         Pinocchio evaluations made so far.
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> co = pinlin.variational_coefficients(spec.scene, orbit)
+    >>> p = co.point(0.0)
+    >>> print(np.round(p.M, 6), co.M(0.0) is p.M, co.evaluations)       # one evaluation per time, cached
+    [[0.004]] True 1
     """
 
     def __init__(self, scene: Scene, orbit, cache: int = 16):
@@ -141,5 +166,13 @@ def variational_coefficients(scene: Scene, orbit) -> VariationalCoefficients:
     -------
     VariationalCoefficients
         ``.M(t)``, ``.C(t)``, ``.K(t)`` (n, n), ``.A(t)`` (2n, 2n), ``.point(t)`` (all at once).
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> co = pinlin.variational_coefficients(spec.scene, orbit)
+    >>> print(co.M(0.0).shape, co.A(0.0).shape, np.round(co.M(0.0), 6))
+    (1, 1) (2, 2) [[0.004]]
     """
     return VariationalCoefficients(scene, orbit)

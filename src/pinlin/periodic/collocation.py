@@ -1,29 +1,13 @@
-"""Transition matrices of y' = A(t) y by Gauss-Legendre collocation with step doubling (theory: Floquet).
+"""Transition matrices of y' = A(t) y by Gauss-Legendre collocation with step doubling, step by step, grouped
+into well-conditioned segments (theory: Floquet).
 
-One step of the s-stage Gauss-Legendre method (collocation at the zeros of the shifted Legendre polynomial
-P_s(2 c - 1); order 2 s, symplectic) applied to the matrix equation Y' = A(t) Y, Y(t_0) = I, is one linear
-solve: with A_i = A(t_0 + c_i h),
-
-.. math::
-
-    (I - h\\,[a_{ij} A_j])\\, Z = \\mathbf{1} \\otimes I, \\qquad
-    P = I + h \\sum_i b_i A_i Z_i,
-
-an (s m) x (s m) system with m right-hand columns.  Each accepted step [t_0, t_0 + h] is taken twice: once whole
-(s evaluations of A) and as two halves (2 s more); the halves' product is kept and
-
-.. math::  E = \\| P_{1/2} P_{1/2}' - P_h \\|_2 / (2^{2s} - 1)
-
-is its error estimate (Richardson: the local error is C h^{2s+1}).  A step is accepted when E <= rtol ||P||_2,
-and no step exceeds h ||D^-1 A D||_2 = :data:`MAX_STEP_NORM` (D balancing A(0)), where the estimate is
-trusted.  When A has the first-order form [[0, I], [X, Y]] of a second-order system at every node, the
-positions are eliminated from the stage equations (an (s n)-square solve instead of (2 s n)).  Each accepted
-step costs 3 s evaluations of A (none reused: the half steps' nodes differ from the whole step's).
+Each step is the Gauss step of :mod:`.gauss_step` (a stack of one): taken whole and as two halves, accepted
+when the Richardson estimate E <= rtol ||P||_2 and h ||D^-1 A D||_2 <= :data:`MAX_STEP_NORM` (D balancing
+A(0)), where the estimate is trusted; the next step's length follows the estimate (order 2 s + 1).
 """
 
 from __future__ import annotations
 
-import functools
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -32,65 +16,15 @@ import numpy as np
 import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
+from .gauss_step import try_steps
+from .options import GROWTH, MAX_STEPS, MAX_TIME, RTOL, STAGES
 
-__all__ = ["gauss_legendre", "stage_solve", "Step", "Transitions", "integrate_transitions", "group_segments",
-           "balancing", "ROUNDING_FACTOR", "MAX_STEP_NORM"]
-
-#: Rounding error of one step's transition, in units of eps ||P||_2 times sqrt(s m): the stage solve and the
-#: weighted sum each round at about that level (measured on constant random A, m = 4..12, rtol = 1e-15,
-#: against a 40-digit expm: the true step error is 0.03-0.13 of this floor).
-ROUNDING_FACTOR = 1.0
+__all__ = ["Transitions", "integrate_transitions", "group_segments", "balancing", "MAX_STEP_NORM"]
 
 #: Largest h ||D^-1 A D||_2 of a step (D balancing A(0)) (measured on Mathieu and damped cases against
 #: mpmath: up to 2 the bounds of :mod:`.bounds` stay above the true error; at 2.5, with the projected
 #: estimate doubled, they fell below it by up to 20 %).
 MAX_STEP_NORM = 2.0
-
-_EPS = float(np.finfo(float).eps)
-
-
-@functools.lru_cache(maxsize=16)
-def gauss_legendre(stages: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Butcher tableau (c, a, b) of the ``stages``-stage Gauss-Legendre method on [0, 1].
-
-    c are the Gauss nodes, b the Gauss weights, and a_ij = int_0^{c_i} l_j(tau) d tau with l_j the
-    Lagrange polynomials on the nodes (collocation).
-    """
-    x, w = np.polynomial.legendre.leggauss(stages)
-    c, b = (x + 1) / 2, w / 2
-    # a_ij = int_0^{c_i} l_j: solve the Vandermonde system sum_j a_ij c_j^(k-1) = c_i^k / k (k = 1..s)
-    powers = np.arange(1, stages + 1)
-    V = c[None, :] ** (powers[:, None] - 1)
-    R = c[:, None] ** powers[None, :] / powers[None, :]
-    a = np.linalg.solve(V, R.T).T
-    for x in (c, a, b):
-        x.flags.writeable = False      # cached and shared: read-only
-    return c, a, b
-
-
-@dataclass(frozen=True)
-class Step:
-    """One accepted step: [t0, t0 + h] [s], its transition P (m x m), the estimated error matrix
-    ``estimate`` (Richardson, m x m), the ``rounding`` floor [2-norm] and their sum ``error`` = ||estimate||_2 +
-    rounding, and the node data for dense output (``nodes`` [s], ``stage``:
-    the transitions from t0 to each node, s x m x m, order-s accurate, and the quadrature ``weights`` [s]);
-    ``norm`` = ||P||_2 and ``estimate_norm`` = ||estimate||_2 as the integrator measured them;
-    ``coefficient_error``: None when A was evaluated exactly at the nodes, else a (g, g) block bound on the
-    error of the coefficients integrated (an interpolant of A): |v^H dA u| <= sum_ab E_ab ||v_a|| ||u_b|| with
-    the rows split into g equal blocks (:mod:`.bounds` adds its effect)."""
-
-    t0: float
-    h: float
-    P: np.ndarray
-    estimate: np.ndarray
-    rounding: float
-    error: float
-    nodes: np.ndarray
-    stage: np.ndarray
-    weights: np.ndarray
-    coefficient_error: np.ndarray | None = None
-    norm: float = float("nan")
-    estimate_norm: float = float("nan")
 
 
 @dataclass(frozen=True)
@@ -109,6 +43,14 @@ class Transitions:
         Calls of A(t) (rejected steps included).
     rejected : int
         Steps rejected by the error test.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import integrate_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])       # Mathieu, undamped
+    >>> tr = integrate_transitions(A, 2 * np.pi, 2)
+    >>> print(len(tr.segments), tr.rejected, f"{np.linalg.det(tr.factors[0]):.10f}")     # Liouville: det = 1
+    1 0 1.0000000000
     """
 
     steps: list = field(default_factory=list)
@@ -118,83 +60,18 @@ class Transitions:
     rejected: int = 0
 
 
-def stage_solve(An: np.ndarray, h: np.ndarray, a: np.ndarray, b: np.ndarray,
-                second_order: bool) -> tuple[np.ndarray, np.ndarray]:
-    """(P, Z) of a batch of Gauss steps: ``An`` (B, s, m, m) the coefficients at each step's nodes, ``h`` (B,)
-    the step lengths, (a, b) the tableau.  P (B, m, m) are the step transitions, Z (B, s, m, m) the stage
-    transitions from each step's start to its nodes.
-
-    ``second_order``: every A has the first-order form [[0, I], [X, Y]] of a second-order system; with
-    Z_i = (Zx_i, Zv_i), Zx_i = E_x + h sum_j a_ij Zv_j eliminates the positions, leaving the (s n)-square
-
-    .. math::  Zv_i - h \\sum_k (a_{ik} Y_k + h \\sum_j a_{ij} a_{jk} X_j) Zv_k
-               = E_v + h \\sum_j a_{ij} X_j E_x,
-
-    eight times cheaper to factor than the (2 s n)-square system."""
-    B, s, m = An.shape[0], An.shape[1], An.shape[2]
-    hh = np.asarray(h, dtype=float).reshape(B)
-    if not second_order:
-        # L = I - h [a_ij A_j]: block (i, j) is -h a_ij A_j
-        blocks = a[None, :, None, :, None] * An.transpose(0, 2, 1, 3)[:, None]
-        L = np.eye(s * m) - hh[:, None, None] * blocks.reshape(B, s * m, s * m)
-        rhs = np.broadcast_to(np.tile(np.eye(m), (s, 1)), (B, s * m, m))
-        Z = np.linalg.solve(L, rhs).reshape(B, s, m, m)
-        P = np.eye(m) + hh[:, None, None] * np.sum((An * b[None, :, None, None]) @ Z, axis=1)
-    else:
-        n = m // 2
-        X, Y = np.ascontiguousarray(An[:, :, n:, :n]), An[:, :, n:, n:]
-        aa = (a[:, None, :] * a.T[None, :, :]).reshape(s * s, s)      # aa[i k, j] = a_ij a_jk
-        XX = (aa @ X.reshape(B, s, n * n)).reshape(B, s, s, n, n)
-        # L = I - h a_ik Y_k - h^2 XX_ik in place: block (i, k) of the (s n)-square matrix
-        L = np.empty((B, s, n, s, n))        # C order: the reshapes below are views
-        np.multiply(-a[None, :, None, :, None], Y.transpose(0, 2, 1, 3)[:, None], out=L)
-        L *= hh[:, None, None, None, None]
-        L -= (hh * hh)[:, None, None, None, None] * XX.transpose(0, 1, 3, 2, 4)
-        L = L.reshape(B, s * n, s * n)
-        L.reshape(B, -1)[:, ::s * n + 1] += 1.0
-        rhs = np.zeros((B, s, n, 2 * n))
-        rhs[..., :n] = hh[:, None, None, None] * (a @ X.reshape(B, s, n * n)).reshape(B, s, n, n)
-        rhs[..., n:] = np.eye(n)
-        Zv = np.linalg.solve(L, rhs.reshape(B, s * n, 2 * n)).reshape(B, s, n, 2 * n)
-        Zx = np.eye(n, 2 * n)[None, None] + hh[:, None, None, None] * (
-            a @ Zv.reshape(B, s, 2 * n * n)).reshape(B, s, n, 2 * n)
-        Z = np.concatenate([Zx, Zv], axis=2)
-        # A_i Z_i = [[Zv_i], [X_i Zx_i + Y_i Zv_i]]: only the lower half needs a product
-        P = np.empty((B, m, m))
-        P[:, :n] = np.eye(n, m) + hh[:, None, None] * (b @ Zv.reshape(B, s, 2 * n * n)).reshape(B, n, m)
-        # sum_i b_i A_i[n:] Z_i as one product per step: [b_1 A_1[n:], ..., b_s A_s[n:]] [Z_1; ...; Z_s]
-        weighted = (b[None, :, None, None] * An[:, :, n:, :]).transpose(0, 2, 1, 3).reshape(B, n, s * m)
-        P[:, n:] = np.eye(n, m, n) + hh[:, None, None] * (weighted @ Z.reshape(B, s * m, m))
-    return P, Z
-
-
-class _Stepper:
-    """The collocation step for one problem size: tableau, block pattern and the evaluation counter."""
-
-    def __init__(self, A: Callable[[float], np.ndarray], m: int, stages: int):
-        self.A, self.m, self.s = A, m, stages
-        self.c, self.a, self.b = gauss_legendre(stages)
-        self.evaluations = 0
-        self.n = m // 2 if m % 2 == 0 else 0
-        # E_v = [0, I] is the top block row of A in first-order form of a second-order system
-        self.top = np.hstack([np.zeros((self.n, self.n)), np.eye(self.n)]) if self.n else None
-
-    def evaluate(self, times: np.ndarray) -> np.ndarray:
-        self.evaluations += len(times)
-        return np.stack([self.A(float(t)) for t in times])
-
-    def step(self, t0: float, h: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(P, stage transitions, A at the nodes) of one Gauss step from t0 of length h."""
-        An = self.evaluate(t0 + self.c * h)
-        second = bool(self.n) and all(np.array_equal(A[:self.n], self.top) for A in An)
-        P, Z = stage_solve(An[None], np.array([h]), self.a, self.b, second)
-        return P[0], Z[0], An
-
-
 def balancing(A0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(d, S) with S = d_j / d_i: the diagonal similarity D = diag(d) (powers of 2, from A(0)) that balances A,
     applied as ``A * S`` = D^-1 A D, so that the step cap sees rates (frequencies, decay rates) rather than
-    the units of the coordinates."""
+    the units of the coordinates.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import balancing
+    >>> d, S = balancing(np.array([[0.0, 1.0], [-1e6, 0.0]]))      # x in m beside v in m/s at 1000 rad/s
+    >>> print(d, np.linalg.norm(np.array([[0.0, 1.0], [-1e6, 0.0]]) * S, 2))
+    [9.765625e-04 1.000000e+00] 1024.0
+    """
     d = scipy.linalg.matrix_balance(A0, permute=False, separate=True)[1][0]
     return d, d[None, :] / d[:, None]
 
@@ -212,11 +89,11 @@ def integrate_transitions(
     period: float,
     m: int,
     *,
-    rtol: float = 1e-13,
-    stages: int = 6,
-    growth: float = 1e3,
-    max_steps: int = 20000,
-    max_time: float = 600.0,
+    rtol: float = RTOL,
+    stages: int = STAGES,
+    growth: float = GROWTH,
+    max_steps: int = MAX_STEPS,
+    max_time: float = MAX_TIME,
     max_step_norm: float = MAX_STEP_NORM,
 ) -> Transitions:
     """Step transitions over [0, period] to a relative tolerance, grouped into well-conditioned segments.
@@ -246,10 +123,23 @@ def integrate_transitions(
         The budget ran out before T.
     IntegrationError
         The step size fell below 1e-12 T (non-smooth or singular coefficients).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import integrate_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])       # Mathieu, undamped
+    >>> tr = integrate_transitions(A, 2 * np.pi, 2)
+    >>> print(len(tr.steps), tr.evaluations == 1 + 18 * (len(tr.steps) + tr.rejected))
+    7 True
     """
     start = time.perf_counter()
-    st = _Stepper(A, m, stages)
-    A0 = st.evaluate(np.array([0.0]))[0]
+    counted = [0]
+
+    def values(times):
+        counted[0] += len(times)
+        return np.stack([A(float(t)) for t in times])
+
+    A0 = values(np.array([0.0]))[0]
     d, scaling = balancing(A0)
     t, h = 0.0, _initial_step(A0 * scaling, period, stages, rtol)
     cap = max_step_norm / max(float(np.linalg.norm(A0 * scaling, 2)), 1e-300)
@@ -266,35 +156,20 @@ def integrate_transitions(
             raise IntegrationError(
                 f"step size {h:.3g} s fell below 1e-12 T at t = {t:.6g} s: the coefficients are not smooth "
                 f"enough (or not finite) for rtol = {rtol:g}", t)
-        whole, _, A_nodes = st.step(t, h)
-        middle = A_nodes[len(A_nodes) // 2] * scaling     # one node: the cap is a heuristic, an SVD per node is not
-        cap = max_step_norm / max(float(np.linalg.norm(middle, 2)), 1e-300)
-        if h > 1.2 * cap:
-            rejected += 1   # outside the asymptotic range the Richardson estimate is not trusted
-            continue
-        P1, Z1, A1 = st.step(t, h / 2)
-        P2, Z2, A2 = st.step(t + h / 2, h / 2)
-        P = P2 @ P1
-        norm = float(np.linalg.norm(P, 2))
-        difference = (P - whole) / (4.0 ** stages - 1)
-        estimate = float(np.linalg.norm(difference, 2))
-        if not np.isfinite(estimate):
-            raise IntegrationError(f"the step transition at t = {t:.6g} s is not finite", t)
-        ratio = estimate / (rtol * norm)
-        if ratio <= 1.0:
-            rounding = ROUNDING_FACTOR * _EPS * np.sqrt(stages * m) * (
-                np.linalg.norm(P1, 2) * np.linalg.norm(P2, 2) + norm)
-            nodes = np.concatenate([t + st.c * h / 2, t + h / 2 + st.c * h / 2])
-            stage = np.concatenate([Z1, Z2 @ P1])
-            weights = np.concatenate([st.b, st.b]) * h / 2
-            steps.append(Step(t, h, P, difference, float(rounding), estimate + rounding, nodes, stage, weights,
-                              None, norm, estimate))
+        trial = try_steps(values, np.array([t]), np.array([h]), stages=stages, rtol=rtol, scaling=scaling,
+                          max_step_norm=max_step_norm)
+        # one node: the cap is a heuristic, an SVD per node is not
+        cap = max_step_norm / max(float(trial.rate[0]), 1e-300)
+        if trial.accepted[0]:
+            steps.extend(trial.steps)
             t += h
         else:
             rejected += 1
-        h *= min(2.0, max(0.2, 0.9 * max(ratio, 1e-30) ** (-1.0 / (2 * stages + 1))))
+            if h > 1.2 * cap:
+                continue    # outside the asymptotic range the Richardson estimate is not trusted: h = cap
+        h *= min(2.0, max(0.2, 0.9 * max(float(trial.ratio[0]), 1e-30) ** (-1.0 / (2 * stages + 1))))
     segments, factors = group_segments(steps, growth, d)
-    return Transitions(steps, segments, factors, st.evaluations, rejected)
+    return Transitions(steps, segments, factors, counted[0], rejected)
 
 
 def group_segments(steps: list, growth: float, d: np.ndarray, lookahead: int = 16) -> tuple[list, list]:
@@ -302,7 +177,18 @@ def group_segments(steps: list, growth: float, d: np.ndarray, lookahead: int = 1
     (a single step above it makes a segment of its own), measured in the coordinates that balance A(0)
     (``d``: D^-1 P D): the condition of a transition in raw units counts the coordinates' units (a stiff
     support in m beside a velocity in m/s), not how far the multipliers' scales drift apart.  The running
-    products are formed ``lookahead`` steps at a time and their conditions taken on the stack."""
+    products are formed ``lookahead`` steps at a time and their conditions taken on the stack.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import integrate_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])       # Mathieu, undamped
+    >>> tr = integrate_transitions(A, 2 * np.pi, 2)
+    >>> from pinlin.periodic.collocation import group_segments
+    >>> segments, factors = group_segments(tr.steps, 10.0, np.ones(2))
+    >>> print(segments[0][0], segments[-1][1] == len(tr.steps), all(np.linalg.cond(f) <= 10 for f in factors))
+    0 True True
+    """
     segments, factors = [], []
     scaling = d[None, :] / d[:, None]          # as balancing(A0) gives it
     begin = 0

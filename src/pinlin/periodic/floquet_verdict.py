@@ -106,6 +106,14 @@ def floquet_verdict(multipliers, bounds, *, trivial=None, form=None, vectors=Non
         Relative condition kappa_k of each multiplier, for the margin (None: margin 0).
     safety : float
         Factor applied to the bounds before they decide.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.floquet_verdict import floquet_verdict
+    >>> print(floquet_verdict(np.array([0.5, 0.2]), np.array([1e-12, 1e-12])).kind)
+    asymptotically_stable
+    >>> print(floquet_verdict(np.array([1.5, 0.2]), np.array([1e-12, 1e-12])).kind)
+    divergence
     """
     mu = np.asarray(multipliers, dtype=complex)
     b = safety * np.asarray(bounds, dtype=float)

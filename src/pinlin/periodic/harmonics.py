@@ -83,6 +83,18 @@ def harmonic_content(tr: Transitions, eig: CyclicEigen, period: float, *, harmon
         Energy fraction of harmonic j (column j + J) in p_k.
     dominant : ndarray of int (m,)
         j*_k.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.collocation import integrate_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])       # Mathieu, undamped
+    >>> tr = integrate_transitions(A, 2 * np.pi, 2)
+    >>> from pinlin.periodic.cyclic import cyclic_eigen
+    >>> eig = cyclic_eigen(tr.factors)
+    >>> from pinlin.periodic.harmonics import harmonic_content
+    >>> freq, content, dominant = harmonic_content(tr, eig, 2 * np.pi, harmonics=4)
+    >>> print(content.shape, np.allclose(content.sum(axis=1), 1.0), np.round(np.abs(freq), 3))
+    (2, 9) True ...
     """
     rows = np.arange(eig.right.shape[2]) if rows is None else np.asarray(rows)
     coeff, energy = _periodic_part_coefficients(tr, eig, period, harmonics, rows)

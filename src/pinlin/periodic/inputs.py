@@ -18,7 +18,18 @@ __all__ = ["check_period", "coefficient"]
 
 
 def check_period(period) -> float:
-    """T as a float [s]; ParameterError unless a finite positive real number."""
+    """T as a float [s]; ParameterError unless a finite positive real number.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.inputs import check_period
+    >>> check_period(2 * np.pi) == 2 * np.pi
+    True
+    >>> check_period(-1.0)
+    Traceback (most recent call last):
+    ...
+    pinlin.errors.base.ParameterError: period: ...
+    """
     try:
         T = float(period)
     except (TypeError, ValueError):
@@ -63,6 +74,13 @@ def coefficient(name: str, value, shape: tuple | None = None) -> tuple[Callable[
     ParameterError
         Not callable and not a matrix; a value of the wrong shape, complex or non-finite (at any time it is
         called: the time is named); a callable that raises is reported with its exception chained.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.inputs import coefficient
+    >>> K, shape = coefficient("K", lambda t: [[2.0 + np.cos(t)]])
+    >>> print(shape, K(0.0))
+    (1, 1) [[3.]]
     """
     if not callable(value):
         if value is None or isinstance(value, (str, bytes)):

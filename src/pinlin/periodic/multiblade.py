@@ -27,20 +27,28 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ParameterError
+from ..errors.deprecated import renamed_keywords
 from ..errors.periodic import MultibladeNotExactError
 from .inputs import coefficient
 
-__all__ = ["multiblade_transform_matrices", "multiblade_names", "MULTIBLADE_TOLERANCE"]
+__all__ = ["multiblade_transform_matrices", "multiblade_names", "VARIATION_TOL"]
 
 #: Relative change of a transformed matrix over the checked times below which it counts as constant.
-MULTIBLADE_TOLERANCE = 1e-10
+VARIATION_TOL = 1e-10
 
 #: Default check times as fractions of one revolution 2 pi / Omega (irregular, so no symmetry hides a change).
 _CHECK_FRACTIONS = (0.0, 0.0731, 0.1912, 0.3377, 0.4809, 0.6254, 0.7718, 0.9105)
 
 
 def multiblade_names(N: int) -> list:
-    """Names of the multi-blade coordinates of N blades, in the order of z."""
+    """Names of the multi-blade coordinates of N blades, in the order of z.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.multiblade import multiblade_names
+    >>> multiblade_names(4)
+    ['blade_collective', 'blade_cos1', 'blade_sin1', 'blade_differential']
+    """
     names = ["blade_collective"]
     for j in range(1, (N - 1) // 2 + 1):
         names += [f"blade_cos{j}", f"blade_sin{j}"]
@@ -77,8 +85,9 @@ def _check_blades(blades, n: int) -> list:
     return out
 
 
+@renamed_keywords(tolerance="variation_tol")
 def multiblade_transform_matrices(M, C, K, blades, omega, *, psi0: float = 0.0, check_times=None,
-                                  dof_names=None, tolerance: float = MULTIBLADE_TOLERANCE):
+                                  dof_names=None, variation_tol: float = VARIATION_TOL):
     """The time-invariant system in multi-blade coordinates of a rotor given in blade coordinates.
 
     Parameters
@@ -98,8 +107,9 @@ def multiblade_transform_matrices(M, C, K, blades, omega, *, psi0: float = 0.0, 
     dof_names : sequence of str or None
         Names of the original coordinates (default x0, x1, ...); the blade ones are replaced by
         :func:`multiblade_names`.
-    tolerance : float
-        Allowed relative change of M_z, C_z, K_z between check times.
+    variation_tol : float
+        Allowed relative change of M_z, C_z, K_z between check times (``tolerance`` is its deprecated
+        spelling).
 
     Returns
     -------
@@ -114,6 +124,15 @@ def multiblade_transform_matrices(M, C, K, blades, omega, *, psi0: float = 0.0, 
     MultibladeNotExactError
         The transformed matrices change with time (N = 2, dissimilar or unequally spaced blades): use
         Floquet analysis (:func:`pinlin.periodic.floquet_analysis_matrices`) instead.
+
+    Examples
+    --------
+    Three identical uncoupled blades (M = I, K = 4 I) turning at 3 rad/s: collective and cyclic coordinates,
+    the cyclic ones with the gyroscopic coupling 2 Omega and the stiffness lowered by Omega^2:
+
+    >>> sys = pinlin.multiblade_transform_matrices(np.eye(3), np.zeros((3, 3)), 4.0 * np.eye(3), [0, 1, 2], 3.0)
+    >>> print(sys.dof_names, np.diag(sys.K) + 0.0, np.round(sys.G[1, 2] / sys.M[1, 1], 6))
+    ('blade_collective', 'blade_cos1', 'blade_sin1') [12.  -7.5 -7.5] 6.0
     """
     from ..linearization import LinearizedSystem
 
@@ -141,10 +160,10 @@ def multiblade_transform_matrices(M, C, K, blades, omega, *, psi0: float = 0.0, 
         ref = mats[0][i]
         scale = max(np.linalg.norm(ref), np.linalg.norm(mats[0][0]) * 1e-300, np.finfo(float).tiny)
         variation = max(np.linalg.norm(m[i] - ref) for m in mats) / scale
-        if variation > tolerance:
+        if variation > variation_tol:
             raise MultibladeNotExactError(
                 f"the multi-blade transform of {N} blades is not exact here: {label}_z changes by {variation:.2e} "
-                f"(relative) over the checked times (tolerance {tolerance:g}); N = 2, dissimilar or unequally "
+                f"(relative) over the checked times (variation_tol {variation_tol:g}); N = 2, dissimilar or unequally "
                 f"spaced blades keep periodic coefficients: use Floquet analysis (floquet_analysis_matrices)",
-                label, variation, tolerance)
+                label, variation, variation_tol)
     return LinearizedSystem.from_matrices(*mats[0], dof_names=names)

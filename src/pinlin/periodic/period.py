@@ -33,6 +33,13 @@ def period_sources(scene: Scene, q=None, *, periodic_tol: float = PERIODIC_TOL) 
     InputError
         A prismatic joint sliding at constant speed changes the equations: they depend on time without
         repeating.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.period import period_sources
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> {name: round(T, 6) for name, T in period_sources(spec.scene).items()}
+    {...: 0.031416}
     """
     periods = {name: m.period for name, m in scene.motions.items()}
     plan = plan_of(scene)
@@ -76,5 +83,11 @@ def scene_period(scene: Scene, q=None, *, periodic_tol: float = PERIODIC_TOL) ->
         Incommensurate periods (names the joints and periods).
     InputError
         A prismatic joint at constant speed on which the equations depend.
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> print(f"{pinlin.scene_period(spec.scene):.6f}")          # the pivot's period 2 pi / 200 rad/s
+    0.031416
     """
     return common_period(period_sources(scene, q, periodic_tol=periodic_tol))

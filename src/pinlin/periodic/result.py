@@ -14,7 +14,7 @@ from ..spectral.stability.verdict import Stability
 __all__ = ["FloquetAnalysis"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class FloquetAnalysis(Result):
     """Floquet multipliers of y' = A(t) y, A T-periodic, with error bounds, exponents, frequencies, verdict.
 
@@ -69,6 +69,12 @@ class FloquetAnalysis(Result):
     error : float
         max over non-trivial k of error_bound_k / |mu_k|: the largest relative error bound of a multiplier
         (each multiplier's own relative accuracy, whatever its size).
+
+    Examples
+    --------
+    >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[1.3 + 0.4 * np.cos(t)]], 2 * np.pi)
+    >>> print(flo.multipliers.shape, flo.steps > 0, flo.error < 1e-10, np.round(flo.exponents.real + 0.0, 6))
+    (2,) True True [0. 0.]
     """
 
     multipliers: np.ndarray

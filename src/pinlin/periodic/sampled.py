@@ -17,16 +17,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ParameterError, SamplingError
+from ..linearization.state_form import first_order_form
 from .collocation import Transitions, integrate_transitions
 from .collocation_grid import integrate_on_grid
+from .options import FloquetOptions
 from .sampling import PeriodicSamples, group_norms, sample_periodic
-from .second_order import SecondOrderA, first_order_stack, lagrangian_defect, structure_defect
+from .second_order import SecondOrderA, lagrangian_defect, structure_defect
 
-__all__ = ["SAMPLING", "Integrated", "first_order_transitions", "second_order_transitions", "check_sampling",
-           "second_order_scales", "counted_errors", "block_errors", "SAMPLING_FLOOR"]
-
-#: The accepted modes of ``sampling``.
-SAMPLING = ("auto", "spectral", "nodes")
+__all__ = ["Integrated", "first_order_transitions", "second_order_transitions", "second_order_scales",
+           "counted_errors", "block_errors", "SAMPLING_FLOOR"]
 
 #: Smallest relative interpolation tolerance, in units of eps: the samples' own rounding (a Pinocchio pass
 #: is accurate to a few eps of its norms) must not decide whether the interpolant converged.
@@ -41,7 +40,17 @@ class Integrated:
     interpolant's, or None when the nodes were used), ``defect`` (the conservative-structure defect seen, for
     second-order systems: constant M and G), ``lagrangian`` (the defect of the identities of a time-varying
     Lagrangian system, from the interpolant's derivatives; nan where not measured), ``description`` (for the
-    result's ``method``)."""
+    result's ``method``).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.options import FloquetOptions
+    >>> from pinlin.periodic.sampled import first_order_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])
+    >>> integrated = first_order_transitions(A, 2 * np.pi, 2, FloquetOptions())
+    >>> print(integrated.evaluations, integrated.samples is not None, integrated.description[:32])
+    16 True coefficients from 16 equispaced
+    """
 
     transitions: Transitions
     evaluations: int
@@ -51,33 +60,33 @@ class Integrated:
     lagrangian: float = float("nan")
 
 
-def check_sampling(sampling, max_samples) -> None:
-    if sampling not in SAMPLING:
-        raise ParameterError("sampling", f"expected one of {', '.join(map(repr, SAMPLING))}, got {sampling!r}")
-    if not (isinstance(max_samples, (int, np.integer)) and not isinstance(max_samples, bool)
-            and 16 <= max_samples <= 65536):
-        raise ParameterError("max_samples", f"expected an int in 16..65536, got {max_samples!r}")
-
-
 def second_order_scales(samples: np.ndarray) -> np.ndarray:
     """Scales of the M, C, K groups: ||M||, max(||C||, sqrt(||M|| ||K||)), ||K|| (largest Frobenius norms
     over the samples).  sqrt(||M|| ||K||) has the units of C: a light damping is computed from terms of that
     size (the gyroscopic and Coriolis parts of a moving support), whose rounding is not an error of the
-    interpolant."""
+    interpolant.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampled import second_order_scales
+    >>> samples = np.array([[[[4.0]], [[0.0]], [[9.0]]]])       # one sample: M = 4, C = 0, K = 9
+    >>> second_order_scales(samples)
+    array([4., 6., 9.])
+    """
     M, C, K = group_norms(samples)
     return np.array([M, max(C, np.sqrt(M * K)), K])
 
 
-def _sample(F, T, rtol, sampling, max_samples, names, scales=group_norms) -> PeriodicSamples | None:
-    if sampling == "nodes":
+def _sample(F, T, options: FloquetOptions, names, scales=group_norms) -> PeriodicSamples | None:
+    if options.sampling == "nodes":
         return None
-    tol = max(rtol, SAMPLING_FLOOR * _EPS)
-    samples = sample_periodic(F, T, tol=tol, max_samples=int(max_samples), scales=scales)
+    tol = max(options.rtol, SAMPLING_FLOOR * _EPS)
+    samples = sample_periodic(F, T, tol=tol, max_samples=options.max_samples, scales=scales)
     finite = np.isfinite(samples.samples).all(axis=(2, 3))                  # (N, groups)
     if not finite.all():
         j, g = np.argwhere(~finite)[0]
         raise ParameterError(names[g], f"non-finite entries at t = {j * T / samples.samples.shape[0]:.6g} s")
-    if not samples.converged and sampling == "spectral":
+    if not samples.converged and options.sampling == "spectral":
         raise SamplingError(
             f"sampling='spectral': the trigonometric interpolant of the coefficients did not reach the relative "
             f"error {tol:.2g} with {samples.evaluations} samples (measured errors after each doubling: "
@@ -101,11 +110,27 @@ def _described(samples: PeriodicSamples, tr: Transitions) -> str:
             f"{len(tr.steps)} steps")
 
 
-def first_order_transitions(func, T: float, m: int, options: dict, sampling: str, max_samples: int) -> Integrated:
-    """The transitions of y' = A(t) y, A = ``func`` (checked callable)."""
-    samples = _sample(lambda t: func(t)[None], T, options["rtol"], sampling, max_samples, ("A",))
+def _integration(options: FloquetOptions) -> dict:
+    """The integrators' keywords from the options (the same for both integrators)."""
+    return dict(rtol=options.rtol, stages=options.stages, growth=options.growth, max_steps=options.max_steps,
+                max_time=options.max_time)
+
+
+def first_order_transitions(func, T: float, m: int, options: FloquetOptions) -> Integrated:
+    """The transitions of y' = A(t) y, A = ``func`` (checked callable).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.options import FloquetOptions
+    >>> from pinlin.periodic.sampled import first_order_transitions
+    >>> A = lambda t: np.array([[0.0, 1.0], [-(1.3 + 0.4 * np.cos(t)), 0.0]])
+    >>> nodes = first_order_transitions(A, 2 * np.pi, 2, FloquetOptions(sampling="nodes"))
+    >>> print(nodes.samples is None, nodes.description)
+    True coefficients at every node
+    """
+    samples = _sample(lambda t: func(t)[None], T, options, ("A",))
     if samples is None or not samples.converged:
-        return _at_nodes(integrate_transitions(func, T, m, **options), samples, float("nan"))
+        return _at_nodes(integrate_transitions(func, T, m, **_integration(options)), samples, float("nan"))
     n = m // 2
     top = np.hstack([np.zeros((n, n)), np.eye(n)]) if m % 2 == 0 else None
     second = top is not None and bool(np.all(samples.samples[:, 0, :n] == top))
@@ -119,7 +144,7 @@ def first_order_transitions(func, T: float, m: int, options: dict, sampling: str
     counted = float(counted_errors(samples.error)[0])
     error = np.array([[counted * float(samples.scale[0])]]) if counted else None
     tr = integrate_on_grid(A, T, m, second_order=second, coefficient_error=error, probe=samples.samples[:, 0],
-                           A0=samples.samples[0, 0], **options)
+                           A0=samples.samples[0, 0], **_integration(options))
     return Integrated(tr, samples.evaluations, samples, float("nan"), _described(samples, tr))
 
 
@@ -130,14 +155,30 @@ def _mass_inverse_norms(M: np.ndarray) -> np.ndarray:
 def counted_errors(error: np.ndarray) -> np.ndarray:
     """The measured relative errors that count: at most :data:`SAMPLING_FLOOR` eps is the samples' own
     rounding (a Pinocchio pass or a user's function is accurate to a few eps of its norms), which neither
-    path counts (the nodes path does not bound the rounding of its evaluations either)."""
+    path counts (the nodes path does not bound the rounding of its evaluations either).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampled import counted_errors
+    >>> counted_errors(np.array([1e-15, 1e-9]))       # 1e-15 < 64 eps: the samples' own rounding
+    array([0.e+00, 1.e-09])
+    """
     return np.where(error <= SAMPLING_FLOOR * _EPS, 0.0, error)
 
 
 def block_errors(samples: PeriodicSamples, A: np.ndarray, n: int) -> np.ndarray | None:
     """Block bound [[0, 0], [e_X, e_Y]] on the interpolant's error in -M^-1 K and -M^-1 C:
     d(M^-1 K) = M^-1 (dK - dM M^-1 K), each d from the measured relative error of its group times the group's
-    largest Frobenius norm, the largest over the samples; None when every error is at rounding level."""
+    largest Frobenius norm, the largest over the samples; None when every error is at rounding level.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampled import block_errors
+    >>> from pinlin.periodic.sampling import sample_periodic
+    >>> samples = sample_periodic(lambda t: np.array([[[1.0]], [[0.0]], [[2.0 + np.cos(t)]]]), 2 * np.pi, tol=1e-13)
+    >>> print(block_errors(samples, np.zeros((16, 2, 2)), 1))        # every error at rounding level
+    None
+    """
     S = samples.samples
     counted = counted_errors(samples.error)
     if not counted.any():
@@ -148,17 +189,29 @@ def block_errors(samples: PeriodicSamples, A: np.ndarray, n: int) -> np.ndarray 
     return np.array([[0.0, 0.0], [float(np.max(inv * (eK + eM * X))), float(np.max(inv * (eC + eM * Y)))]])
 
 
-def second_order_transitions(triple, fallback, T: float, n: int, options: dict, sampling: str,
-                             max_samples: int, give_up: float) -> Integrated:
+def second_order_transitions(triple, fallback, T: float, n: int, options: FloquetOptions) -> Integrated:
     """The transitions of M x'' + C x' + K x = 0: ``triple(t)`` -> (3, n, n) stacked M, C, K (one evaluation);
-    ``fallback()`` -> (fM, fC, fK) checked callables for the nodes (made only when they are needed)."""
-    samples = _sample(triple, T, options["rtol"], sampling, max_samples, ("M", "C", "K"), second_order_scales)
+    ``fallback()`` -> (fM, fC, fK) checked callables for the nodes (made only when they are needed).  The
+    conservative-structure defect is measured up to ``options.structure_tol`` eps.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.options import FloquetOptions
+    >>> from pinlin.periodic.sampled import second_order_transitions
+    >>> triple = lambda t: np.array([[[1.0]], [[0.0]], [[1.3 + 0.4 * np.cos(t)]]])     # M, C, K of Mathieu
+    >>> integrated = second_order_transitions(triple, None, 2 * np.pi, 1, FloquetOptions())
+    >>> print(integrated.evaluations, integrated.defect == 0.0)        # constant M, C = 0, symmetric K
+    16 True
+    """
+    give_up = options.structure_tol * _EPS
+    samples = _sample(triple, T, options, ("M", "C", "K"), second_order_scales)
     if samples is None or not samples.converged:
         A = SecondOrderA(*fallback(), n, give_up)
-        tr = integrate_transitions(A, T, 2 * n, **options)
+        tr = integrate_transitions(A, T, 2 * n, **_integration(options))
         return _at_nodes(tr, samples, A.defect)
     S = samples.samples
-    A_samples = first_order_stack(S[:, 0], S[:, 1], S[:, 2], np.arange(S.shape[0]) * T / S.shape[0])
+    A_samples = first_order_form(S[:, 0], S[:, 1], S[:, 2], times=np.arange(S.shape[0]) * T / S.shape[0],
+                                 residual=False)[0]
     defect = structure_defect(S[:, 0], S[:, 1], S[:, 2], S[0, 0], S[0, 1])
     errors = block_errors(samples, A_samples, n)
     lagrangian = float("nan")
@@ -169,8 +222,8 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: dict, 
 
     def A(times):
         F = samples(times)
-        return first_order_stack(F[:, 0], F[:, 1], F[:, 2], times)
+        return first_order_form(F[:, 0], F[:, 1], F[:, 2], times=times, residual=False)[0]
 
     tr = integrate_on_grid(A, T, 2 * n, second_order=True, coefficient_error=errors, probe=A_samples,
-                           A0=A_samples[0], **options)
+                           A0=A_samples[0], **_integration(options))
     return Integrated(tr, samples.evaluations, samples, defect, _described(samples, tr), lagrangian)

@@ -63,6 +63,13 @@ class PeriodicSamples:
         The largest group error after each doubling.
     evaluations : int
         Calls of F (equals N).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampling import sample_periodic
+    >>> samples = sample_periodic(lambda t: np.array([[[np.sin(t)]]]), 2 * np.pi, tol=1e-13)
+    >>> print(samples.samples.shape, np.round(samples.derivative_at_samples()[0].ravel(), 12))
+    (16, 1, 1, 1) [1.]
     """
 
     period: float
@@ -122,13 +129,27 @@ def _group_errors(estimate: np.ndarray, exact: np.ndarray, scale: np.ndarray) ->
 
 
 def group_norms(samples: np.ndarray) -> np.ndarray:
-    """Each group's largest Frobenius norm over the samples (N, g, k, k) -> (g,)."""
+    """Each group's largest Frobenius norm over the samples (N, g, k, k) -> (g,).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampling import group_norms
+    >>> group_norms(np.array([[[[3.0]], [[1.0]]], [[[-4.0]], [[0.5]]]]))       # 2 samples of 2 groups
+    array([4., 1.])
+    """
     return np.sqrt(np.sum(samples ** 2, axis=(2, 3))).max(axis=0)
 
 
 def stalled(history, samples: int) -> bool:
     """The doubling that gave ``samples`` samples (errors after each doubling in ``history``) lowered the error by
-    less than :data:`STAGNATION`, from 64 samples on (32 checked against 32 fresh ones)."""
+    less than :data:`STAGNATION`, from 64 samples on (32 checked against 32 fresh ones).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampling import stalled
+    >>> stalled([1e-3, 5e-4], 64), stalled([1e-3, 1e-6], 64)
+    (True, False)
+    """
     return samples > 32 and len(history) > 1 and history[-1] > history[-2] / STAGNATION
 
 
@@ -159,6 +180,14 @@ def sample_periodic(F: Callable[[float], np.ndarray], period: float, *, tol: flo
     PeriodicSamples
         ``converged`` False when ``max_samples`` or a stagnating error ended the doubling (its ``history``
         says which).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.sampling import sample_periodic
+    >>> F = lambda t: np.array([[[2.0 + np.cos(t)]]])           # one group of 1 x 1 matrices
+    >>> samples = sample_periodic(F, 2 * np.pi, tol=1e-13)
+    >>> print(samples.converged, samples.evaluations, f"{samples([1.0])[0, 0, 0, 0]:.12f}", f"{2 + np.cos(1.0):.12f}")
+    True 16 2.540302305868 2.540302305868
     """
     def values(times):
         return np.stack([np.asarray(F(float(t)), dtype=float) for t in times])

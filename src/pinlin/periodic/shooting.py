@@ -17,12 +17,14 @@ families (the energy), which makes J singular along the family: each step is the
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
 from scipy.integrate import solve_ivp
 
 from ..errors import InputError, OrbitLimitError, ParameterError, PeriodicOrbitError
+from ..errors.deprecated import renamed_keywords
 from ..linearization.assembly import assemble
 from ..model.scene import Scene
 from ..nonlinear.charts import chart_groups
@@ -31,7 +33,8 @@ from .coefficients import evaluate_point
 from .orbit_result import PeriodicOrbit
 from .period import scene_period
 
-__all__ = ["periodic_orbit", "BACKTRACKS", "RANK_RTOL", "CONSTANT_TOL", "LIMIT_SAMPLES"]
+__all__ = ["periodic_orbit", "BACKTRACKS", "RANK_RTOL", "CONSTANT_TOL", "LIMIT_SAMPLES", "RESIDUAL_TOL",
+           "FLOW_RTOL", "FLOW_ATOL", "MAX_ITERATIONS"]
 
 #: Relative cut-off of the singular values of the Newton matrix (a conservative family's direction).
 RANK_RTOL = 1e-9
@@ -39,10 +42,26 @@ RANK_RTOL = 1e-9
 #: the free coordinates count as staying at rest (a ``constant`` orbit): Pinocchio's rounding is about
 #: 1e-16 of that scale, an actual forcing many orders more.
 CONSTANT_TOL = 1e-12
+#: Relative residual ||x(T) - x(0)|| / max_t ||x(t) - x(0)|| at which Newton stops.
+RESIDUAL_TOL = 1e-10
+#: DOP853 tolerances (relative, absolute) of every flow: the state and its variational equation.
+FLOW_RTOL, FLOW_ATOL = 1e-13, 1e-15
+#: Newton steps allowed.
+MAX_ITERATIONS = 30
 #: Halvings of a Newton step tried before the shooting gives up (the residual must decrease).
 BACKTRACKS = 8
 #: Times per period at which the orbit is checked against the joint limits and its excursion measured.
 LIMIT_SAMPLES = 256
+
+
+@dataclass(frozen=True)
+class _Shooting:
+    """The shooting's options (validated by :func:`periodic_orbit`)."""
+
+    residual_tol: float
+    rtol: float
+    atol: float
+    max_iterations: int
 
 
 class _Flow:
@@ -192,9 +211,9 @@ def _start(scene: Scene, q0, v0, period):
 class _Trial:
     """One flow from (s, T): its defect F = x(T) - s, relative residual, monodromy and dense output."""
 
-    def __init__(self, flow: _Flow, s: np.ndarray, T: float, opts: dict):
+    def __init__(self, flow: _Flow, s: np.ndarray, T: float, opts: _Shooting):
         self.s, self.T = s, T
-        self.xT, self.Phi, self.sol = flow.run(s, T, opts["rtol"], opts["atol"], dense=True)
+        self.xT, self.Phi, self.sol = flow.run(s, T, opts.rtol, opts.atol, dense=True)
         self.F = self.xT - s
         self.scale = _excursion(self.sol, flow, T, s)
         self.residual = float(np.linalg.norm(self.F)) / self.scale if self.scale else 0.0
@@ -219,16 +238,16 @@ def _step(flow: _Flow, trial: _Trial, s0, f0, autonomous: bool):
     return d[:n2], float(d[n2])
 
 
-def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: dict) -> tuple[_Trial, list, int]:
+def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: _Shooting) -> tuple[_Trial, list, int]:
     """Newton on F(s, T) = 0 with backtracking (the step is halved, up to :data:`BACKTRACKS` times, until
     the relative residual decreases): (the converged trial, residual history, Newton steps)."""
     s0, f0 = s.copy(), flow.field(0.0, s)
     trial = _Trial(flow, s, T, opts)
     history = [trial.residual]
-    for it in range(opts["max_iterations"]):
+    for it in range(opts.max_iterations):
         if autonomous:
-            _equilibrium_reached(trial, history, opts["tol"])
-        if trial.residual <= opts["tol"]:
+            _equilibrium_reached(trial, history, opts.residual_tol)
+        if trial.residual <= opts.residual_tol:
             return trial, history, it
         ds, dT = _step(flow, trial, s0, f0, autonomous)
         for _ in range(BACKTRACKS + 1):
@@ -246,17 +265,18 @@ def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: dict) -
         trial = new
         history.append(trial.residual)
     if autonomous:
-        _equilibrium_reached(trial, history, opts["tol"])
-    if trial.residual <= opts["tol"]:
+        _equilibrium_reached(trial, history, opts.residual_tol)
+    if trial.residual <= opts.residual_tol:
         return trial, history, len(history) - 1
     raise PeriodicOrbitError(
-        f"periodic_orbit: the shooting did not converge to tol = {opts['tol']:g} in {len(history) - 1} Newton "
+        f"periodic_orbit: the shooting did not converge to residual_tol = {opts.residual_tol:g} in {len(history) - 1} Newton "
         f"steps; relative residuals ||x(T) - x(0)|| per step: {[float(f'{h:.3e}') for h in history]} (no "
         f"periodic motion near the start, or a start too far from it)", history, trial.T)
 
 
-def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, tol: float = 1e-10,
-                   rtol: float = 1e-13, atol: float = 1e-15, max_iterations: int = 30,
+@renamed_keywords(tol="residual_tol")
+def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, residual_tol: float = RESIDUAL_TOL,
+                   rtol: float = FLOW_RTOL, atol: float = FLOW_ATOL, max_iterations: int = MAX_ITERATIONS,
                    constant_tol: float = CONSTANT_TOL) -> PeriodicOrbit:
     """The T-periodic motion of a scene's free coordinates, by shooting (theory: Floquet).
 
@@ -277,12 +297,12 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, to
     period : float, optional
         Autonomous scene: the guess [s].  Forced scene: a whole multiple of the forcing period (a
         subharmonic orbit); default the forcing period.
-    tol : float
-        Relative residual ||x(T) - x(0)|| / max_t ||x(t) - x(0)|| at which Newton stops.
+    residual_tol : float
+        :data:`RESIDUAL_TOL` (``tol`` is its deprecated spelling).
     rtol, atol : float
-        DOP853 tolerances of every flow (state and variational equation).
+        :data:`FLOW_RTOL`, :data:`FLOW_ATOL`.
     max_iterations : int
-        Newton steps allowed.
+        :data:`MAX_ITERATIONS`.
     constant_tol : float
         :data:`CONSTANT_TOL`.
 
@@ -303,6 +323,15 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, to
         The orbit leaves a free joint's position limits.
     ParameterError
         Not a scene; constraints or curved joints (free-flyer, spherical, planar); a bad period guess.
+
+    Examples
+    --------
+    The bundled pendulum on a vertically vibrating pivot (Kapitza): hanging, it stays at rest:
+
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> print(orbit.constant, f"{orbit.period:.6f}")
+    True 0.031416
     """
     start = time.perf_counter()
     q, v, T, autonomous = _start(scene, q0, v0, period)
@@ -312,11 +341,13 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, to
     if not autonomous and not np.any(s[n:]):
         worst = _constant_residual(scene, q, v, T)
         if worst <= constant_tol:
-            return PeriodicOrbit(T, q, v, worst, 0.0, worst, 0, (worst,), True, False, None,
-                                 time.perf_counter() - start, f"constant: the free coordinates stay at rest "
-                                 f"(largest relative equilibrium residual {worst:.1e} along the period)",
-                                 scene, q, None)
-    opts = dict(tol=float(tol), rtol=float(rtol), atol=float(atol), max_iterations=int(max_iterations))
+            return PeriodicOrbit(
+                period=T, q0=q, v0=v, residual=worst, integration_error=0.0, error=worst, iterations=0,
+                history=(worst,), constant=True, autonomous=False, monodromy=None,
+                elapsed=time.perf_counter() - start, method=f"constant: the free coordinates stay at rest "
+                f"(largest relative equilibrium residual {worst:.1e} along the period)", scene=scene, base=q,
+                solution=None)
+    opts = _Shooting(float(residual_tol), float(rtol), float(atol), int(max_iterations))
     trial, history, it = _shoot(flow, s, T, autonomous, opts)
     s, T, res, Phi = trial.s, trial.T, trial.residual, trial.Phi
     xT_loose = flow.run(s, T, 10 * rtol, 10 * atol)[0]
@@ -327,11 +358,13 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, to
     v_start[scene.free_dofs] = s[n:]
     solution = trial.sol.sol  # dense output of (dq, v_f, Phi); the orbit reads (dq, v_f)
     orbit = PeriodicOrbit(
-        T, pin.integrate(scene.model, q, dq), v_start, res, integration_error, res + integration_error, it,
-        tuple(history), False, autonomous, Phi, time.perf_counter() - start,
-        f"shooting: Newton on x(T) - x(0) with the monodromy from the variational equation (DOP853, "
+        period=T, q0=pin.integrate(scene.model, q, dq), v0=v_start, residual=res,
+        integration_error=integration_error, error=res + integration_error, iterations=it,
+        history=tuple(history), constant=False, autonomous=autonomous, monodromy=Phi,
+        elapsed=time.perf_counter() - start,
+        method=f"shooting: Newton on x(T) - x(0) with the monodromy from the variational equation (DOP853, "
         f"rtol={rtol:g}, atol={atol:g}){'; period unknown, Poincare phase condition' if autonomous else ''}",
-        scene, q, solution)
+        scene=scene, base=q, solution=solution)
     _check_limits(scene, orbit, history)
     return orbit
 

@@ -1,4 +1,4 @@
-"""Campbell diagrams of periodic systems: Floquet exponents against a speed (issue 23 part 5; theory: Floquet).
+"""Campbell diagrams of periodic systems: Floquet exponents against a speed (theory: Floquet).
 
 At each speed the Floquet analysis gives exponents lambda_k = log(mu_k) / T, defined modulo i 2 pi / T; the
 representative is the one whose frequency carries most of the mode's energy (``FloquetAnalysis.frequencies``,
@@ -26,7 +26,7 @@ from .tracking import TrackedModes, track_modes
 __all__ = ["FloquetCampbell", "floquet_campbell"]
 
 
-@dataclass(frozen=True, repr=False, eq=False)
+@dataclass(frozen=True, repr=False, eq=False, kw_only=True)
 class FloquetCampbell(Result):
     """Floquet exponents of a periodic family over a range of speeds.
 
@@ -48,6 +48,14 @@ class FloquetCampbell(Result):
     elapsed : float
         Seconds [s].
     method : str
+
+    Examples
+    --------
+    >>> def analysis(w):     # a damped Mathieu equation whose pumping grows with w
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], [[0.05]], lambda t: [[1.3 + 0.4 * w * np.cos(t)]], 2 * np.pi)
+    >>> camp = pinlin.floquet_campbell(analysis, [0.5, 1.0, 1.5])
+    >>> print(camp.speeds.tolist(), len(camp.stable), camp.error < 1e-10)
+    [0.5, 1.0, 1.5] 3 True
     """
 
     speeds: np.ndarray
@@ -58,7 +66,6 @@ class FloquetCampbell(Result):
     error: float
     elapsed: float
     method: str = "Floquet analysis at each speed, exponents identified by harmonic content, tracked"
-
 
     def __repr__(self) -> str:
         return (f"FloquetCampbell(steps={self.speeds.size}, modes={self.exponents.shape[1]}, "
@@ -85,6 +92,14 @@ def floquet_campbell(func: Callable[[float], FloquetAnalysis], speeds) -> Floque
         Fewer than two speeds, or non-finite ones.
     SystemFunctionError
         ``func`` raised, returned something else or analyses of different sizes.
+
+    Examples
+    --------
+    >>> def analysis(w):     # a damped Mathieu equation whose pumping grows with w
+    ...     return pinlin.floquet_analysis_matrices([[1.0]], [[0.05]], lambda t: [[1.3 + 0.4 * w * np.cos(t)]], 2 * np.pi)
+    >>> camp = pinlin.floquet_campbell(analysis, [0.5, 1.0, 1.5])
+    >>> print(camp.exponents.shape, camp.stable[0], np.round(camp.exponents.real[0] + 0.0, 6))
+    (3, 2) asymptotically_stable [-0.025 -0.025]
     """
     t0 = time.perf_counter()
     w = np.asarray(speeds, dtype=float).ravel()
@@ -107,5 +122,5 @@ def floquet_campbell(func: Callable[[float], FloquetAnalysis], speeds) -> Floque
     tracked = track_modes(np.array(rows))
     exponents = np.asarray(tracked.eigenvalues)
     bound = np.take_along_axis(np.array(bounds), np.asarray(tracked.order), axis=1)
-    return FloquetCampbell(readonly(w), readonly(exponents), readonly(bound), tuple(kinds), tracked,
-                           worst, time.perf_counter() - t0)
+    return FloquetCampbell(speeds=readonly(w), exponents=readonly(exponents), error_bound=readonly(bound),
+                           stable=tuple(kinds), tracked=tracked, error=worst, elapsed=time.perf_counter() - t0)
