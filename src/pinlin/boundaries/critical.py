@@ -208,7 +208,7 @@ def critical_parameter(
     try:
         br = open_bracket(ev, bracket)
     except PeriodicFamily as found:  # func(p) -> FloquetAnalysis: the multipliers' boundary
-        return periodic_critical_parameter(func, bracket, tol=atol, max_evaluations=max_evaluations,
+        return periodic_critical_parameter(func, bracket, atol=atol, max_evaluations=max_evaluations,
                                            first=(found.p, found.value))
     tol_abs = 0.0 if atol is None else float(atol)
     notes: list[str] = []

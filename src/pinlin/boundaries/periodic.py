@@ -127,7 +127,7 @@ class _Family:
         return flo
 
 
-def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = None,
+def periodic_critical_parameter(func: Callable, bracket, *, atol: float | None = None,
                                 max_evaluations: int = MAX_EVALUATIONS,
                                 first: tuple[float, FloquetAnalysis] | None = None) -> CriticalParameter:
     """The parameter in ``bracket`` where the Floquet verdict of ``func(p)`` changes class.
@@ -139,7 +139,7 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
         continuous in p.
     bracket : (float, float)
         Two values whose verdicts differ in class (stable against divergence or flutter).
-    tol : float, optional
+    atol : float, optional
         Absolute tolerance of Brent's iteration [unit of p]; default: 4 eps |p| (rounding).  Reached through
         :func:`pinlin.critical_parameter`, whose keyword it is.
     max_evaluations : int
@@ -192,7 +192,7 @@ def periodic_critical_parameter(func: Callable, bracket, *, tol: float | None = 
         steps.append(f"p = {p:.17g}: sigma = {value:+.3e}")
         return value
 
-    xtol = 4 * np.finfo(float).eps * max(abs(lo), abs(hi)) if tol is None else float(tol)
+    xtol = 4 * np.finfo(float).eps * max(abs(lo), abs(hi)) if atol is None else float(atol)
     root, info = scipy.optimize.brentq(sigma, lo, hi, xtol=max(xtol, 1e-300), rtol=4 * np.finfo(float).eps,
                                        full_output=True, disp=False)
     # the tightest pair of evaluated values with opposite signs of sigma: the final bracket
