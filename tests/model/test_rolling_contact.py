@@ -14,6 +14,7 @@ import math
 import numpy as np
 import pinocchio as pin
 import pytest
+import scipy.linalg
 from numpy.testing import assert_allclose
 
 from pinlin.errors import ConstraintError, ParameterError
@@ -25,8 +26,17 @@ from pinlin.model.constraints.rolling_contact import (
 )
 
 RADIUS = 0.3
-DISK_INERTIA = """<inertial><origin xyz="0 0 0"/><mass value="2.0"/>
-      <inertia ixx="0.045" iyy="0.09" izz="0.045" ixy="0" ixz="0" iyz="0"/></inertial>"""
+MASS = 2.0
+#: Diametral and axial moments [kg m^2] of a uniform disk (m r^2 / 4, m r^2 / 2) and of a hoop (m r^2 / 2, m r^2).
+UNIFORM, HOOP = (0.045, 0.09), (0.09, 0.18)
+
+
+def _disk_inertia(diametral, axial):
+    return (f'<inertial><origin xyz="0 0 0"/><mass value="{MASS}"/><inertia ixx="{diametral}" iyy="{axial}" '
+            f'izz="{diametral}" ixy="0" ixz="0" iyz="0"/></inertial>')
+
+
+DISK_INERTIA = _disk_inertia(*UNIFORM)
 
 
 def _joint(name, kind, parent, child, axis):
@@ -35,17 +45,18 @@ def _joint(name, kind, parent, child, axis):
             f'<origin xyz="0 0 0"/><axis xyz="{axis}"/>{limit}</joint>')
 
 
-HINGES_URDF = (
-    '<robot name="disk_on_hinges"><link name="ground"/><link name="sx"/><link name="sy"/><link name="sz"/>'
-    f'<link name="yaw"/><link name="roll"/><link name="disk">{DISK_INERTIA}</link>'
-    + _joint("x", "prismatic", "ground", "sx", "1 0 0")
-    + _joint("y", "prismatic", "sx", "sy", "0 1 0")
-    + _joint("z", "prismatic", "sy", "sz", "0 0 1")
-    + _joint("heading", "revolute", "sz", "yaw", "0 0 1")
-    + _joint("lean", "revolute", "yaw", "roll", "1 0 0")
-    + _joint("spin", "continuous", "roll", "disk", "0 1 0")
-    + "</robot>"
-)
+def _hinges_urdf(inertia=UNIFORM):
+    return (
+        '<robot name="disk_on_hinges"><link name="ground"/><link name="sx"/><link name="sy"/><link name="sz"/>'
+        f'<link name="yaw"/><link name="roll"/><link name="disk">{_disk_inertia(*inertia)}</link>'
+        + _joint("x", "prismatic", "ground", "sx", "1 0 0")
+        + _joint("y", "prismatic", "sx", "sy", "0 1 0")
+        + _joint("z", "prismatic", "sy", "sz", "0 0 1")
+        + _joint("heading", "revolute", "sz", "yaw", "0 0 1")
+        + _joint("lean", "revolute", "yaw", "roll", "1 0 0")
+        + _joint("spin", "continuous", "roll", "disk", "0 1 0")
+        + "</robot>"
+    )
 
 #: The wheel frame of the free disk: offset from the body origin and turned, so the axle in it is not (0, 1, 0).
 FRAME_RPY = (0.4, -0.7, 1.1)
@@ -56,8 +67,8 @@ FREE_URDF = (
 )
 
 
-def _hinges():
-    model = pin.buildModelFromXML(HINGES_URDF)
+def _hinges(inertia=UNIFORM):
+    model = pin.buildModelFromXML(_hinges_urdf(inertia))
     return model, model.getFrameId("disk"), np.array([0.0, 1.0, 0.0])
 
 
@@ -222,3 +233,59 @@ def test_stiffness_refuses_configuration_dependent_joints():
     q = np.array([0.0, 0.0, 0.0])
     with pytest.raises(ParameterError, match="joint 'ball' \\(JointModelSphericalZYX\\) moves wheel frame"):
         contact_force_stiffness(model, model.createData(), fid, RADIUS, (0, 1, 0), (0, 0, 1), q, (0, 0, 1.0))
+
+
+def _rolling_disk_exponents(inertia, speed):
+    """Eigenvalues of the upright disk rolling straight at ``speed``, assembled from the kernels as the
+    steady-motion linearization will be: J0 dv + P0 x = 0 gives dv = B u + P x (B = ker J0, P = -J0^+ P0);
+    x' = dv (no moving-frame term on 1-DOF joints); B^T [M dv' + C dv + (K - K_lam) x] = 0."""
+    model, fid, axis = _hinges(inertia)
+    data = model.createData()
+    omega = speed / RADIUS
+    q0, v0 = np.array([0.0, 0.0, RADIUS, 0.0, 0.0, 1.0, 0.0]), np.array([speed, 0, 0, 0, 0, omega])
+    args = (model, data, fid, RADIUS, axis, NORMALS["up"])
+    J0, _ = contact_jacobian(*args, q0)
+    assert_allclose(J0 @ v0, 0.0, atol=1e-15)
+    K, C, M = pin.computeRNEADerivatives(model, data, q0, v0, np.zeros(model.nv))
+    M = np.triu(M) + np.triu(M, 1).T
+    lam0 = np.linalg.lstsq(J0.T, pin.rnea(model, data, q0, v0, np.zeros(model.nv)), rcond=None)[0]
+    assert_allclose(lam0, [0.0, 0.0, MASS * 9.81], atol=1e-12)  # the normal load, no friction needed
+    P0 = contact_velocity_derivative(*args, q0, v0)
+    K_lam = contact_force_stiffness(*args, q0, lam0)
+    B = scipy.linalg.null_space(J0)
+    rates = np.hstack([-np.linalg.pinv(J0) @ P0, B])  # x' = dv = rates @ (x, u)
+    forces = B.T @ (M @ (rates[:, : model.nv] @ rates) + C @ rates)
+    forces[:, : model.nv] += B.T @ (K - K_lam)
+    system = np.vstack([rates, -np.linalg.solve(B.T @ M @ B, forces)])
+    return np.linalg.eigvals(system)
+
+
+@pytest.mark.parametrize("inertia, critical", [(UNIFORM, 1 / 3), (HOOP, 1 / 4)])
+@pytest.mark.parametrize("ratio", [0.5, 0.9, 1.1, 3.0])
+def test_rolling_disk_exponents(inertia, critical, ratio):
+    """The classical rolling disk (e.g. Neimark and Fufaev, Dynamics of Nonholonomic Systems, 1972): lean
+    and heading of a disk rolling upright at spin Omega = v / r have lambda^2 = (m g r A - C (C + m r^2) Omega^2) / (A (A + m r^2)): stable exactly for
+    v^2 > g r / 3 (uniform disk) and g r / 4 (hoop); all the other exponents are zero."""
+    A, C = inertia
+    speed = math.sqrt(ratio * critical * 9.81 * RADIUS)
+    eig = _rolling_disk_exponents(inertia, speed)
+    omega = speed / RADIUS
+    lam2 = (MASS * 9.81 * RADIUS * A - C * (C + MASS * RADIUS**2) * omega**2) / (A * (A + MASS * RADIUS**2))
+    assert (lam2 > 0) == (ratio < 1)
+    expected = math.sqrt(lam2) if lam2 > 0 else 1j * math.sqrt(-lam2)
+    for target in (expected, -expected):
+        assert np.min(abs(eig - target)) < 1e-12 * abs(target)
+    rest = np.sort(abs(eig))[:-2]
+    assert np.all(rest < 1e-6)  # zeros: x, y, heading, spin angle, the speed; a defective pair at 1e-8
+
+
+def test_examples_run():
+    """The Examples sections of the module's docstrings, as the doctest runner sees them."""
+    import doctest
+
+    import pinlin
+    import pinlin.model.constraints.rolling_contact as module
+
+    flags = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
+    result = doctest.testmod(module, extraglobs={"np": np, "pinlin": pinlin}, optionflags=flags)
+    assert result.failed == 0 and result.attempted >= 5
