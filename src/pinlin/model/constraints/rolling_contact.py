@@ -147,10 +147,10 @@ def contact_velocity_derivative(
     .. math::  P_0 = \\frac{\\partial v_o}{\\partial q}
         + r\\left([u]_\\times \\frac{\\partial \\omega}{\\partial q} - [\\omega]_\\times \\frac{\\partial u}{\\partial q}\\right)
 
-    with v_o, omega the frame's LOCAL_WORLD_ALIGNED velocity (from Pinocchio's velocity
-    derivatives, plus omega x do for the moving origin) and du/dq through the axle's rotation.  P0(q, v) v is the drift
-    d/dt(J) v of the rolling constraint.  Parameters as :func:`contact_point`, with
-    the velocity ``v`` (nv,).
+    with v_o, omega the frame's LOCAL_WORLD_ALIGNED velocity (Pinocchio's velocity derivatives,
+    plus omega x do for the moving origin) and du/dq through the axle's rotation.  P0(q, v) v
+    is the drift d/dt(J) v of the rolling constraint.  Parameters as :func:`contact_point`,
+    with the velocity ``v`` (nv,).  A free flyer's velocity is Pinocchio's, in its local frame.
 
     Raises
     ------
@@ -160,7 +160,7 @@ def contact_velocity_derivative(
     Examples
     --------
     A free disk moving along x at 0.6 m/s and spinning at 2 rad/s about its axle (rolling):
-    turning it about its axle turns its velocity, whose vertical part grows by -0.6 per radian:
+    turning it about its axle turns its local velocity, whose vertical part changes by -0.6 per radian:
 
     >>> import pinocchio as pin
     >>> model = pin.Model()
@@ -176,8 +176,7 @@ def contact_velocity_derivative(
     """
     radius, axis, normal = _checked(model, frame_id, radius, axis, normal)
     q, v = np.asarray(q, dtype=float), np.asarray(v, dtype=float)
-    pin.computeForwardKinematicsDerivatives(model, data, q, v, np.zeros(model.nv))
-    pin.computeJointJacobians(model, data, q)
+    pin.computeForwardKinematicsDerivatives(model, data, q, v, np.zeros(model.nv))  # also fills the joint Jacobians
     dvel_dq, _ = pin.getFrameVelocityDerivatives(model, data, frame_id, _LWA)
     _, J6, u, du = _frame_terms(model, data, frame_id, axis, normal, flat_tol)
     omega = J6[3:] @ v
