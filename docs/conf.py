@@ -73,7 +73,6 @@ numpydoc_validation_checks = {"PR01", "PR02"}
 numpydoc_validation_exclude = {
     r"\.__init__$",  # constructors are documented in their class docstring's Parameters
     # Docstrings to fix in their own files (then remove the line):
-    r"^pinlin\.model\.load_example$",  # model/loading.py: a paragraph inside Parameters (move it to Notes)
     r"^pinlin\.linearization\.Evaluation$",  # model/evaluation.py: parameter ``at_rest`` not documented
 }
 #: Checks skipped for docstrings matching a pattern (``re.search`` on the raw docstring):

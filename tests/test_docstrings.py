@@ -92,6 +92,15 @@ def examples_problem(obj) -> str | None:
     return None
 
 
+#: Optional extras an example needs (pyproject's extras): its doctests are skipped, not failed, without them.
+OPTIONAL = {"pinlin.plot.": "matplotlib", "pinlin.testing.mp_": "mpmath", "pinlin.expand_xacro": "xacro",
+            ".to_control": "control", ".to_pandas": "pandas"}
+
+
+def _needs(name: str) -> list[str]:
+    return [module for key, module in OPTIONAL.items() if name.startswith(key) or name.endswith(key)]
+
+
 def _globs() -> dict:
     return {"np": np, "pinlin": pinlin}
 
@@ -122,6 +131,8 @@ def test_has_examples(name):
 
 @pytest.mark.parametrize("name", sorted(PUBLIC))
 def test_examples_run(name):
+    for module in _needs(name):
+        pytest.importorskip(module)
     failed, report = run_doctests(_doctests_of(PUBLIC[name], name))
     assert failed == 0, f"{name}: {failed} example(s) failed\n{report}"
 

@@ -41,8 +41,7 @@ DERIVATIVE_RTOL = 1e-5
 DERIVATIVE_CHECK_TIMES = (0.0, 0.1234, 0.3771, 0.5, 0.7219, 0.9006)
 #: Largest denominator of a period ratio accepted as rational by :func:`common_period`.
 MAX_PERIOD_DENOMINATOR = 12
-#: Relative tolerance within which a period ratio must equal its rational approximation p / r (r at most
-#: :data:`MAX_PERIOD_DENOMINATOR`).
+#: Relative tolerance within which a period ratio must equal its rational approximation p / r.
 PERIOD_RATIO_RTOL = 1e-12
 
 
@@ -106,6 +105,12 @@ class FourierMotion(Motion):
     ------
     ParameterError
         Non-finite coefficients, omega zero or non-finite, no coefficient.
+
+    Examples
+    --------
+    >>> motion = pinlin.FourierMotion(cosines=[0.1], sines=[0.0, 0.05], omega=3.0)
+    >>> print(f"{motion.period:.6f} {motion.q(0.0):.6f}")
+    2.094395 0.100000
     """
 
     def __init__(self, cosines: Iterable[float] = (), sines: Iterable[float] = (), omega: float = 1.0,
@@ -171,6 +176,12 @@ class Harmonic(Motion):
     ------
     ParameterError
         A non-finite parameter or omega = 0 (naming it).
+
+    Examples
+    --------
+    >>> motion = pinlin.Harmonic(amplitude=0.1, omega=2.0)
+    >>> print(f"{motion.period:.6f} {motion.q(0.25):.6f} {motion.v(0.0):.6f}")
+    3.141593 0.047943 0.200000
     """
 
     def __init__(self, amplitude: float, omega: float, offset: float = 0.0, phase: float = 0.0):
@@ -200,10 +211,8 @@ class Harmonic(Motion):
 class PeriodicMotion(Motion):
     """A general T-periodic motion given by three callables q(t), v(t), a(t) and its period.
 
-    The derivatives are checked against central differences of q and v at the fractions
-    :data:`DERIVATIVE_CHECK_TIMES` of T, with step h = 1e-4 T: |v - (q(t+h) - q(t-h)) / 2h| must be at most
-    :data:`DERIVATIVE_RTOL` times max_t |v| (and likewise a against v, relative to max_t |a|), and q, v, a
-    must repeat after T (within the same tolerance, relative to the same scales and max |q| + 1).
+    v and a are checked against central differences (step 1e-4 T) of q and v at the fractions
+    :data:`DERIVATIVE_CHECK_TIMES` of T, relative to max |v| and max |a|, and q, v, a must repeat after T.
 
     Parameters
     ----------
@@ -217,8 +226,14 @@ class PeriodicMotion(Motion):
     Raises
     ------
     ParameterError
-        A non-finite or non-positive period, a callable that fails or returns a non-finite number, derivatives
-        that disagree with the differences of q (or v), or a motion that does not repeat after T.
+        A bad period, a callable that fails or returns a non-finite number, derivatives that
+        disagree with the differences, or a motion that does not repeat after T.
+
+    Examples
+    --------
+    >>> motion = pinlin.PeriodicMotion(np.sin, np.cos, lambda t: -np.sin(t), 2 * np.pi)
+    >>> print(f"{motion.q(np.pi / 2):.6f} {motion.a(np.pi / 2):.6f}")
+    1.000000 -1.000000
     """
 
     def __init__(self, q: Callable[[float], float], v: Callable[[float], float], a: Callable[[float], float],
