@@ -83,6 +83,11 @@ def mp_eigenvalues(system, *, dps: int = 50) -> np.ndarray:
         M must be nonsingular.
     dps : int
         Working precision in decimal digits.
+
+    Examples
+    --------
+    >>> pinlin.testing.mp_eigenvalues((np.eye(1), np.zeros((1, 1)), 4 * np.eye(1)))
+    array([0.-2.j, 0.+2.j])
     """
     mp = _mpmath()
     M, C, K = _matrices(system)
@@ -98,6 +103,12 @@ def mp_characteristic_coefficients(system, *, dps: int = 50) -> tuple[np.ndarray
     coefficients : (2n + 1,) ndarray
         Real parts of the 2n + 1 coefficients (p has real coefficients).
     eigenvalues : (2n,) complex ndarray
+
+    Examples
+    --------
+    >>> coefficients, lam = pinlin.testing.mp_characteristic_coefficients((np.eye(1), np.zeros((1, 1)), 4 * np.eye(1)))
+    >>> coefficients  # p(lam) = 4 + lam^2
+    array([4., 0., 1.])
     """
     mp = _mpmath()
     M, C, K = _matrices(system)
@@ -111,7 +122,13 @@ def mp_characteristic_coefficients(system, *, dps: int = 50) -> tuple[np.ndarray
 
 
 def paired(computed, reference) -> np.ndarray:
-    """``reference`` reordered to match ``computed`` one to one (optimal assignment on distance)."""
+    """``reference`` reordered to match ``computed`` one to one (optimal assignment on distance).
+
+    Examples
+    --------
+    >>> pinlin.testing.paired(np.array([1.0, 2.0, 3.0]), np.array([3.1, 0.9, 2.0]))
+    array([0.9, 2. , 3.1])
+    """
     computed = np.asarray(computed)
     reference = np.asarray(reference)
     if computed.shape != reference.shape or computed.ndim != 1:
@@ -160,6 +177,12 @@ def cantilever_beam(
     Returns
     -------
     LinearizedSystem
+
+    Examples
+    --------
+    >>> beam = pinlin.testing.cantilever_beam(ne=4)
+    >>> beam.n, beam.dof_names[:2]
+    (8, ('x1', 'x2'))
     """
     from .linearization.system import LinearizedSystem
 
@@ -250,6 +273,13 @@ def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> flo
         ``element`` is not an element, or ``step`` is not a positive number.
     ConfigurationError
         ``q`` or ``v`` has the wrong size or non-finite entries.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> spring = pinlin.JointSpring("joint1", 2.0)
+    >>> bool(pinlin.testing.check_element(spring, pinlin.Scene(robot, [spring]), np.array([0.3, -0.2])) < 1e-6)
+    True
     """
     import pinocchio as pin
 
