@@ -294,10 +294,10 @@ __all__ = [
     "Residues",
     "frequency_response",
     "FrequencyResponse",
-    # other tools' forms (issue 17)
+    # other tools' forms: python-control, scipy.signal
     "state_space",
     "StateSpaceModel",
-    # time-periodic motions (theory: Floquet, issue 23)
+    # time-periodic motions (theory: Floquet)
     "Harmonic",
     "FourierMotion",
     "PeriodicMotion",

@@ -1,4 +1,4 @@
-"""Every robot example-robot-data ships, by short name (issue 24).
+"""Every robot example-robot-data ships, by short name.
 
 The table is discovered from the installed package's files (``robots/<package>/
 {urdf,robots}/*.urdf``), not kept by hand, so a new release of example-robot-data

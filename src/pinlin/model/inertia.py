@@ -1,4 +1,4 @@
-"""Physical validity of inertial data, checked where the dynamics lives (issues 13 and 24).
+"""Physical validity of inertial data, checked where the dynamics lives.
 
 Two levels:
 

@@ -213,7 +213,7 @@ def load_urdf(
     free_flyer : bool
         Mount the root link on a free-flyer joint (floating base, nq = nv + 1).
     locked : sequence of str or mapping, optional
-        Joints to remove through Pinocchio's reduced model, see :meth:`Robot.lock`.
+        Joints to remove through Pinocchio's reduced model (a mapping gives their positions).
     memory_limit : int, optional
         Bytes allowed for the peak of Pinocchio's data; default 80 % of the available memory.
     inertia : {"check", "repair"}

@@ -1,4 +1,4 @@
-"""Legged robots standing on the ground: a scene ready for ``find_equilibrium`` and ``linearize`` (issue 24).
+"""Legged robots standing on the ground: a scene ready for ``find_equilibrium`` and ``linearize``.
 
 :func:`standing_scene` takes a floating-base robot, a nominal pose (the SRDF's
 ``standing`` configuration where there is one), lowers or raises the base so that

@@ -1,4 +1,4 @@
-"""URDFs written in xacro, and ``package://`` / ``$(find pkg)`` paths (issue 24).
+"""URDFs written in xacro, and ``package://`` / ``$(find pkg)`` paths.
 
 :func:`expand_xacro` runs the ``xacro`` package (PyPI, the optional extra
 ``pinlin[xacro]``) on a file with the given arguments and returns the URDF text.

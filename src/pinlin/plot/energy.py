@@ -1,4 +1,4 @@
-"""Bar charts of a mode's energy distribution (:meth:`pinlin.Modes.energy`, issue 26)."""
+"""Bar charts of a mode's energy distribution (:meth:`pinlin.Modes.energy`)."""
 
 from __future__ import annotations
 

@@ -218,7 +218,7 @@ class Element(ABC):
 
     Subclasses are frozen dataclasses that name a joint or frame; they are
     checked against a robot by :meth:`check` when a :class:`~pinlin.Scene` is
-    built, and evaluated through an :class:`Evaluation`.
+    built, and evaluated through an :class:`~pinlin.linearization.Evaluation`.
 
     The class attribute :attr:`invariance` says what the force depends on
     (``"joint-space"``, ``"body-fixed load"``, ``"dead load"`` or ``"unknown"``, the
