@@ -2,7 +2,8 @@
 
 The public names are those of ``pinlin.__all__`` (less ``__version__`` and plain
 constants such as ``EXAMPLES``), the public functions and classes of
-``pinlin.plot`` and ``pinlin.testing``, and the documented public methods of those classes (a method that
+``pinlin.plot``, ``pinlin.testing`` and ``pinlin.model`` (the names a user imports from
+there, less those already checked under ``pinlin``), and the documented public methods of those classes (a method that
 overrides a documented method of a public base class shares its contract and is
 checked on the base).  For each: (a) its docstring has an ``Examples`` section with
 at least one ``>>>`` line, (b) its doctests pass.  The doctests of every module
@@ -66,7 +67,7 @@ def _own_methods(cls) -> dict[str, object]:
 def public_objects() -> dict[str, object]:
     """Dotted name -> object, for every public function, class and documented method checked here."""
     out: dict[str, object] = {}
-    sources = [(m.__name__, m, m.__all__) for m in (pinlin, pinlin.plot, pinlin.testing)]
+    sources = [(m.__name__, m, m.__all__) for m in (pinlin, pinlin.plot, pinlin.testing, pinlin.model)]
     for prefix, module, names in sources:
         for name in names:
             obj = getattr(module, name)

@@ -226,27 +226,17 @@ def _relative(a: np.ndarray, b: np.ndarray, noise: float) -> float:
 def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> float:
     """Largest relative mismatch between an element's analytic derivatives and central differences (theory: elements between frames).
 
-    The analytic side is what the element adds to :func:`~pinlin.linearize`'s K
-    and C at (q, v): its group's ``add_stiffness`` / ``add_damping`` (the path
-    linearize takes), evaluated in ``scene`` (Rayleigh damping reads the other
-    elements' elastic stiffness); for a wrench element (``is_wrench``), K and C
-    of a scene holding only it minus those of the bare robot, gravity off, so
-    that Pinocchio's derivative of its ``fext`` is included.  The reference is
-    central differences of ``element.generalized_force`` on the manifold:
+    The analytic side is what the element adds to :func:`~pinlin.linearize`'s K and C at
+    (q, v), Pinocchio's part of a wrench included; the reference is central differences of
+    ``element.generalized_force`` on the manifold:
 
     .. math::
         K_{fd}[:, k] = -\\frac{Q(q \\oplus h e_k, v) - Q(q \\oplus (-h e_k), v)}{2h},\\qquad
         C_{fd}[:, k] = -\\frac{Q(q, v + h e_k) - Q(q, v - h e_k)}{2h}
 
-    with q (+) dq = ``pin.integrate``.  The mismatch of a matrix is
-    ||A - A_fd||_F / max(||A||_F, ||A_fd||_F), counted 0 when both norms are below
-    :data:`NOISE_FACTOR` times the differences' rounding level eps max|Q| sqrt(nv) / h;
-    the result is the largest of the mismatches of K, C and of the assembled
-    force against ``generalized_force`` at (q, v).  Differences resolve a
-    matrix only to about eps |Q| / h: where the element's stiffness is small
-    against its forces (a spring whose two frames nearly move together) the
-    mismatch measures that rounding, not the element, so check at generic
-    configurations.
+    with q (+) dq = ``pin.integrate``.  A matrix's mismatch is ||A - A_fd||_F / max(||A||_F,
+    ||A_fd||_F), 0 when both are below :data:`NOISE_FACTOR` times the differences' rounding
+    level; check at generic configurations (docs/elements.md, "Checking an element").
 
     Parameters
     ----------

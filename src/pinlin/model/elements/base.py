@@ -159,10 +159,8 @@ class DiagonalIndex:
 class ElementGroup:
     """All elements of one class in a scene, evaluated together.
 
-    The default group loops over its elements; element classes whose elements
-    are many and simple (1-DOF springs and dampers) return a vectorized group
-    from :meth:`Element.group`, so a 200-joint chain costs a few array
-    operations, not 200 Python calls.
+    The default group loops over its elements; classes of many simple elements (1-DOF
+    springs and dampers) return a vectorized one from :meth:`Element.group`.
 
     Attributes
     ----------
@@ -170,19 +168,13 @@ class ElementGroup:
         True when :meth:`add_stiffness` adds an exactly symmetric matrix (it then
         adds no rounding to the skew part N).
     constant_damping : bool
-        True when :meth:`add_damping` adds the same matrix at every point and does
-        not read its evaluation (it may then be called with ``ev=None``): the
-        linearization plan adds it up once per scene
-        (:class:`~pinlin.linearization.plan.LinearizationPlan`).  False for the
-        default group, which asks each element at each point; groups that know
-        better (joint springs and dampers) say so.
+        True when :meth:`add_damping` adds the same matrix at every point without reading
+        its evaluation (``ev=None`` allowed): the linearization plan adds it once per scene.
     batched : bool
         True when the group implements ``add_many(qs, Q, K, batch=None)``: its forces at
         rest (v = 0) and stiffness at P configurations at once (Q (P, nv), K (P, nv, nv)),
-        for :func:`pinlin.linearize_many`; each point's values are bitwise those of
-        :meth:`add_force` and :meth:`add_stiffness`.  ``batch`` (a
-        :class:`~pinlin.model.evaluation.BatchPoints`, qs its chunk) lets a group compute
-        once for all the call's points.  False for the default group.
+        for :func:`pinlin.linearize_many`; ``batch`` (a
+        :class:`~pinlin.model.evaluation.BatchPoints`) lets it compute once for all the call's points.
     """
 
     batched = False
@@ -216,14 +208,10 @@ class ElementGroup:
 class Element(ABC):
     """A force element of a scene (theory: elements).
 
-    Subclasses are frozen dataclasses that name a joint or frame; they are
-    checked against a robot by :meth:`check` when a :class:`~pinlin.Scene` is
-    built, and evaluated through an :class:`~pinlin.linearization.Evaluation`.
-
-    The class attribute :attr:`invariance` says what the force depends on
-    (``"joint-space"``, ``"body-fixed load"``, ``"dead load"`` or ``"unknown"``, the
-    default), declared on the element's own class, never inherited; docs/elements.md
-    says what each kind promises and how to write an element.
+    Subclasses name a joint or frame, are checked against the robot by :meth:`check` when a
+    :class:`~pinlin.Scene` is built and evaluated through an :class:`~pinlin.linearization.Evaluation`.
+    The class attribute :attr:`invariance` (declared on the class itself, never inherited) says
+    what the force depends on; docs/elements.md says what each kind promises and how to write one.
 
     Examples
     --------
@@ -310,9 +298,8 @@ class Element(ABC):
     def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
         """Add the element's elastic stiffness to K (nv x nv); nothing by default.
 
-        The elastic stiffness is the psd part that stores strain energy (a
-        spring's k, not the geometric term of its preload, not gravity nor
-        loads); :class:`~pinlin.RayleighDamping` uses it as K_e in beta K_e.
+        The psd part that stores strain energy (a spring's k, not its preload's geometric term,
+        gravity nor loads): :class:`~pinlin.RayleighDamping`'s K_e in beta K_e.
 
         Examples
         --------
@@ -359,7 +346,13 @@ class Element(ABC):
 
 
 class WrenchElement(Element):
-    """A wrench applied at a frame origin; it reaches Pinocchio as ``fext``."""
+    """A wrench applied at a frame origin; it reaches Pinocchio as ``fext``.
+
+    Examples
+    --------
+    >>> isinstance(pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0]), pinlin.model.WrenchElement)
+    True
+    """
 
     is_wrench: ClassVar[bool] = True
     #: True when the wrench is constant in its joint's frame (then ``fext`` does not depend on q).
@@ -376,12 +369,25 @@ class WrenchElement(Element):
 
     @abstractmethod
     def local_wrench(self, ev) -> np.ndarray:
-        """The wrench (force, torque) at the frame origin, in the frame's axes (6,)."""
+        """The wrench (force, torque) at the frame origin, in the frame's axes (6,).
+
+        Examples
+        --------
+        >>> pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0]).local_wrench(None)
+        array([0., 0., 1., 0., 0., 0.])
+        """
 
     def joint_wrench(self, ev, model: pin.Model, robot) -> tuple[int, pin.Force]:
         """The wrench in its parent joint's frame, as Pinocchio's ``fext`` wants it.
 
         ``ev`` may be None for a body-fixed wrench (its local wrench does not depend on q).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> joint, force = pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0]).joint_wrench(None, robot.model, robot)
+        >>> joint, force.vector
+        (2, array([0., 0., 1., 0., 0., 0.]))
         """
         frame = model.frames[robot.frame_id(self.frame)]
         w = self.local_wrench(ev)

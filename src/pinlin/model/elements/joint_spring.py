@@ -29,14 +29,10 @@ class JointSpring(Element):
 
     .. math::  Q = -K_s\\, e(q), \\qquad e = \\mathrm{difference}(q_{rest}, q_j)
 
-    For a 1-DOF joint e is the joint angle [rad] or displacement [m] from rest;
-    for a multi-DOF joint (spherical, planar, free-flyer) e is Pinocchio's
-    ``difference`` on the joint's Lie group, and dQ/dq = -K_s de/dq with de/dq
-    its ``dDifference``; on free-flyer, spherical and planar joints both come from
-    :mod:`.lie_log` (Pinocchio 4.1's ``dDifference`` there loses up to 3e-5 relative
-    at rotations of 1e-4 to 2e-3 rad).  Near rest de/dq = I.  For an anisotropic
-    K_s on a rotation group far from rest this force is not a gradient, so its
-    stiffness may have a skew part; an isotropic K_s is conservative.
+    e is the joint angle [rad] or displacement [m] from rest, or on a multi-DOF joint
+    the difference on its Lie group (from :mod:`.lie_log`, more accurate than Pinocchio
+    4.1's ``dDifference`` at small rotations); dQ/dq = -K_s de/dq.  An anisotropic K_s on a
+    rotation group far from rest is not conservative: its stiffness may have a skew part.
 
     Parameters
     ----------
