@@ -11,16 +11,23 @@ Math is rendered by MathJax served from the built pages themselves
 ``sphinx-build -W`` turns every warning into an error, and numpydoc's
 validation warns when a docstring's Parameters drift from the signature
 (PR01: a parameter not documented; PR02: a documented parameter that does not exist).
-No network: no intersphinx, no remote images, no CDN scripts.
+Nitpicky: every cross-reference must resolve.  References to pinlin's names link to the
+one place each object is described (:func:`resolve_pinlin_names`); Python's and numpy's
+names link to their sites through intersphinx inventories bundled in ``_inventories/``
+(written offline by ``_inventories/make_inventories.py`` with Sphinx's own inventory
+writer, holding only the names these pages reference, each at its real address).
+No network: no inventory is fetched, no remote images, no CDN scripts.
 """
 
 from __future__ import annotations
 
 import contextlib
 import importlib
+import inspect
 import io
 import logging as std_logging
 import os
+import pkgutil
 import re
 import sys
 from pathlib import Path
@@ -29,6 +36,7 @@ from docutils import nodes
 from docutils.statemachine import StringList
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
+from sphinx.util.nodes import make_refnode
 
 #: This tree's sources: documented by autodoc and imported by the executed examples (their kernels
 #: inherit PYTHONPATH), ahead of any installed pinlin (an editable install may point at another tree).
@@ -52,10 +60,21 @@ copyright = "pinlin developers"
 release = version = pinlin.__version__
 
 #: ``sphinx-mathjax-offline`` sets ``mathjax_path`` to its bundled MathJax 3 and copies it into ``_static``.
-extensions = ["sphinx.ext.autodoc", "sphinx.ext.mathjax", "sphinx-mathjax-offline", "numpydoc", "myst_nb"]
+extensions = ["sphinx.ext.autodoc", "sphinx.ext.intersphinx", "sphinx.ext.mathjax", "sphinx-mathjax-offline", "numpydoc", "myst_nb"]
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
-exclude_patterns = ["_build", "notebooks/README.md", "README.md", "**/.ipynb_checkpoints"]
+#: Every cross-reference must resolve: a name that is not a link is an error under -W.
+nitpicky = True
+#: External names that have no inventory to link to: Pinocchio's classes (its documentation is Doxygen's,
+#: with no intersphinx inventory), and the pieces Sphinx makes of a subscripted annotation such as
+#: ``tuple[str, ...]`` (``tuple[str``).  No pinlin name may be listed here.
+nitpick_ignore_regex = [(r"py:class", r"pinocchio\..*"), (r"py:class", r"[\w.]+\[.*")]
+#: The bundled inventories (see the module docstring); the build never downloads one.
+intersphinx_mapping = {
+    "python": ("https://docs.python.org/3", "_inventories/python.inv"),
+    "numpy": ("https://numpy.org/doc/stable", "_inventories/numpy.inv"),
+}
+exclude_patterns = ["_build", "_inventories", "notebooks/README.md", "README.md", "**/.ipynb_checkpoints"]
 html_theme = "furo"
 html_title = f"pinlin {release}"
 html_static_path: list[str] = []
@@ -73,7 +92,6 @@ numpydoc_validation_checks = {"PR01", "PR02"}
 numpydoc_validation_exclude = {
     r"\.__init__$",  # constructors are documented in their class docstring's Parameters
     # Docstrings to fix in their own files (then remove the line):
-    r"^pinlin\.model\.load_example$",  # model/loading.py: a paragraph inside Parameters (move it to Notes)
     r"^pinlin\.linearization\.Evaluation$",  # model/evaluation.py: parameter ``at_rest`` not documented
 }
 #: Checks skipped for docstrings matching a pattern (``re.search`` on the raw docstring):
@@ -148,15 +166,17 @@ def canonical_homes() -> dict[str, str]:
     """``package.name`` -> the package documenting it, for every name in an API package's ``__all__``."""
     if _HOMES:
         return _HOMES
-    exporters: dict[int, list[str]] = {}
-    names: dict[str, object] = {}
+    exporters: dict[tuple, list[str]] = {}
+    names: dict[str, tuple] = {}
     for package in API_PACKAGES:
         module = importlib.import_module(package)
         for name in module.__all__:
             obj = getattr(module, name)
-            names[f"{package}.{name}"] = obj
-            exporters.setdefault(id(obj), []).append(package)
-    _HOMES.update({full: _home(obj, exporters[id(obj)]) for full, obj in names.items()})
+            # a constant is one object only under one name: equal numbers share an identity
+            key = (id(obj),) if _linkable(obj) else (id(obj), name)
+            names[f"{package}.{name}"] = (obj, key)
+            exporters.setdefault(key, []).append(package)
+    _HOMES.update({full: _home(obj, exporters[key]) for full, (obj, key) in names.items()})
     return _HOMES
 
 
@@ -206,6 +226,129 @@ class TopLevelDirective(SphinxDirective):
         body = nodes.container()
         self.state.nested_parse(StringList(rows, source="pinlin"), self.content_offset, body)
         return body.children
+
+
+def _import(dotted: str):
+    """The object a dotted pinlin name denotes (a module, or attributes down from the longest importable one)."""
+    parts = dotted.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:cut]))
+        except ImportError:
+            continue
+        try:
+            for attr in parts[cut:]:
+                obj = getattr(obj, attr)
+        except AttributeError:
+            return None
+        return obj
+    return None
+
+
+def _linkable(obj) -> bool:
+    """Objects with an identity of their own (a constant's value is shared by unrelated names)."""
+    return inspect.ismodule(obj) or inspect.isclass(obj) or callable(obj) or isinstance(obj, property)
+
+
+_DOCUMENTED: dict[int, str] = {}
+
+
+def _documented_by_identity(env) -> dict[int, str]:
+    """id(object) -> the full name under which the API pages describe it."""
+    if not _DOCUMENTED:
+        for name in env.get_domain("py").objects:
+            obj = _import(name) if name.startswith("pinlin") else None
+            if obj is not None and _linkable(obj):
+                _DOCUMENTED.setdefault(id(obj), name)
+    return _DOCUMENTED
+
+
+def _target(env, name: str):
+    """(docname, anchor) of the description of pinlin name ``name``, else of its nearest described parent:
+    a module's package page, a constant's module, an attribute's class."""
+    py = env.get_domain("py")
+    while name.startswith("pinlin"):
+        if name in py.objects:
+            entry = py.objects[name]
+            return entry.docname, entry.node_id
+        if name in py.modules:
+            entry = py.modules[name]
+            return entry.docname, entry.node_id
+        obj = _import(name)
+        parent = name.rpartition(".")[0]
+        if obj is None:  # an instance attribute (a dataclass field without default): its class
+            if not inspect.isclass(_import(parent)):
+                return None
+            name = parent
+            continue
+        home = _documented_by_identity(env).get(id(obj)) if _linkable(obj) else None
+        if home is not None:
+            entry = py.objects[home]
+            return entry.docname, entry.node_id
+        name = parent
+    return None
+
+
+def resolve_pinlin_names(app, env, node, contnode):
+    """Link a reference to a pinlin name that is not described under that name.
+
+    The API pages describe each object once, under the package that defines it
+    (``pinlin.linearization.linearize``); docstrings name it as users import it
+    (``pinlin.linearize``), by its module path (``pinlin.linearization.linearize.linearize``)
+    or relative to their own module (``:mod:`.energy```).  Such a reference links to the
+    description of the same object; one to an undocumented module, constant or attribute
+    links to the page that describes its package, module or class.  Anything else stays
+    unresolved (an error under ``nitpicky``).
+    """
+    if node.get("refdomain") != "py":
+        return None
+    target = node["reftarget"].lstrip(".~")
+    module, cls = node.get("py:module") or "", node.get("py:class") or ""
+    candidates = [target] if target.startswith("pinlin") else []
+    if module.startswith("pinlin") and not target.startswith("pinlin"):
+        if cls:
+            candidates.append(f"{module}.{cls}.{target}")
+        parts = module.split(".")
+        candidates += [".".join(parts[:k] + [target]) for k in range(len(parts), 0, -1)]
+    if module.startswith("pinlin") and not target.startswith("pinlin"):
+        # a docstring of a module that its package's page shows names its own module's names
+        candidates += [f"{sub}.{target}" for sub in _submodules(module)]
+    elif target.startswith("pinlin.") and _import(target) is None:
+        # a package's name for what one of its modules defines and the package does not export
+        package, _, last = target.rpartition(".")
+        candidates += [f"{sub}.{last}" for sub in _submodules(package)]
+    last = target.rpartition(".")[2]
+    for name in [*candidates, *_defined_once(last)]:
+        found = _target(env, name)
+        if found is not None:
+            return make_refnode(app.builder, node["refdoc"], found[0], found[1], contnode)
+    return None
+
+
+_DEFINITIONS: dict[str, set[str]] = {}
+
+
+def _defined_once(name: str) -> list[str]:
+    """The module path of the one pinlin function or class called ``name``, if exactly one is (a docstring
+    naming a function of another module by its bare name)."""
+    if not _DEFINITIONS:
+        for module_name in ["pinlin", *_submodules("pinlin")]:
+            for attr, obj in vars(importlib.import_module(module_name)).items():
+                if (inspect.isfunction(obj) or inspect.isclass(obj)) and obj.__module__ == module_name:
+                    _DEFINITIONS.setdefault(attr, set()).add(f"{module_name}.{attr}")
+    found = _DEFINITIONS.get(name, set())
+    return sorted(found) if len(found) == 1 else []
+
+
+def _submodules(package: str) -> list[str]:
+    """Every module under ``package`` (none when it is not an importable package)."""
+    try:
+        module = importlib.import_module(package)
+    except ImportError:
+        return []
+    if not hasattr(module, "__path__"):
+        return []
+    return [info.name for info in pkgutil.walk_packages(module.__path__, prefix=package + ".")]
 
 
 #: Pages whose ```python blocks run during the build, in order, in one namespace per page.
@@ -263,6 +406,7 @@ def setup(app):
     app.connect("source-read", no_internal_references)
     app.connect("autodoc-process-docstring", no_internal_references_in_docstrings)
     app.connect("doctree-read", run_examples)
+    app.connect("missing-reference", resolve_pinlin_names)
     app.connect("autodoc-process-docstring", escape_bars, priority=600)  # after numpydoc's rewrite (500)
     app.add_directive("pinlin-package", PackageDirective)
     app.add_directive("pinlin-top-level", TopLevelDirective)

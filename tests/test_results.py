@@ -1,4 +1,4 @@
-"""The one result convention (issue 10, docs/conventions.md), checked on every result type.
+"""The one result convention (docs/conventions.md), checked on every result type.
 
 ``pinlin.results.result_types()`` lists every subclass of ``pinlin.results.Result``; each
 must have a builder below that makes an instance through the public API on a small system
@@ -155,7 +155,7 @@ BUILDERS = {
     # spectral
     "Modes": damped_modes,
     "Stability": lambda: damped_modes().stability,
-    # Ziegler's column at P = 1.8 in joint angles (issue 25): a marginal verdict with its dissipation table
+    # Ziegler's column at P = 1.8 in joint angles: a marginal verdict with its dissipation table
     "DissipationRow": lambda: pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices(
         [[6.0, 2.0], [2.0, 1.0]], None, [[1.0, 1.8], [0.0, 1.0]])).stability.dissipation[1],
     "JordanChains": lambda: pinlin.jordan_chains(rigid(), 0.0),
@@ -184,7 +184,7 @@ BUILDERS = {
     "Simulation": lambda: pinlin.simulate(pendulum_scene(), equilibrium().q + np.array([0.01, 0.0]), None,
                                           np.linspace(0.0, 0.05, 6)),
     "StateSpaceModel": lambda: pinlin.state_space(damped()),
-    # time-periodic motions (issue 23)
+    # time-periodic motions
     "PeriodicOrbit": kapitza_orbit,
     "FloquetAnalysis": lambda: pinlin.floquet_analysis(kapitza_orbit().scene, kapitza_orbit()),
     "FloquetCampbell": lambda: pinlin.floquet_campbell(

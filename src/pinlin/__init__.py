@@ -295,7 +295,7 @@ __all__ = [
     "Residues",
     "frequency_response",
     "FrequencyResponse",
-    # other tools' forms
+    # other tools' forms: python-control, scipy.signal
     "state_space",
     "StateSpaceModel",
     # time-periodic motions (theory: Floquet)

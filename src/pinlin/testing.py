@@ -83,6 +83,11 @@ def mp_eigenvalues(system, *, dps: int = 50) -> np.ndarray:
         M must be nonsingular.
     dps : int
         Working precision in decimal digits.
+
+    Examples
+    --------
+    >>> pinlin.testing.mp_eigenvalues((np.eye(1), np.zeros((1, 1)), 4 * np.eye(1)))
+    array([0.-2.j, 0.+2.j])
     """
     mp = _mpmath()
     M, C, K = _matrices(system)
@@ -98,6 +103,12 @@ def mp_characteristic_coefficients(system, *, dps: int = 50) -> tuple[np.ndarray
     coefficients : (2n + 1,) ndarray
         Real parts of the 2n + 1 coefficients (p has real coefficients).
     eigenvalues : (2n,) complex ndarray
+
+    Examples
+    --------
+    >>> coefficients, lam = pinlin.testing.mp_characteristic_coefficients((np.eye(1), np.zeros((1, 1)), 4 * np.eye(1)))
+    >>> coefficients  # p(lam) = 4 + lam^2
+    array([4., 0., 1.])
     """
     mp = _mpmath()
     M, C, K = _matrices(system)
@@ -111,7 +122,13 @@ def mp_characteristic_coefficients(system, *, dps: int = 50) -> tuple[np.ndarray
 
 
 def paired(computed, reference) -> np.ndarray:
-    """``reference`` reordered to match ``computed`` one to one (optimal assignment on distance)."""
+    """``reference`` reordered to match ``computed`` one to one (optimal assignment on distance).
+
+    Examples
+    --------
+    >>> pinlin.testing.paired(np.array([1.0, 2.0, 3.0]), np.array([3.1, 0.9, 2.0]))
+    array([0.9, 2. , 3.1])
+    """
     computed = np.asarray(computed)
     reference = np.asarray(reference)
     if computed.shape != reference.shape or computed.ndim != 1:
@@ -160,6 +177,12 @@ def cantilever_beam(
     Returns
     -------
     LinearizedSystem
+
+    Examples
+    --------
+    >>> beam = pinlin.testing.cantilever_beam(ne=4)
+    >>> beam.n, beam.dof_names[:2]
+    (8, ('x1', 'x2'))
     """
     from .linearization.system import LinearizedSystem
 
@@ -203,27 +226,17 @@ def _relative(a: np.ndarray, b: np.ndarray, noise: float) -> float:
 def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> float:
     """Largest relative mismatch between an element's analytic derivatives and central differences (theory: elements between frames).
 
-    The analytic side is what the element adds to :func:`~pinlin.linearize`'s K
-    and C at (q, v): its group's ``add_stiffness`` / ``add_damping`` (the path
-    linearize takes), evaluated in ``scene`` (Rayleigh damping reads the other
-    elements' elastic stiffness); for a wrench element (``is_wrench``), K and C
-    of a scene holding only it minus those of the bare robot, gravity off, so
-    that Pinocchio's derivative of its ``fext`` is included.  The reference is
-    central differences of ``element.generalized_force`` on the manifold:
+    The analytic side is what the element adds to :func:`~pinlin.linearize`'s K and C at
+    (q, v), Pinocchio's part of a wrench included; the reference is central differences of
+    ``element.generalized_force`` on the manifold:
 
     .. math::
         K_{fd}[:, k] = -\\frac{Q(q \\oplus h e_k, v) - Q(q \\oplus (-h e_k), v)}{2h},\\qquad
         C_{fd}[:, k] = -\\frac{Q(q, v + h e_k) - Q(q, v - h e_k)}{2h}
 
-    with q (+) dq = ``pin.integrate``.  The mismatch of a matrix is
-    ||A - A_fd||_F / max(||A||_F, ||A_fd||_F), counted 0 when both norms are below
-    :data:`NOISE_FACTOR` times the differences' rounding level eps max|Q| sqrt(nv) / h;
-    the result is the largest of the mismatches of K, C and of the assembled
-    force against ``generalized_force`` at (q, v).  Differences resolve a
-    matrix only to about eps |Q| / h: where the element's stiffness is small
-    against its forces (a spring whose two frames nearly move together) the
-    mismatch measures that rounding, not the element, so check at generic
-    configurations.
+    with q (+) dq = ``pin.integrate``.  A matrix's mismatch is ||A - A_fd||_F / max(||A||_F,
+    ||A_fd||_F), 0 when both are below :data:`NOISE_FACTOR` times the differences' rounding
+    level; check at generic configurations (docs/elements.md, "Checking an element").
 
     Parameters
     ----------
@@ -250,6 +263,13 @@ def check_element(element, scene, q, v=None, *, step: float = CHECK_STEP) -> flo
         ``element`` is not an element, or ``step`` is not a positive number.
     ConfigurationError
         ``q`` or ``v`` has the wrong size or non-finite entries.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> spring = pinlin.JointSpring("joint1", 2.0)
+    >>> bool(pinlin.testing.check_element(spring, pinlin.Scene(robot, [spring]), np.array([0.3, -0.2])) < 1e-6)
+    True
     """
     import pinocchio as pin
 

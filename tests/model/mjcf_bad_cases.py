@@ -1,4 +1,4 @@
-"""Bad MJCF files of issue 24, each with the MjcfError it must give; run as a script it loads each in turn.
+"""Bad MJCF files, each with the MjcfError it must give; run as a script it loads each in turn.
 
 Used in process by test_mjcf_validation.py and, as ``python mjcf_bad_cases.py DIR``, in fresh processes:
 Pinocchio 4.1 read these with uninitialized memory, so a wrong answer could differ from run to run.

@@ -2,7 +2,7 @@
 
 check_element compares an element's analytic derivatives (what it adds to
 linearize's K and C) with central differences of its generalized force on the
-manifold; issue 12 asks for <= 1e-6 at generic deflected configurations of ur5
+manifold; an element passes at <= 1e-6 at generic deflected configurations of ur5
 and of a free-floating body, with and without preload.
 """
 
@@ -21,7 +21,7 @@ from pinlin.model.evaluation import Evaluation
 from pinlin.testing import check_element
 
 DOCS = Path(__file__).resolve().parents[2] / "docs" / "elements.md"
-#: Largest mismatch accepted (issue 12): exact derivatives give about 1e-9.
+#: Largest mismatch accepted (docs/elements.md): exact derivatives give about 1e-9.
 TOL = 1e-6
 
 
@@ -139,7 +139,7 @@ def free_body_case(preload: bool):
     rng = np.random.default_rng(21)
     robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(2, [0.6, 0.4], [1.2, 0.8]), free_flyer=True)
     # numpy's rng does not seed Pinocchio: unseeded, about 1 draw in 40 nearly straightens the chain, where the
-    # tip-base spring's central differences lose digits to rounding (mismatch ~ 1/h; issue 25)
+    # tip-base spring's central differences lose digits to rounding (mismatch ~ 1/h)
     pin.seed(21)
     q = pin.randomConfiguration(robot.model, -2.0 * np.ones(robot.nq), 2.0 * np.ones(robot.nq))
     v = rng.normal(size=robot.nv)

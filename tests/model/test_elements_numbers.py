@@ -1,4 +1,4 @@
-"""Numeric parameters of every element (and a contact's friction) are numbers, not text or booleans (issue 26).
+"""Numeric parameters of every element (and a contact's friction) are numbers, not text or booleans.
 
 numpy would read ``"5"`` as 5 and ``True`` as 1; the one check
 (:func:`pinlin.model.numbers.numeric_array`) refuses them, naming the element

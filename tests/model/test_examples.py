@@ -1,4 +1,4 @@
-"""Every robot of example-robot-data by name; every URDF it ships that is physically valid loads (issue 24)."""
+"""Every robot of example-robot-data by name; every URDF it ships that is physically valid loads."""
 
 import warnings
 from pathlib import Path

@@ -1,4 +1,4 @@
-"""Elements between frames (issue 12): LinearSpringDamper and Bushing against independent computations.
+"""Elements between frames: LinearSpringDamper and Bushing against independent computations.
 
 References: Pinocchio's frame Jacobians and its fext derivative (through DeadWrench),
 Pinocchio's log6, finite differences of the elements' potential energies, mpmath at

@@ -1,4 +1,4 @@
-"""Physically valid inertial data is checked at load (issue 13, items 1 and 2)."""
+"""Physically valid inertial data is checked at load: links' mass and inertia tensors."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Inertia checks on the bodies the dynamics uses, after fixed joints are merged (issue 24, part 1)."""
+"""Inertia checks on the bodies the dynamics uses, after fixed joints are merged."""
 
 import numpy as np
 import pytest

@@ -1,5 +1,4 @@
-"""The MJCF reader checks every attribute before Pinocchio reads it, and gives the same answer in every process
-(issue 24, part 5)."""
+"""The MJCF reader checks every attribute before Pinocchio reads it, and gives the same answer in every process."""
 
 import os
 import subprocess

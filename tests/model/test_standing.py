@@ -1,4 +1,4 @@
-"""Legged robots standing on the ground: standing_scene (issue 24, part 4)."""
+"""Legged robots standing on the ground: standing_scene."""
 
 import warnings
 

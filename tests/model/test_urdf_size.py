@@ -1,4 +1,4 @@
-"""URDFs too deep for the parser or too large for memory are refused before parsing (issue 24, part 5)."""
+"""URDFs too deep for the parser or too large for memory are refused before parsing."""
 
 import pinocchio as pin
 import pytest

@@ -1,4 +1,4 @@
-"""xacro files with arguments, ``package://`` includes and ``$(find pkg)`` (issue 24, part 3)."""
+"""xacro files with arguments, ``package://`` includes and ``$(find pkg)``."""
 
 import sys
 

@@ -1,4 +1,4 @@
-"""The analyze report's energy section (issue 26 part 3): per mode the dominant body and element."""
+"""The analyze report's energy section: per mode the dominant body and element."""
 
 from __future__ import annotations
 

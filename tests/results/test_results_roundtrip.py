@@ -1,4 +1,4 @@
-"""Results a user can keep (issue 26 part 2): every result type reads back from its ``to_dict()``.
+"""Results a user can keep: every result type reads back from its ``to_dict()``.
 
 For each class in ``pinlin.results.result_types()`` the builder of ``tests/test_results.py`` makes
 one real instance; ``to_dict`` -> ``json.dumps(allow_nan=False)`` -> ``json.loads`` ->
@@ -25,7 +25,7 @@ NOT_KEPT = {"Modes": ("system", "matrices", "deferred", "verdict")}
 
 def _canonical(a: np.ndarray) -> np.ndarray:
     """``a`` with every NaN made the positive quiet NaN (JSON's "nan" keeps no sign or payload) and -0 made 0
-    (no exported number is -0, issue 25); all else is bitwise."""
+    (no exported number is -0); all else is bitwise."""
     if a.dtype.kind == "c":
         out = np.empty_like(a)
         out.real, out.imag = _canonical(a.real.copy()), _canonical(a.imag.copy())

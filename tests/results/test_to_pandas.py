@@ -1,4 +1,4 @@
-"""``to_pandas()`` of modes, sweeps and frequency responses (issue 26 part 2), against closed forms.
+"""``to_pandas()`` of modes, sweeps and frequency responses, against closed forms.
 
 - Modes of M = I, C = 0, K = diag(4, 9): lam = +-2i, +-3i, so one row per eigenvalue with
   natural frequency 2, 2, 3, 3 rad/s, 1/pi, 1/pi, 1.5/pi Hz, damping ratio 0, kind "undamped" (D = 0: decided on the axis).

@@ -12,7 +12,6 @@ Paper Sec. 6-10 and 12, in the order of the data flow:
 - :mod:`.eigenvectors`: eigenvectors, ``p'(lam_k)`` and Jordan chains read
   off the adjugate (Sec. 8, 9).
 - :mod:`.cde`: the characteristic differential equation ``p(d/dt) x_i = 0`` (Sec. 7).
-- :mod:`._util`: old private names, aliases of :mod:`pinlin.numerics` (to be removed).
 
 The dynamic flexibility ``H(s) = adj L(s) / p(s)``, its residues and the frequency
 responses built on it live in :mod:`pinlin.frf`.

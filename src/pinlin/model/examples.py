@@ -1,4 +1,4 @@
-"""Every robot example-robot-data ships, by short name (issue 24).
+"""Every robot example-robot-data ships, by short name.
 
 The table is discovered from the installed package's files (``robots/<package>/
 {urdf,robots}/*.urdf``), not kept by hand, so a new release of example-robot-data
@@ -106,6 +106,14 @@ class ExampleNotFoundError(NameNotFoundError, ParameterError):
         Every known name.
     close : tuple of str
         The close matches (:func:`difflib.get_close_matches`).
+
+    Examples
+    --------
+    >>> try:
+    ...     pinlin.load_example("ur55")
+    ... except pinlin.ExampleNotFoundError as exc:
+    ...     print(exc.name)
+    ur55
     """
 
     what = "example"
@@ -150,6 +158,12 @@ class ExampleInfo:
         Joints that move no mass and no inertia (gripper fingers without inertial
         data): the mass matrix is singular until they are locked
         (``load_example(name, locked=row.massless)``).
+
+    Examples
+    --------
+    >>> info = next(r for r in pinlin.examples() if r.name == "ur5")
+    >>> info.name, info.nv
+    ('ur5', 6)
     """
 
     name: str
@@ -301,6 +315,13 @@ def examples() -> ExampleTable:
     Builds each model once with Pinocchio (no meshes; about a second for the whole
     set).  A robot that Pinocchio cannot build, or that has no movable joint even
     with its default free flyer, is left out with a ``UserWarning`` naming it.
+
+    Examples
+    --------
+    >>> table = pinlin.examples()
+    >>> row = next(r for r in table if r.name == "ur5")
+    >>> row.nv, row.free_flyer
+    (6, False)
     """
     root = robots_directory()
     rows = []

@@ -88,6 +88,12 @@ def pendulum_chain_urdf(
         The robot name.
     tip_frame : bool
         Add the ``tip`` frame at the end of the last bar.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf_string(pinlin.pendulum_chain_urdf(3, length=0.5, mass=0.2))
+    >>> robot.nv
+    3
     """
     if not isinstance(n, (int, np.integer)) or isinstance(n, bool) or n < 1:
         raise ParameterError("n", f"number of links must be an integer >= 1, got {n!r}")
@@ -136,6 +142,12 @@ def double_pendulum_urdf(
     ``joint2`` at A (relative angles theta1 = phi1, theta2 = phi2 - phi1); frame
     ``tip`` at B.  The follower load of the paper is
     ``FollowerWrench("tip", force=(0, 0, P))`` (from B towards A).
+
+    Examples
+    --------
+    >>> text = pinlin.double_pendulum_urdf(m1=1.3, l1=0.7, m2=0.9, l2=0.5)
+    >>> pinlin.load_urdf_string(text).joint_names
+    ('joint1', 'joint2')
     """
     return pendulum_chain_urdf(
         2, [l1, l2], [m1, m2], damping=damping, name="double_pendulum"
@@ -150,6 +162,12 @@ def turntable_urdf(a: float = 0.5, mass: float = 1.0, table_inertia: float = 1.0
     carries ``slider`` (prismatic along the arm's x; r = |AP|) holding a point
     mass ``mass`` [kg].  The spring of the paper is
     ``JointSpring("slider", k, rest=l0)``.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf_string(pinlin.turntable_urdf(a=0.5))
+    >>> robot.nv
+    3
     """
     for label, val in (("a", a), ("mass", mass), ("table_inertia", table_inertia)):
         if not np.isfinite(val) or val <= 0:
@@ -193,6 +211,12 @@ def rotating_ring_urdf(mass: float = 1.0, ring_inertia: float = 1.0) -> str:
     the ring frame) and a point mass ``mass`` [kg].  The springs and dampers of
     the paper are ``JointSpring("x", k)``, ``JointSpring("y", k)``,
     ``JointDamper("x", c)``, ``JointDamper("y", c)``.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf_string(pinlin.rotating_ring_urdf(mass=1.0, ring_inertia=2.0))
+    >>> robot.nv
+    3
     """
     for label, val in (("mass", mass), ("ring_inertia", ring_inertia)):
         if not np.isfinite(val) or val <= 0:

@@ -1,4 +1,4 @@
-"""Physical validity of inertial data, checked where the dynamics lives (issues 13 and 24).
+"""Physical validity of inertial data, checked where the dynamics lives.
 
 Two levels:
 
@@ -69,6 +69,11 @@ class InertiaWarning(UserWarning):
     Either a link whose own tensor is impossible but which Pinocchio merges into a
     valid body (or which is fixed to the world), or a body replaced by its nearest
     valid tensor under ``inertia="repair"``.  The message names the link or body.
+
+    Examples
+    --------
+    >>> issubclass(pinlin.InertiaWarning, UserWarning)
+    True
     """
 
 

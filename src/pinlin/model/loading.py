@@ -63,6 +63,11 @@ def data_path(name: str) -> Path:
     name : str
         Relative name, for example ``"urdf/double_pendulum.urdf"`` or
         ``"scenes/double_pendulum.toml"``.
+
+    Examples
+    --------
+    >>> pinlin.data_path("urdf/double_pendulum.urdf").name
+    'double_pendulum.urdf'
     """
     root = Path(__file__).parent.parent / "data"
     path = root / name
@@ -152,18 +157,8 @@ def _build(text: str | None, path: str | None, source: str, free_flyer: bool) ->
     root_joint = pin.JointModelFreeFlyer() if free_flyer else None
     with captured_stderr() as messages:
         try:
-            if path is not None:
-                model = (
-                    pin.buildModelFromUrdf(path, root_joint)
-                    if root_joint is not None
-                    else pin.buildModelFromUrdf(path)
-                )
-            else:
-                model = (
-                    pin.buildModelFromXML(text, root_joint)
-                    if root_joint is not None
-                    else pin.buildModelFromXML(text)
-                )
+            build, source_arg = (pin.buildModelFromUrdf, path) if path is not None else (pin.buildModelFromXML, text)
+            model = build(source_arg, root_joint) if root_joint is not None else build(source_arg)
             error = None
         except (ValueError, RuntimeError) as exc:
             error = exc
@@ -182,10 +177,7 @@ def _finish(
     references: Mapping[str, np.ndarray] | None = None,
 ) -> Robot:
     if model.nv == 0:
-        raise UrdfError(
-            f"{source}: the URDF has no movable joint (all joints are fixed); nothing moves",
-            source,
-        )
+        raise UrdfError(f"{source}: the URDF has no movable joint (all joints are fixed); nothing moves", source)
     model = reduce_model(model, locked, source)
     check_memory(model.nv, memory_limit, source)
     return Robot(model, source, references if not locked else None)
@@ -221,14 +213,12 @@ def load_urdf(
     free_flyer : bool
         Mount the root link on a free-flyer joint (floating base, nq = nv + 1).
     locked : sequence of str or mapping, optional
-        Joints to remove through Pinocchio's reduced model, see :meth:`Robot.lock`.
+        Joints to remove through Pinocchio's reduced model (a mapping gives their positions).
     memory_limit : int, optional
-        Bytes allowed for the peak of Pinocchio's data; default 80 % of the
-        available memory.
+        Bytes allowed for the peak of Pinocchio's data; default 80 % of the available memory.
     inertia : {"check", "repair"}
-        What to do with a body of the model (the links merged by fixed joints into
-        one joint's body) whose inertia is not physically possible: refuse it
-        (default) or replace it by the nearest valid tensor with an
+        A body (links merged by fixed joints) whose inertia is not physically possible is
+        refused (default) or replaced by the nearest valid tensor with an
         :class:`~pinlin.InertiaWarning` (:mod:`pinlin.model.inertia`).
     xacro_args : mapping, optional
         Arguments of a ``.xacro`` file (``$(arg name)``).
@@ -240,18 +230,24 @@ def load_urdf(
     Raises
     ------
     UrdfError
-        Missing file, malformed XML, invalid URDF, no movable joint, a link whose
-        inertial data is not finite, a body whose inertia is not physically possible
-        (``inertia="check"``), anything the URDF parser or xacro could not read.
+        Missing file, malformed XML, invalid URDF, no movable joint, non-finite or (with
+        ``inertia="check"``) impossible inertia, anything the URDF parser or xacro could not read.
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
-        Too deep for the parser, or Pinocchio's data would not fit in memory; said
-        before parsing (:mod:`pinlin.model.urdf_text`).
+        Too deep for the parser, or Pinocchio's data would not fit in memory (said before parsing).
     ParameterError
         A bad ``inertia``, ``memory_limit``, ``xacro_args`` or ``package_dirs``.
     MissingDependencyError
         A ``.xacro`` file without the ``xacro`` package (``pip install 'pinlin[xacro]'``).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> robot
+    Robot('double_pendulum', nq=2, nv=2, joints=2, source='.../double_pendulum.urdf')
+    >>> robot.dof_names
+    ('joint1', 'joint2')
     """
     source = os.fspath(path)
     p = Path(source)
@@ -279,7 +275,14 @@ def load_urdf_string(
     memory_limit: int | None = None,
     inertia: str = "check",
 ) -> Robot:
-    """Load URDF text as a :class:`Robot`; same options as :func:`load_urdf`."""
+    """Load URDF text as a :class:`Robot`; same options as :func:`load_urdf`.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf_string(pinlin.double_pendulum_urdf(m1=1.0, l1=0.5))
+    >>> robot.nv, robot.joint_names
+    (2, ('joint1', 'joint2'))
+    """
     source = "<string>"
     if not isinstance(text, str):
         raise UrdfError(f"URDF text must be a str, got {type(text).__name__}", source)
@@ -324,8 +327,11 @@ def load_example(
     locked, memory_limit, inertia
         As in :func:`load_urdf`.
 
-    The SRDF's named configurations (``half_sitting``, ``standing``, ...) are kept
-    in :attr:`Robot.reference_configurations` when the SRDF exists.
+    Returns
+    -------
+    Robot
+        With the SRDF's named configurations (``half_sitting``, ``standing``, ...) in
+        ``reference_configurations`` when the SRDF exists.
 
     Raises
     ------
@@ -333,6 +339,12 @@ def load_example(
         Unknown name; the message lists close matches (a :class:`~pinlin.ParameterError`).
     UrdfError, ModelTooLargeError, JointNotFoundError
         As in :func:`load_urdf`.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_example("ur5")
+    >>> robot
+    Robot('ur5', nq=6, nv=6, joints=6, source='example:ur5')
     """
     entry = find_example(name)
     path = _erd_file(entry.urdf)

@@ -176,6 +176,12 @@ def load_mjcf(
         Pinocchio's data would not fit in memory.
     ParameterError
         ``inertia`` is not "check" or "repair".
+
+    Examples
+    --------
+    >>> robot = pinlin.load_mjcf(pinlin.data_path("mjcf/four_bar.xml"))
+    >>> robot.nv, len(robot.constraints)
+    (3, 1)
     """
     source = os.fspath(path)
     check_inertia_option(inertia)

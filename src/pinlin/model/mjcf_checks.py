@@ -1,4 +1,4 @@
-"""What pinlin checks in an MJCF file before Pinocchio's parser reads it (issue 24).
+"""What pinlin checks in an MJCF file before Pinocchio's parser reads it.
 
 Pinocchio 4.1's MJCF parser reads numbers it cannot parse as uninitialized memory
 (``anchor="nan 0 0"`` or ``"a b c"`` became 0 0 4.6e-310), a ``<connect>`` on a site

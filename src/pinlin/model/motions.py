@@ -1,9 +1,8 @@
 """Periodic prescribed joint motions q_p(t) (theory: Floquet): :class:`Harmonic`, :class:`FourierMotion`,
 :class:`PeriodicMotion`, and the common period of several (:func:`common_period`).
 
-A prescribed joint either turns at a constant velocity (a number in ``Scene(prescribed=...)``) or follows
-one of these motions: its position q_p(t) [rad or m], velocity v_p(t) = q_p'(t) and acceleration
-a_p(t) = q_p''(t) are then given functions of time, and the joint is not a coordinate of the equations.
+A prescribed joint turns at a constant velocity (a number in ``Scene(prescribed=...)``) or follows one
+of these: q_p(t) [rad or m], v_p(t) and a_p(t) are given functions of time, not coordinates.
 """
 
 from __future__ import annotations
@@ -31,18 +30,14 @@ __all__ = [
     "PERIOD_RATIO_RTOL",
 ]
 
-#: Relative tolerance of the central-difference check of a :class:`PeriodicMotion`'s derivatives: at step
-#: h = 1e-4 T the difference's truncation error is about (2 pi h / T)^2 / 6 = 7e-8 of the derivative of a
-#: harmonic, and its rounding about eps |q| / h; 1e-5 leaves a factor 100 for both, and a derivative wrong
-#: by a sign, a factor or a phase fails it by orders of magnitude.
+#: Relative tolerance of the difference check of a :class:`PeriodicMotion`'s derivatives: at h = 1e-4 T
+#: truncation (7e-8 of a harmonic's) and rounding (eps |q| / h) stay 100 times below; a wrong sign fails.
 DERIVATIVE_RTOL = 1e-5
-#: Fractions of the period at which a :class:`PeriodicMotion`'s derivatives are checked (irregular, so that
-#: no symmetry of the motion hides an error at all of them).
+#: Fractions of the period where a :class:`PeriodicMotion`'s derivatives are checked (irregular: no symmetry hides an error).
 DERIVATIVE_CHECK_TIMES = (0.0, 0.1234, 0.3771, 0.5, 0.7219, 0.9006)
 #: Largest denominator of a period ratio accepted as rational by :func:`common_period`.
 MAX_PERIOD_DENOMINATOR = 12
-#: Relative tolerance within which a period ratio must equal its rational approximation p / r (r at most
-#: :data:`MAX_PERIOD_DENOMINATOR`).
+#: Relative tolerance within which a period ratio must equal its rational approximation p / r.
 PERIOD_RATIO_RTOL = 1e-12
 
 
@@ -56,9 +51,13 @@ def _real(value, name: str, *, positive: bool = False) -> float:
 
 
 class Motion:
-    """Base class of a prescribed periodic motion: ``q(t)``, ``v(t)``, ``a(t)`` and ``period`` [s].
+    """Base class of a prescribed periodic motion: ``q(t)``, ``v(t)``, ``a(t)`` of t [s] and ``period`` T > 0 [s].
 
-    Subclasses set ``period`` (T > 0, finite) and implement the three functions of t [s] (floats).
+    Examples
+    --------
+    >>> motion = pinlin.Harmonic(amplitude=0.1, omega=2.0)
+    >>> isinstance(motion, pinlin.model.Motion), motion.omega
+    (True, 2.0)
     """
 
     period: float
@@ -106,6 +105,12 @@ class FourierMotion(Motion):
     ------
     ParameterError
         Non-finite coefficients, omega zero or non-finite, no coefficient.
+
+    Examples
+    --------
+    >>> motion = pinlin.FourierMotion(cosines=[0.1], sines=[0.0, 0.05], omega=3.0)
+    >>> print(f"{motion.period:.6f} {motion.q(0.0):.6f}")
+    2.094395 0.100000
     """
 
     def __init__(self, cosines: Iterable[float] = (), sines: Iterable[float] = (), omega: float = 1.0,
@@ -120,8 +125,7 @@ class FourierMotion(Motion):
         K = max(len(c), len(s))
         if K == 0:
             raise ParameterError("cosines", "a Fourier motion needs at least one coefficient")
-        self.cosines = np.array(c + [0.0] * (K - len(c)))
-        self.sines = np.array(s + [0.0] * (K - len(s)))
+        self.cosines, self.sines = np.array(c + [0.0] * (K - len(c))), np.array(s + [0.0] * (K - len(s)))
         self.cosines.flags.writeable = self.sines.flags.writeable = False
         self.fundamental = w
         self.offset = _real(offset, "offset")
@@ -171,6 +175,12 @@ class Harmonic(Motion):
     ------
     ParameterError
         A non-finite parameter or omega = 0 (naming it).
+
+    Examples
+    --------
+    >>> motion = pinlin.Harmonic(amplitude=0.1, omega=2.0)
+    >>> print(f"{motion.period:.6f} {motion.q(0.25):.6f} {motion.v(0.0):.6f}")
+    3.141593 0.047943 0.200000
     """
 
     def __init__(self, amplitude: float, omega: float, offset: float = 0.0, phase: float = 0.0):
@@ -200,10 +210,8 @@ class Harmonic(Motion):
 class PeriodicMotion(Motion):
     """A general T-periodic motion given by three callables q(t), v(t), a(t) and its period.
 
-    The derivatives are checked against central differences of q and v at the fractions
-    :data:`DERIVATIVE_CHECK_TIMES` of T, with step h = 1e-4 T: |v - (q(t+h) - q(t-h)) / 2h| must be at most
-    :data:`DERIVATIVE_RTOL` times max_t |v| (and likewise a against v, relative to max_t |a|), and q, v, a
-    must repeat after T (within the same tolerance, relative to the same scales and max |q| + 1).
+    v and a are checked against central differences (step 1e-4 T) of q and v at the fractions
+    :data:`DERIVATIVE_CHECK_TIMES` of T, relative to max |v| and max |a|, and q, v, a must repeat after T.
 
     Parameters
     ----------
@@ -217,8 +225,14 @@ class PeriodicMotion(Motion):
     Raises
     ------
     ParameterError
-        A non-finite or non-positive period, a callable that fails or returns a non-finite number, derivatives
-        that disagree with the differences of q (or v), or a motion that does not repeat after T.
+        A bad period, a callable that fails or returns a non-finite number, derivatives that
+        disagree with the differences, or a motion that does not repeat after T.
+
+    Examples
+    --------
+    >>> motion = pinlin.PeriodicMotion(np.sin, np.cos, lambda t: -np.sin(t), 2 * np.pi)
+    >>> print(f"{motion.q(np.pi / 2):.6f} {motion.a(np.pi / 2):.6f}")
+    1.000000 -1.000000
     """
 
     def __init__(self, q: Callable[[float], float], v: Callable[[float], float], a: Callable[[float], float],
@@ -305,9 +319,8 @@ def split_prescribed(robot, prescribed) -> tuple[dict[str, float], dict[str, Mot
         try:
             omega = float(omega)
         except (TypeError, ValueError):
-            raise ParameterError(
-                f"prescribed[{name!r}]", f"expected a number or a Harmonic / FourierMotion / PeriodicMotion, "
-                                         f"got {omega!r}") from None
+            raise ParameterError(f"prescribed[{name!r}]", "expected a number or a Harmonic / FourierMotion / "
+                                 f"PeriodicMotion, got {omega!r}") from None
         if not math.isfinite(omega):
             raise ParameterError(f"prescribed[{name!r}]", f"must be finite, got {omega!r}")
         pres[name] = omega
@@ -319,8 +332,7 @@ HARMONIC_KEYS = ("amplitude", "omega", "offset", "phase")
 
 
 def harmonic_from_table(table: dict) -> Harmonic:
-    """A :class:`Harmonic` from a scene file's table ``{ amplitude = 0.02, omega = 60.0 }``
-    (optional ``offset``, ``phase``).
+    """A :class:`Harmonic` from a scene file's table ``{ amplitude = 0.02, omega = 60.0 }`` (``offset``, ``phase`` optional).
 
     Raises
     ------
@@ -351,16 +363,18 @@ def _ratio(x: float) -> tuple[int, int] | None:
 def common_period(periods: dict[str, float]) -> float | None:
     """The least common multiple of several periods [s] (joint name -> T_j), or None for none.
 
-    Rule: each ratio T_j / T_1 must equal a fraction p / r with r <= :data:`MAX_PERIOD_DENOMINATOR`
-    within :data:`PERIOD_RATIO_RTOL` (relative).  With the ratios written over one common denominator D,
-    T_j / T_1 = n_j / D, the common period is T = T_1 lcm(n_j) / D: the smallest T of which every T_j is a
-    whole fraction (T_j = 1 s and 1.5 s give T = 3 s).
+    Each ratio T_j / T_1 must be a fraction p / r (r <= :data:`MAX_PERIOD_DENOMINATOR`, within
+    :data:`PERIOD_RATIO_RTOL`); T is the smallest period of which every T_j is a whole fraction.
 
     Raises
     ------
     QuasiPeriodicError
-        Two periods whose ratio is not such a fraction: the motion is quasi-periodic (naming the joints
-        and their periods), and Floquet analysis does not apply.
+        Two periods whose ratio is not such a fraction (quasi-periodic: Floquet analysis does not apply).
+
+    Examples
+    --------
+    >>> pinlin.model.common_period({"rotor": 1.0, "pitch": 1.5})
+    3.0
     """
     if not periods:
         return None

@@ -81,6 +81,12 @@ class Robot:
         A constraint is not a :class:`~pinlin.Constraint`.
     FrameNotFoundError
         A constraint names a frame the model lacks.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> robot.nq, robot.nv, robot.joint_names
+    (2, 2, ('joint1', 'joint2'))
     """
 
     def __init__(
@@ -179,6 +185,12 @@ class Robot:
         ------
         JointNotFoundError
             If there is no such joint; the message lists the valid names.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> robot.joint("joint2")
+        JointInfo(name='joint2', id=2, kind='JointModelRY', idx_q=1, nq=1, idx_v=1, nv=1)
         """
         try:
             return self._joints[name]
@@ -194,6 +206,12 @@ class Robot:
         ------
         FrameNotFoundError
             If there is no such frame; the message lists the valid names.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> robot.model.frames[robot.frame_id("tip")].name
+        'tip'
         """
         try:
             return self._frames[name]
@@ -201,7 +219,14 @@ class Robot:
             raise FrameNotFoundError(str(name), self.frame_names, context=self.source) from None
 
     def neutral(self) -> np.ndarray:
-        """Pinocchio's neutral configuration (size nq)."""
+        """Pinocchio's neutral configuration (size nq).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> robot.neutral()
+        array([0., 0.])
+        """
         return pin.neutral(self._model)
 
     def check_memory(self, memory_limit: int | None = None) -> None:
@@ -211,6 +236,11 @@ class Robot:
         ------
         ModelTooLargeError
             When the estimate exceeds the limit.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> robot.check_memory()  # a two-link model fits: nothing happens
         """
         check_memory(self._model.nv, memory_limit, f"model {self._model.name!r}")
 
@@ -221,6 +251,13 @@ class Robot:
         ------
         ModelTooLargeError
             When the estimate of :func:`pinocchio_data_bytes` exceeds the limit.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> data = robot.create_data()
+        >>> len(data.oMi)
+        3
         """
         model = self._model if model is None else model
         check_memory(model.nv, memory_limit, f"model {model.name!r}")

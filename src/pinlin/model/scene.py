@@ -20,14 +20,10 @@ from .robot import Robot
 
 __all__ = ["Scene", "ANGLE_LIMIT", "UNIT_NORM_MIN"]
 
-#: Largest magnitude [rad] of a revolute joint's angle that :meth:`Scene.check_configuration`
-#: accepts: beyond 2 pi / eps (about 2.8e16 rad) consecutive doubles are more than a turn
-#: apart, so the number no longer says where in its turn the joint is.
+#: Largest revolute angle [rad] accepted: beyond 2 pi / eps consecutive doubles are over a turn apart.
 ANGLE_LIMIT = 2.0 * math.pi / float(np.finfo(float).eps)
-#: Smallest length of a unit quaternion (free-flyer, spherical joint) or (cos, sin) pair
-#: (continuous, planar joint) that :meth:`Scene.check_configuration` normalizes: a rotation
-#: is a unit vector, and one this short is unset (typed zeros) rather than a rotation; its
-#: normalization would amplify its rounding by more than 1e8.
+#: Smallest unit quaternion or (cos, sin) pair :meth:`Scene.check_configuration` normalizes: one this
+#: short is unset (typed zeros), not a rotation, and normalizing it would amplify its rounding over 1e8.
 UNIT_NORM_MIN = 1e-8
 #: Up to _SMALL_NQ entries q is checked as Python floats (cheaper than numpy calls for few); a norm
 #: of q up to _HALF_LIMIT puts every entry within ANGLE_LIMIT (half: far above the norm's rounding).
@@ -39,12 +35,10 @@ _UNIT_BLOCKS = {"FreeFlyer": 4, "Spherical": 4, "RUBX": 2, "RUBY": 2, "RUBZ": 2,
 class Scene:
     """What acts on a robot: elements, constraints, gravity, prescribed joint velocities (theory: elements, constraints).
 
-    A scene is an immutable description: it owns a copy of the robot's model
-    (with the scene's gravity) and no Pinocchio ``Data``.  Each computation runs
-    in a workspace of its own thread (:mod:`pinlin.model.evaluation`), so one
-    scene can be shared by any number of threads.
-    The coordinates of the linearized equations are the *free* degrees of
-    freedom: all velocity coordinates except those of prescribed joints.
+    An immutable description: it owns a copy of the robot's model (with the scene's
+    gravity) and no Pinocchio ``Data``, so any number of threads may share it.  The
+    coordinates of the linearized equations are the free degrees of freedom: every
+    velocity coordinate except those of prescribed joints.
 
     Parameters
     ----------
@@ -54,25 +48,17 @@ class Scene:
     gravity : 3 floats
         Gravity vector [m/s^2] in world axes; zero is allowed.
     prescribed : mapping of str to float or Motion, optional
-        Joint name -> constant velocity [rad/s or m/s] of a 1-DOF joint (a
-        turntable, a rotor), or a periodic motion q_p(t) (:class:`~pinlin.Harmonic`,
-        :class:`~pinlin.FourierMotion`, :class:`~pinlin.PeriodicMotion`; theory: Floquet).
-        These joints are not coordinates of the result.  Constant velocities are
-        kept in ``prescribed``, periodic motions in ``motions``; ``motion_period`` is the
-        common period of the motions (None without any), ``v0`` holds their velocity at t = 0.
-        Not allowed together with constraints: the steady motion of a constrained
-        system needs the J_c-dot terms, which pinlin does not linearize; such a
-        scene is refused rather than linearized approximately.
+        Joint name -> constant velocity [rad/s or m/s] of a 1-DOF joint (a turntable, a
+        rotor) or a periodic motion (:class:`~pinlin.Harmonic`, :class:`~pinlin.FourierMotion`,
+        :class:`~pinlin.PeriodicMotion`; theory: Floquet), kept in ``prescribed`` and
+        ``motions`` (their common period ``motion_period``, their velocity at t = 0 in
+        ``v0``).  Refused together with constraints, whose steady motion needs J_c-dot terms.
     constraints : iterable of Constraint, optional
         Closed loops and contacts (:class:`~pinlin.PointConstraint`,
-        :class:`~pinlin.FrameConstraint`), a list even of one, each ``name``
-        at most once.  Default: the robot's own
-        (``robot.constraints``, from an MJCF file; none for a URDF); a list given
-        here replaces them (``robot.constraints + (...)`` adds to them).  The
-        linearized system then has n = nv - rank J_c coordinates (theory: constraints).
+        :class:`~pinlin.FrameConstraint`), each ``name`` at most once.  Default: the
+        robot's own (``robot.constraints``, from an MJCF file); a list given here replaces them.
     urdf_damping : bool
-        Add the URDF's ``<dynamics damping>`` as joint dampers (Pinocchio reads
-        it into ``model.damping`` but its dynamics ignore it).  Off by default.
+        Add the URDF's ``<dynamics damping>`` as joint dampers (Pinocchio's dynamics ignore it).
     memory_limit : int, optional
         Bytes allowed for Pinocchio's data, see :func:`pinlin.load_urdf`.
 
@@ -84,11 +70,18 @@ class Scene:
     JointNotFoundError, FrameNotFoundError
         An element or prescribed velocity names something the robot lacks.
     PrescribedJointError
-        A prescribed joint is not 1-DOF, every joint is prescribed, or the scene
-        has both prescribed joints and constraints.
+        A prescribed joint is not 1-DOF, every joint is prescribed, or constraints too.
     QuasiPeriodicError
-        Periodic motions without a common period
-        (:func:`pinlin.model.motions.common_period` gives the rule).
+        Periodic motions without a common period (:func:`pinlin.model.motions.common_period`).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 2.0)])
+    >>> scene
+    Scene('double_pendulum', n=2, 1 spring, gravity=[0.0, 0.0, -9.81])
+    >>> pinlin.linearize(scene, scene.neutral()).S.shape
+    (2, 2)
     """
 
     def __init__(
@@ -163,13 +156,8 @@ class Scene:
         object.__setattr__(self, name, value)
 
     def _compile(self) -> None:
-        """Group the elements for evaluation and precompute what does not depend on q.
-
-        Joint-space elements are grouped by class (vectorized where the class
-        allows).  Body-fixed wrenches (followers) are constant in their joint's
-        frame, so their part of Pinocchio's ``fext`` is built once here; only
-        world-fixed wrenches are re-expressed at each q.
-        """
+        """Group the elements by class for evaluation; build the body-fixed wrenches' (followers')
+        part of Pinocchio's ``fext`` once (only world-fixed wrenches are re-expressed at each q)."""
         by_class: dict[type, list[Element]] = {}
         for element in self.elements:
             if not element.is_wrench:
@@ -191,12 +179,10 @@ class Scene:
     def _compile_constraints(self) -> None:
         """Row layout of the stacked constraint equations (scene order), for vectorized checks.
 
-        ``constraint_rows``: one slice per constraint; ``position_rows`` (k x 3) and
-        ``rotation_rows`` (frame constraints x 3): where each constraint's distance and
-        rotation are; ``contact_index``: the contacts' constraint indices, with their
-        rows ``contact_rows`` (c x 3), ``contact_normals`` (c x 3) and
-        ``contact_friction`` (mu, inf when unchecked); ``world_points``: when every
-        constraint holds a frame's origin at a world point, (frame ids, targets (k x 3)).
+        ``constraint_rows`` (a slice per constraint), ``position_rows`` / ``rotation_rows`` (k x 3),
+        the contacts' ``contact_index``, ``contact_rows``, ``contact_normals``, ``contact_friction``
+        (inf when unchecked); ``world_points`` (frame ids, targets) when every constraint holds a
+        frame's origin at a world point.
         """
         rows, position, rotation, contacts = [], [], [], []
         start = 0
@@ -277,8 +263,7 @@ class Scene:
 
     @property
     def n(self) -> int:
-        """Number of free velocity coordinates: the size of the linearized system of a scene
-        without constraints (with constraints the size is nv - rank J_c at the operating point)."""
+        """Number of free velocity coordinates (the linearized size without constraints)."""
         return len(self.free_dofs)
 
     @property
@@ -304,7 +289,14 @@ class Scene:
         return self._has_gravity
 
     def replace(self, **changes) -> Scene:
-        """A new scene with some constructor arguments changed (for sweeps)."""
+        """A new scene with some constructor arguments changed (for sweeps).
+
+        Examples
+        --------
+        >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+        >>> scene.replace(gravity=(0.0, 0.0, 0.0))
+        Scene('double_pendulum', n=2, no elements, gravity=[0.0, 0.0, 0.0])
+        """
         args = dict(
             robot=self.robot,
             elements=self._user_elements,
@@ -323,22 +315,32 @@ class Scene:
         return Scene(robot, elements, **args)
 
     def neutral(self) -> np.ndarray:
-        """Pinocchio's neutral configuration of the robot (nq,)."""
+        """Pinocchio's neutral configuration of the robot (nq,).
+
+        Examples
+        --------
+        >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+        >>> scene.neutral()
+        array([0., 0.])
+        """
         return self.robot.neutral()
 
     def check_configuration(self, q, label: str = "q") -> np.ndarray:
         """A finite configuration of size nq, normalized on its manifold (a copy).
 
-        Quaternions and (cos, sin) pairs are normalized (Pinocchio's ``normalize``);
-        one shorter than :data:`UNIT_NORM_MIN` is refused rather than taken as a
-        rotation.  Revolute angles beyond :data:`ANGLE_LIMIT` are refused: no double
-        that large says where in its turn the joint is.
+        Quaternions and (cos, sin) pairs are normalized (``pin.normalize``); those shorter than
+        :data:`UNIT_NORM_MIN`, and revolute angles beyond :data:`ANGLE_LIMIT`, are refused.
 
         Raises
         ------
         ConfigurationError
-            Wrong size, complex or non-finite entries, an angle beyond
-            :data:`ANGLE_LIMIT`, or a zero quaternion or (cos, sin) pair (naming the joint).
+            Wrong size, complex or non-finite entries, an angle or a unit vector out of bounds.
+
+        Examples
+        --------
+        >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+        >>> scene.check_configuration([0.1, 0.2])
+        array([0.1, 0.2])
         """
         if type(q) is np.ndarray and q.dtype is _F64:  # the common case; pin.normalize below copies too
             q = q.copy() if self.unit_blocks is None else q  # the result may be frozen read-only

@@ -153,6 +153,12 @@ class SceneSpec:
         :func:`pinlin.report.sweep.sweep_plan`).
     campbell : dict or None
         The ``[campbell]`` table, for ``pinlin campbell`` (:func:`pinlin.report.campbell.campbell_plan`).
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/double_pendulum.toml"))
+    >>> spec.q0, spec.equilibrium, spec.balancing
+    (array([0., 0.]), True, False)
     """
 
     scene: Scene
@@ -319,6 +325,12 @@ def load_scene(path) -> SceneSpec:
     SceneFileError
         Missing or unreadable file, invalid TOML, unknown or wrongly typed key,
         or anything the robot, elements or start refuse; the message names the key.
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/double_pendulum.toml"))
+    >>> spec.scene
+    Scene('double_pendulum', n=2, 2 spring, 1 follower, gravity=[0.0, 0.0, -9.81])
     """
     path = Path(path)
     r = Reader(str(path))

@@ -1,4 +1,4 @@
-"""Legged robots standing on the ground: a scene ready for ``find_equilibrium`` and ``linearize`` (issue 24).
+"""Legged robots standing on the ground: a scene ready for ``find_equilibrium`` and ``linearize``.
 
 :func:`standing_scene` takes a floating-base robot, a nominal pose (the SRDF's
 ``standing`` configuration where there is one), lowers or raises the base so that
@@ -49,6 +49,13 @@ class Standing:
         Where the pose came from: an SRDF configuration's name, or ``"given"``.
     weight : float
         The robot's weight ``g * total mass`` [N], what the contacts carry at equilibrium.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_example("a1")
+    >>> standing = pinlin.standing_scene(robot, ["FL_foot", "FR_foot", "RL_foot", "RR_foot"], stiffness=100.0)
+    >>> standing.pose, standing.feet, standing.q0.shape
+    ('standing', ('FL_foot', 'FR_foot', 'RL_foot', 'RR_foot'), (19,))
     """
 
     scene: Scene
@@ -145,6 +152,13 @@ def standing_scene(
         An unknown foot.
     ConfigurationError
         ``q`` of the wrong size or not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_example("a1")
+    >>> standing = pinlin.standing_scene(robot, ["FL_foot", "FR_foot", "RL_foot", "RR_foot"], stiffness=100.0)
+    >>> print(f"{standing.weight:.3f}")
+    134.799
     """
     if robot.nv == 0 or robot.joint(robot.joint_names[0]).kind != "JointModelFreeFlyer":
         raise ParameterError("robot", f"{robot.name!r} has no free-flyer root joint: load it with free_flyer=True")

@@ -1,4 +1,4 @@
-"""What pinlin checks in a URDF's XML before Pinocchio's parser sees it (issues 13 and 24).
+"""What pinlin checks in a URDF's XML before Pinocchio's parser sees it.
 
 - well-formed XML with a ``<robot>`` root and a ``<link>``;
 - a tree: unique link and joint names, at most one parent joint per link;

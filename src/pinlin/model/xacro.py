@@ -1,4 +1,4 @@
-"""URDFs written in xacro, and ``package://`` / ``$(find pkg)`` paths (issue 24).
+"""URDFs written in xacro, and ``package://`` / ``$(find pkg)`` paths.
 
 :func:`expand_xacro` runs the ``xacro`` package (PyPI, the optional extra
 ``pinlin[xacro]``) on a file with the given arguments and returns the URDF text.
@@ -125,6 +125,15 @@ def expand_xacro(
         message is xacro's.
     ParameterError
         ``xacro_args`` is not a mapping of names to values.
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "tagged.urdf.xacro"
+    >>> _ = path.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    ...                     '<xacro:arg name="tag" default="a"/><link name="link_$(arg tag)"/></robot>')
+    >>> 'name="link_b"' in pinlin.expand_xacro(path, {"tag": "b"})
+    True
     """
     xacro, substitution_args = _import_xacro()
     source = os.fspath(path)

@@ -96,6 +96,15 @@ def animate_mode(scene, sys, mode, ax=None, *, n_frames: int = DEFAULT_FRAMES, d
         matplotlib is not installed.
     ModelTooLargeError
         The calling thread's Pinocchio workspace for the scene would not fit in memory.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> animation = pinlin.plot.animate_mode(scene, sys, 0, n_frames=4)
+    >>> type(animation).__name__
+    'FuncAnimation'
     """
     if isinstance(n_frames, bool) or not isinstance(n_frames, (int, np.integer)) or n_frames < 2:
         raise ParameterError("n_frames", f"expected an integer >= 2, got {n_frames!r}")

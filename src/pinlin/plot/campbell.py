@@ -69,6 +69,15 @@ def campbell(speed, eigenvalues, ax=None, *, vectors=None, orders: Sequence[floa
         non-finite ``rtol``, non-finite eigenvalues or vectors.
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> speed = [0.0, 1.0, 2.0]
+    >>> eigenvalues = [pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices(
+    ...     np.eye(2), np.zeros((2, 2)), np.diag([1.0, 4.0]) + w * np.eye(2))).eigenvalues for w in speed]
+    >>> ax = pinlin.plot.campbell(speed, eigenvalues)
+    >>> ax.get_xlabel()
+    'spin speed [rad/s]'
     """
     ax = new_axes(ax)
     w = np.asarray(speed, dtype=float)

@@ -58,6 +58,13 @@ def eigenvalue_map(modes, ax=None, *, error_bars: bool = True, title: bool = Tru
         Non-finite eigenvalues.
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), np.diag([1.0, 4.0]))
+    >>> ax = pinlin.plot.eigenvalue_map(pinlin.modal_analysis(sys))
+    >>> print(ax.get_xlabel())
+    Re $\\lambda$ [1/s]
     """
     lam = np.asarray(getattr(modes, "eigenvalues", modes), dtype=complex).ravel()
     if not np.all(np.isfinite(lam)):
@@ -113,6 +120,15 @@ def root_locus(parameter, eigenvalues, ax=None, *, vectors=None, label: str = "p
         vectors), non-finite values.
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> damping = [0.0, 0.5, 1.0]
+    >>> eigenvalues = [pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices(
+    ...     np.eye(2), c * np.eye(2), np.diag([1.0, 4.0]))).eigenvalues for c in damping]
+    >>> ax = pinlin.plot.root_locus(damping, eigenvalues, label="damping [N s/m]")
+    >>> print(ax.get_xlabel())
+    Re $\\lambda$ [1/s]
     """
     plt = pyplot()
     ax = new_axes(ax)

@@ -1,4 +1,4 @@
-"""Bar charts of a mode's energy distribution (:meth:`pinlin.Modes.energy`, issue 26)."""
+"""Bar charts of a mode's energy distribution (:meth:`pinlin.Modes.energy`)."""
 
 from __future__ import annotations
 
@@ -37,6 +37,16 @@ def mode_energy(energy: ModeEnergy, axes=None):
         ``energy`` is not a ModeEnergy, or ``axes`` is not three axes.
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> energy = pinlin.modal_analysis(sys).energy(0, scene)
+    >>> axes = pinlin.plot.mode_energy(energy)
+    >>> len(axes)  # kinetic, strain, dissipation
+    3
     """
     if not isinstance(energy, ModeEnergy):
         raise ParameterError("energy", f"expected a ModeEnergy (modes.energy(k, scene)), got {type(energy).__name__}")

@@ -44,6 +44,13 @@ def frequency_response(resp, axes=None, *, output: int = 0, input=0, label: str 
         Weights whose length is not the number of inputs, or not finite.
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), np.diag([1.0, 4.0]))
+    >>> axes = pinlin.plot.frequency_response(pinlin.frequency_response(sys, np.linspace(0.1, 5.0, 50)))
+    >>> len(axes)  # magnitude and phase
+    2
     """
     plt = pyplot()
     omega = np.asarray(resp.omega, dtype=float)

@@ -218,6 +218,15 @@ def mode_shape(scene, sys, mode, ax=None, *, phases: Sequence[float] = DEFAULT_P
         matplotlib is not installed.
     ModelTooLargeError
         The calling thread's Pinocchio workspace for the scene would not fit in memory.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> ax = pinlin.plot.mode_shape(scene, sys, 0)
+    >>> type(ax).__name__
+    'Axes3D'
     """
     axes = plane_axes(plane)
     motion: ModeMotion = mode_motion(scene, sys, mode, phases, scale=scale, frames=frames, modes=modes, q=q,
@@ -271,6 +280,16 @@ def chain_mode_shape(scene, q, mode, ax=None, *, scale: float = 0.2, plane: str 
         matplotlib is not installed.
     ModelTooLargeError
         The calling thread's Pinocchio workspace for the scene would not fit in memory.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> modes = pinlin.modal_analysis(sys)
+    >>> ax = pinlin.plot.chain_mode_shape(scene, np.zeros(2), modes.right[:, 0])
+    >>> type(ax).__name__
+    'Axes'
     """
     ax = new_axes(ax)
     axes = list(plane_axes(plane) or ())

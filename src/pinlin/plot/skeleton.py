@@ -85,6 +85,13 @@ class Skeleton:
     ------
     FrameNotFoundError
         An unknown frame name.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> skeleton = pinlin.plot.Skeleton(pinlin.Scene(robot))
+    >>> skeleton.positions(np.zeros(2)).shape
+    (4, 3)
     """
 
     def __init__(self, scene, frames: Sequence[str] | None = None):
@@ -115,7 +122,15 @@ class Skeleton:
         return self.scene.model.njoints + len(self.frame_ids)
 
     def positions(self, q: np.ndarray) -> np.ndarray:
-        """World positions [m] of the points at configuration q, (points, 3)."""
+        """World positions [m] of the points at configuration q, (points, 3).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> skeleton = pinlin.plot.Skeleton(pinlin.Scene(robot))
+        >>> np.round(skeleton.positions(np.zeros(2))[-1], 6)
+        array([ 0. ,  0. , -1.2])
+        """
         model = self.scene.model
         data = workspace(self.scene).data
         pin.forwardKinematics(model, data, q)
@@ -124,7 +139,15 @@ class Skeleton:
         return np.array(joints + [data.oMf[f].translation for f in self.frame_ids]).reshape(-1, 3)
 
     def jacobians(self, q: np.ndarray) -> np.ndarray:
-        """Linear velocity Jacobians [m per unit of v] of the points, world axes, (points, 3, nv)."""
+        """Linear velocity Jacobians [m per unit of v] of the points, world axes, (points, 3, nv).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> skeleton = pinlin.plot.Skeleton(pinlin.Scene(robot))
+        >>> skeleton.jacobians(np.zeros(2)).shape  # (points, 3, nv)
+        (4, 3, 2)
+        """
         model = self.scene.model
         data = workspace(self.scene).data
         pin.computeJointJacobians(model, data, q)
@@ -159,6 +182,18 @@ class ModeMotion:
         The amplitude a [rad or m]: the largest joint displacement.
     eigenvalue : complex or None
         lambda [1/s] of the mode, when it was given by its index.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> motion = pinlin.plot.mode_motion(scene, sys, 0, [0.0, np.pi / 2])
+    >>> np.round(motion.rest, 6) + 0.0
+    array([[ 0. ,  0. ,  0. ],
+           [ 0. ,  0. ,  0. ],
+           [ 0. ,  0. , -0.7],
+           [ 0. ,  0. , -1.2]])
     """
 
     skeleton: Skeleton
@@ -171,7 +206,16 @@ class ModeMotion:
     eigenvalue: complex | None
 
     def title(self) -> str:
-        """A one-line description: the eigenvalue when known, and the amplitude."""
+        """A one-line description: the eigenvalue when known, and the amplitude.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> scene = pinlin.Scene(robot)
+        >>> sys = pinlin.linearize(scene, np.zeros(2))
+        >>> print(pinlin.plot.mode_motion(scene, sys, 0, [0.0]).title())
+        $\\lambda$ = 0 + 3.472i 1/s, amplitude 0.084
+        """
         amplitude = f"amplitude {self.scale:.3g}"
         if self.eigenvalue is None:
             return f"mode shape, {amplitude}"
@@ -276,6 +320,15 @@ def mode_motion(scene, sys, mode, phases, *, scale: float | None = None, frames:
         An unknown frame name.
     ModelTooLargeError
         The calling thread's Pinocchio workspace for the scene would not fit in memory.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot)
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> motion = pinlin.plot.mode_motion(scene, sys, 0, [0.0, np.pi / 2])
+    >>> motion.positions.shape  # (phases, points, 3)
+    (2, 4, 3)
     """
     q0 = getattr(sys, "q", None) if q is None else q
     if q0 is None:

@@ -71,6 +71,13 @@ def stability_map(x=None, y=None, kinds=None, ax=None, *, boundary=None, p1_axis
     ParameterError
         ``kinds`` of the wrong shape or with an unknown verdict; only some of x,
         y, kinds given; nothing to draw; a bad ``p1_axis``.
+
+    Examples
+    --------
+    >>> kinds = [["asymptotically_stable", "flutter"], ["divergence", "flutter"]]
+    >>> ax = pinlin.plot.stability_map([0.0, 1.0], [0.0, 1.0], kinds, xlabel="p1", ylabel="p2")
+    >>> ax.get_xlabel(), ax.get_ylabel()
+    ('p1', 'p2')
     """
     given = [v is not None for v in (x, y, kinds)]
     if any(given) and not all(given):

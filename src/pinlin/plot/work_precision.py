@@ -32,6 +32,12 @@ def work_precision(results: Mapping[str, tuple[Sequence[float], Sequence[float]]
         No results, or times and errors of different shapes.
     MissingDependencyError
         matplotlib is not installed.
+
+    Examples
+    --------
+    >>> ax = pinlin.plot.work_precision({"eig": ([1e-3, 2e-3], [1e-12, 1e-14])})
+    >>> ax.get_xscale(), ax.get_yscale()
+    ('log', 'log')
     """
     ax = new_axes(ax)
     if not results:

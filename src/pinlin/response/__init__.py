@@ -5,8 +5,8 @@ One concept per module:
 - :mod:`.free` -- free vibration from the modal solution (Jordan chains for defective roots);
 - :mod:`.forced` -- any sampled or callable force, by exact discretization;
 - :mod:`.energy` -- the linearized power theorem along a trajectory;
-- :mod:`.state`, :mod:`.sampled_force` -- the first-order form and the piecewise-polynomial
-  reading of sampled (or callable) forces they share (their input checks are in
+- :mod:`.sampled_force` -- the piecewise-polynomial reading of sampled (or callable) forces
+  that the responses share (their input checks are in
   :mod:`pinlin.numerics.arrays`).
 
 Arrays are (len(t), n): time first, coordinates last.  The modal expansion the

@@ -51,6 +51,14 @@ def load(source) -> Result:
     ------
     ParameterError
         ``source`` is neither a mapping nor a readable JSON file, or it is not a result's data.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), np.zeros((2, 2)), np.diag([1.0, 4.0]))
+    >>> modes = pinlin.modal_analysis(sys)
+    >>> again = pinlin.load(modes.to_dict())  # or a JSON file written from it
+    >>> type(again).__name__, bool(np.allclose(again.eigenvalues, modes.eigenvalues))
+    ('Modes', True)
     """
     import json
     import os

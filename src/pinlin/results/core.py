@@ -23,7 +23,7 @@ def _number(x) -> Any:
         return {"re": _number(float(x.real)), "im": _number(float(x.imag))}
     x = float(x)
     if math.isfinite(x):
-        return x + 0.0  # an exact zero is exported as 0, never -0 (issue 25)
+        return x + 0.0  # an exact zero is exported as 0, never -0 (a sign that carries no information)
     return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
 
 

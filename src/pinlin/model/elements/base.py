@@ -159,10 +159,8 @@ class DiagonalIndex:
 class ElementGroup:
     """All elements of one class in a scene, evaluated together.
 
-    The default group loops over its elements; element classes whose elements
-    are many and simple (1-DOF springs and dampers) return a vectorized group
-    from :meth:`Element.group`, so a 200-joint chain costs a few array
-    operations, not 200 Python calls.
+    The default group loops over its elements; classes of many simple elements (1-DOF
+    springs and dampers) return a vectorized one from :meth:`Element.group`.
 
     Attributes
     ----------
@@ -170,19 +168,13 @@ class ElementGroup:
         True when :meth:`add_stiffness` adds an exactly symmetric matrix (it then
         adds no rounding to the skew part N).
     constant_damping : bool
-        True when :meth:`add_damping` adds the same matrix at every point and does
-        not read its evaluation (it may then be called with ``ev=None``): the
-        linearization plan adds it up once per scene
-        (:class:`~pinlin.linearization.plan.LinearizationPlan`).  False for the
-        default group, which asks each element at each point; groups that know
-        better (joint springs and dampers) say so.
+        True when :meth:`add_damping` adds the same matrix at every point without reading
+        its evaluation (``ev=None`` allowed): the linearization plan adds it once per scene.
     batched : bool
         True when the group implements ``add_many(qs, Q, K, batch=None)``: its forces at
         rest (v = 0) and stiffness at P configurations at once (Q (P, nv), K (P, nv, nv)),
-        for :func:`pinlin.linearize_many`; each point's values are bitwise those of
-        :meth:`add_force` and :meth:`add_stiffness`.  ``batch`` (a
-        :class:`~pinlin.model.evaluation.BatchPoints`, qs its chunk) lets a group compute
-        once for all the call's points.  False for the default group.
+        for :func:`pinlin.linearize_many`; ``batch`` (a
+        :class:`~pinlin.model.evaluation.BatchPoints`) lets it compute once for all the call's points.
     """
 
     batched = False
@@ -216,31 +208,25 @@ class ElementGroup:
 class Element(ABC):
     """A force element of a scene (theory: elements).
 
-    Subclasses are frozen dataclasses that name a joint or frame; they are
-    checked against a robot by :meth:`check` when a :class:`~pinlin.Scene` is
-    built, and evaluated through an :class:`Evaluation`.
+    Subclasses name a joint or frame, are checked against the robot by :meth:`check` when a
+    :class:`~pinlin.Scene` is built and evaluated through an :class:`~pinlin.linearization.Evaluation`.
+    The class attribute :attr:`invariance` (declared on the class itself, never inherited) says
+    what the force depends on; docs/elements.md says what each kind promises and how to write one.
 
-    The class attribute :attr:`invariance` says what the element's force depends
-    on, for the proofs that a prescribed joint's position does not enter the
-    equations (:mod:`pinlin.linearization.time_invariance`):
-
-    - ``"joint-space"``: only joint coordinates and velocities, in a way the
-      proofs' rigid motions leave unchanged: its own joint's coordinates and
-      velocities (joint springs and dampers), or M(q) and the scene's elastic
-      stiffness (Rayleigh damping);
-    - ``"body-fixed load"``: a wrench constant in the axes of its frame ``frame``
-      (it turns with its body: follower wrenches);
-    - ``"dead load"``: a force ``force`` and a torque ``torque`` constant in world
-      axes at the origin of its frame ``frame`` (the proofs check their direction);
-    - ``"unknown"`` (the default): anything else (elements between frames,
-      bushings, user-defined elements); no proof is attempted and the joint is
-      checked numerically at each linearization.
-
-    A claim counts only when declared on the element's own class
-    (``"invariance" in type(element).__dict__``), never inherited: a subclass may
-    read more than its parent (a spring that also reads another joint), so a
-    subclass that does not declare its kind is ``"unknown"``.  Another value is a
-    :class:`~pinlin.ParameterError` when the scene is built.
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> class Torque(pinlin.Element):
+    ...     # a constant torque [N m] on joint1: no stiffness, no damping
+    ...     kind = "torque"
+    ...     def check(self, robot):
+    ...         robot.joint("joint1")
+    ...     def generalized_force(self, ev):
+    ...         return np.array([0.5, 0.0])
+    >>> sys = pinlin.linearize(pinlin.Scene(robot, [Torque()]), np.zeros(2), balancing=True)
+    >>> np.round(sys.S, 6)
+    array([[12.8511 ,  2.20725],
+           [ 2.20725,  2.20725]])
     """
 
     #: Short label used in reports and scene files.
@@ -255,24 +241,76 @@ class Element(ABC):
 
     @abstractmethod
     def check(self, robot) -> None:
-        """Raise a :class:`~pinlin.PinlinError` if the element does not fit the robot."""
+        """Raise a :class:`~pinlin.PinlinError` if the element does not fit the robot.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> pinlin.JointSpring("joint3", 1.0).check(robot)  # doctest: +IGNORE_EXCEPTION_DETAIL
+        Traceback (most recent call last):
+            ...
+        JointNotFoundError: ...
+        """
 
     @abstractmethod
     def generalized_force(self, ev) -> np.ndarray:
-        """Generalized force Q_e(q, v) of the element (nv,) [N or N m]."""
+        """Generalized force Q_e(q, v) of the element (nv,) [N or N m].
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> spring = pinlin.JointSpring("joint1", 2.0)
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [spring]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> np.round(spring.generalized_force(ev), 6)
+        array([-0.2,  0. ])
+        """
 
     def add_stiffness(self, ev, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
-        """Add -dQ_e/dq (tangent space, nv x nv) to K; nothing by default."""
+        """Add -dQ_e/dq (tangent space, nv x nv) to K; nothing by default.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> spring = pinlin.JointSpring("joint1", 2.0)
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [spring]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> K = np.zeros((2, 2))
+        >>> spring.add_stiffness(ev, K)
+        >>> K
+        array([[2., 0.],
+               [0., 0.]])
+        """
 
     def add_damping(self, ev, C: np.ndarray) -> None:  # noqa: B027 (optional hook)
-        """Add -dQ_e/dv (nv x nv) to C; nothing by default."""
+        """Add -dQ_e/dv (nv x nv) to C; nothing by default.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> damper = pinlin.JointDamper("joint2", 0.3)
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [damper]), np.zeros(2), np.zeros(2))
+        >>> C = np.zeros((2, 2))
+        >>> damper.add_damping(ev, C)
+        >>> C
+        array([[0. , 0. ],
+               [0. , 0.3]])
+        """
 
     def add_elastic_stiffness(self, ev, K: np.ndarray) -> None:  # noqa: B027 (optional hook)
         """Add the element's elastic stiffness to K (nv x nv); nothing by default.
 
-        The elastic stiffness is the psd part that stores strain energy (a
-        spring's k, not the geometric term of its preload, not gravity nor
-        loads); :class:`~pinlin.RayleighDamping` uses it as K_e in beta K_e.
+        The psd part that stores strain energy (a spring's k, not its preload's geometric term,
+        gravity nor loads): :class:`~pinlin.RayleighDamping`'s K_e in beta K_e.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> spring = pinlin.JointSpring("joint1", 2.0)
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [spring]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> K = np.zeros((2, 2))
+        >>> spring.add_elastic_stiffness(ev, K)
+        >>> K
+        array([[2., 0.],
+               [0., 0.]])
         """
 
     def needs(self) -> frozenset[str]:
@@ -283,17 +321,38 @@ class Element(ABC):
         mass matrix (``crba`` unless the dynamics pass already gave it).  Joint-space
         elements need neither.  :attr:`pinlin.Scene.needs` collects them, and a test
         checks that ``sys.calls`` runs nothing else beyond the dynamics.
+
+        Examples
+        --------
+        >>> pinlin.JointSpring("joint1", 2.0).needs()
+        frozenset()
+        >>> pinlin.LinearSpringDamper("tip", np.zeros(3), stiffness=1.0).needs()
+        frozenset({'frame_kinematics'})
         """
         return frozenset()
 
     @classmethod
     def group(cls, elements: tuple[Element, ...], robot) -> ElementGroup:
-        """The elements of this class in one scene, for evaluation together."""
+        """The elements of this class in one scene, for evaluation together.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> springs = (pinlin.JointSpring("joint1", 2.0), pinlin.JointSpring("joint2", 1.0))
+        >>> type(pinlin.JointSpring.group(springs, robot)).__name__
+        'SpringGroup'
+        """
         return ElementGroup(elements)
 
 
 class WrenchElement(Element):
-    """A wrench applied at a frame origin; it reaches Pinocchio as ``fext``."""
+    """A wrench applied at a frame origin; it reaches Pinocchio as ``fext``.
+
+    Examples
+    --------
+    >>> isinstance(pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0]), pinlin.model.WrenchElement)
+    True
+    """
 
     is_wrench: ClassVar[bool] = True
     #: True when the wrench is constant in its joint's frame (then ``fext`` does not depend on q).
@@ -310,12 +369,25 @@ class WrenchElement(Element):
 
     @abstractmethod
     def local_wrench(self, ev) -> np.ndarray:
-        """The wrench (force, torque) at the frame origin, in the frame's axes (6,)."""
+        """The wrench (force, torque) at the frame origin, in the frame's axes (6,).
+
+        Examples
+        --------
+        >>> pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0]).local_wrench(None)
+        array([0., 0., 1., 0., 0., 0.])
+        """
 
     def joint_wrench(self, ev, model: pin.Model, robot) -> tuple[int, pin.Force]:
         """The wrench in its parent joint's frame, as Pinocchio's ``fext`` wants it.
 
         ``ev`` may be None for a body-fixed wrench (its local wrench does not depend on q).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> joint, force = pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0]).joint_wrench(None, robot.model, robot)
+        >>> joint, force.vector
+        (2, array([0., 0., 1., 0., 0., 0.]))
         """
         frame = model.frames[robot.frame_id(self.frame)]
         w = self.local_wrench(ev)

@@ -84,6 +84,16 @@ class Bushing(FramePairElement):
         Non-finite values, a stiffness or damping that is not 6 values or a
         symmetric psd 6x6 matrix, a target or offset that is not a placement, or
         ``target == frame``.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> bushing = pinlin.Bushing("link1", "link2", stiffness=np.diag([1e3, 1e3, 1e3, 5.0, 5.0, 5.0]))
+    >>> bushing
+    Bushing('link1', 'link2', stiffness=diag([1000.0, 1000.0, 1000.0, 5.0, 5.0, 5.0]))
+    >>> sys = pinlin.linearize(pinlin.Scene(robot, [bushing], gravity=(0, 0, 0)), np.zeros(2))
+    >>> print(f"{sys.S[1, 1]:.6f}")
+    45.833333
     """
 
     frame: str
@@ -136,7 +146,16 @@ class Bushing(FramePairElement):
         return readonly(value.homogeneous if isinstance(value, pin.SE3) else value, dtype=float)
 
     def deflection(self, ev) -> np.ndarray:
-        """e = log6(X) (6,): [m] then [rad], in the frame's axes."""
+        """e = log6(X) (6,): [m] then [rad], in the frame's axes.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> bushing = pinlin.Bushing("link1", "link2", stiffness=np.eye(6))
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [bushing]), np.array([0.0, 0.2]), np.zeros(2))
+        >>> np.round(bushing.deflection(ev), 6) + 0.0
+        array([-0.07    ,  0.      ,  0.697665,  0.      , -0.2     ,  0.      ])
+        """
         return self._one(ev).state(ev).e[0]
 
     @classmethod

@@ -25,6 +25,14 @@ class JointDamper(Element):
         Joint name.
     damping : float, (nv,) or (nv, nv) array
         [N m s/rad] or [N s/m]; a number, a diagonal, or a symmetric psd matrix.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointDamper("joint2", 0.3)])
+    >>> np.round(pinlin.linearize(scene, np.zeros(2)).D, 6)
+    array([[0. , 0. ],
+           [0. , 0.3]])
     """
 
     joint: str

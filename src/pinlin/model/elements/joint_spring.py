@@ -29,14 +29,10 @@ class JointSpring(Element):
 
     .. math::  Q = -K_s\\, e(q), \\qquad e = \\mathrm{difference}(q_{rest}, q_j)
 
-    For a 1-DOF joint e is the joint angle [rad] or displacement [m] from rest;
-    for a multi-DOF joint (spherical, planar, free-flyer) e is Pinocchio's
-    ``difference`` on the joint's Lie group, and dQ/dq = -K_s de/dq with de/dq
-    its ``dDifference``; on free-flyer, spherical and planar joints both come from
-    :mod:`.lie_log` (Pinocchio 4.1's ``dDifference`` there loses up to 3e-5 relative
-    at rotations of 1e-4 to 2e-3 rad).  Near rest de/dq = I.  For an anisotropic
-    K_s on a rotation group far from rest this force is not a gradient, so its
-    stiffness may have a skew part; an isotropic K_s is conservative.
+    e is the joint angle [rad] or displacement [m] from rest, or on a multi-DOF joint
+    the difference on its Lie group (from :mod:`.lie_log`, more accurate than Pinocchio
+    4.1's ``dDifference`` at small rotations); dQ/dq = -K_s de/dq.  An anisotropic K_s on a
+    rotation group far from rest is not conservative: its stiffness may have a skew part.
 
     Parameters
     ----------
@@ -48,6 +44,15 @@ class JointSpring(Element):
         Unstressed configuration of the joint: an angle / displacement for a
         1-DOF joint (continuous joints too), else a configuration vector of the
         joint.  Default: Pinocchio's neutral (zero angle).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> spring = pinlin.JointSpring("joint1", 2.0)
+    >>> sys = pinlin.linearize(pinlin.Scene(robot, [spring], gravity=(0, 0, 0)), np.zeros(2))
+    >>> np.round(sys.S, 6)
+    array([[2., 0.],
+           [0., 0.]])
     """
 
     joint: str
@@ -66,11 +71,25 @@ class JointSpring(Element):
             object.__setattr__(self, "rest", readonly(rest))
 
     def matrix(self, j) -> np.ndarray:
-        """The stiffness as a (nv_j x nv_j) matrix."""
+        """The stiffness as a (nv_j x nv_j) matrix.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> pinlin.JointSpring("joint1", 2.0).matrix(robot.joint("joint1"))
+        array([[2.]])
+        """
         return as_matrix(self.stiffness, j.nv, f"JointSpring({self.joint!r}).stiffness")
 
     def rest_configuration(self, robot) -> np.ndarray:
-        """Rest configuration of the joint (nq_j,)."""
+        """Rest configuration of the joint (nq_j,).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> pinlin.JointSpring("joint1", 2.0, rest=0.1).rest_configuration(robot)
+        array([0.1])
+        """
         j = robot.joint(self.joint)
         jm = robot.model.joints[j.id]
         if self.rest is None:
@@ -91,7 +110,17 @@ class JointSpring(Element):
         self.rest_configuration(robot)
 
     def deflection(self, ev) -> tuple[np.ndarray, np.ndarray | None]:
-        """e (nv_j,) and de/dq (nv_j x nv_j), the latter None when it is the identity."""
+        """e (nv_j,) and de/dq (nv_j x nv_j), the latter None when it is the identity.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> spring = pinlin.JointSpring("joint1", 2.0, rest=0.1)
+        >>> scene = pinlin.Scene(robot, [spring])
+        >>> e, de_dq = spring.deflection(pinlin.linearization.Evaluation(scene, np.array([0.3, 0.0]), np.zeros(2)))
+        >>> np.round(e, 6), de_dq
+        (array([0.2]), None)
+        """
         j = ev.robot.joint(self.joint)
         rest = self.rest_configuration(ev.robot)
         qj = ev.q[j.q_slice]

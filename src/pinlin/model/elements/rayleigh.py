@@ -31,6 +31,14 @@ class RayleighDamping(Element):
         Mass-proportional coefficient [1/s], >= 0.
     beta : float
         Stiffness-proportional coefficient [s], >= 0.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 2.0), pinlin.RayleighDamping(beta=0.01)])
+    >>> np.round(pinlin.linearize(scene, np.zeros(2)).D, 6)
+    array([[0.02, 0.  ],
+           [0.  , 0.  ]])
     """
 
     alpha: float = 0.0

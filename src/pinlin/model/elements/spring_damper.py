@@ -84,6 +84,14 @@ class LinearSpringDamper(FramePairElement):
     ConfigurationError
         (when evaluated) the two points coincide while the rest length or the
         damping is nonzero: the line has no direction.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> spring = pinlin.LinearSpringDamper("tip", np.array([1.0, 0.0, -1.2]), stiffness=10.0, damping=0.1)
+    >>> sys = pinlin.linearize(pinlin.Scene(robot, [spring]), np.zeros(2), balancing=True)
+    >>> sys.S.shape, bool(np.any(sys.D))
+    ((2, 2), True)
     """
 
     frame: str

@@ -34,6 +34,15 @@ class FollowerWrench(WrenchElement):
         [N], in the frame's axes.
     torque : 3 floats
         [N m], in the frame's axes.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> push = pinlin.FollowerWrench("tip", force=[0.0, 0.0, 1.0])  # along the bar: Ziegler's column
+    >>> sys = pinlin.linearize(pinlin.Scene(robot, [push]), np.zeros(2))
+    >>> np.round(sys.N, 6)  # a follower load is circulatory
+    array([[ 0.  ,  0.35],
+           [-0.35,  0.  ]])
     """
 
     frame: str
@@ -76,6 +85,14 @@ class DeadWrench(WrenchElement):
         [N], in world axes.
     torque : 3 floats
         [N m], in world axes.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> weight = pinlin.DeadWrench("tip", force=[0.0, 0.0, -1.0])
+    >>> sys = pinlin.linearize(pinlin.Scene(robot, [weight]), np.zeros(2))
+    >>> bool(np.any(sys.N))  # a dead load is conservative
+    False
     """
 
     frame: str
