@@ -123,6 +123,13 @@ class CharacteristicPolynomial(Polynomial, Result):
             This polynomial was derived from a computed one and has no error figures.
         ParameterError
             ``lam`` is not finite complex points.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> p = pinlin.characteristic_polynomial(sys)
+        >>> bool(p.error_at(1.0) < 1e-12), p.error_at([1.0, 2j]).shape
+        (True, (2,))
         """
         if self.coef_error is None:
             raise AttributeError("this polynomial was derived from a computed one and carries no error figures")

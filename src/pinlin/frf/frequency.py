@@ -116,6 +116,13 @@ class FrequencyResponse(Result):
             Negative or non-increasing ``omega``.
         MissingDependencyError
             python-control is not installed (``pip install 'pinlin[control]'``).
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> frd = pinlin.frequency_response(sys, [0.5, 1.0, 2.0], inputs=[0], outputs=[1]).to_control()
+        >>> frd.input_labels, frd.output_labels, frd.omega.tolist()
+        (['force:x1'], ['x2'], [0.5, 1.0, 2.0])
         """
         return frequency_response_data(self, name)
 
@@ -132,6 +139,13 @@ class FrequencyResponse(Result):
         ------
         MissingDependencyError
             pandas is not installed (``pip install 'pinlin[pandas]'``).
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> df = pinlin.frequency_response(sys, [0.5, 1.0, 2.0], inputs=[0], outputs=[1]).to_pandas()
+        >>> df.shape, df["output"][0], df["input"][0], round(float(df["magnitude"][1]), 6)
+        ((3, 8), 'x2', 'x1', 4.993762)
         """
         pd = import_pandas()
         n_out, n_in, n_w = self.response.shape

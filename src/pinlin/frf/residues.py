@@ -154,6 +154,17 @@ class Residues(list, Result):
         ------
         ParameterError
             s is not a finite complex number, or is the center (the pole).
+
+        Examples
+        --------
+        Close to the pole, H(s) = L(s)^-1 is its principal part:
+
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> R = pinlin.residues(sys, pinlin.modal_analysis(sys).eigenvalues[0])
+        >>> s = R.center + 1e-4
+        >>> P, H = R.principal_part(s), np.linalg.inv(sys.dynamic_stiffness(s))
+        >>> P.shape, bool(np.linalg.norm(P - H) < 1e-3 * np.linalg.norm(H))
+        ((2, 2), True)
         """
         s = complex_scalar(s, "s")
         if s == self.center:

@@ -120,6 +120,13 @@ class StateSpaceModel(Result):
         ------
         MissingDependencyError
             python-control is not installed (``pip install 'pinlin[control]'``).
+
+        Examples
+        --------
+        >>> model = pinlin.state_space(pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.2]], [[4.0]]))
+        >>> ss = model.to_control(name="oscillator")
+        >>> ss.name, ss.state_labels, ss.input_labels, ss.output_labels
+        ('oscillator', ['x1', 'rate:x1'], ['force:x1'], ['x1'])
         """
         control = import_control()
         kwargs = {} if name is None else {"name": str(name)}
@@ -135,7 +142,15 @@ class StateSpaceModel(Result):
         )
 
     def to_scipy(self):
-        """The model as a ``scipy.signal.StateSpace`` (continuous time; scipy keeps no names)."""
+        """The model as a ``scipy.signal.StateSpace`` (continuous time; scipy keeps no names).
+
+        Examples
+        --------
+        >>> model = pinlin.state_space(pinlin.LinearizedSystem.from_matrices([[1.0]], [[0.2]], [[4.0]]))
+        >>> lti = model.to_scipy()
+        >>> type(lti).__name__, bool(np.array_equal(lti.A, model.A)), lti.B.ravel().tolist()
+        ('StateSpaceContinuous', True, [0.0, 1.0])
+        """
         from scipy import signal
 
         return signal.StateSpace(np.array(self.A), np.array(self.B), np.array(self.C), np.array(self.D))

@@ -104,6 +104,14 @@ class Simulation(ResultArray):
         ------
         ConfigurationError
             ``q_op`` has the wrong size or is not finite.
+
+        Examples
+        --------
+        >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+        >>> sim = pinlin.simulate(scene, [1e-3, 0.0], t=np.linspace(0.0, 1.0, 3))
+        >>> x, xdot = sim.linear_coordinates(np.zeros(2))
+        >>> x.shape, xdot.shape, np.round(x[0] + 0.0, 6).tolist()
+        ((3, 2), (3, 2), [0.001, 0.0])
         """
         return linear_coordinates(self.scene, q_op, self.q, self.v)
 

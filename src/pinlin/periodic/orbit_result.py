@@ -92,7 +92,17 @@ class PeriodicOrbit(Result):
             object.__setattr__(self, name, readonly(getattr(self, name)))
 
     def state(self, t: float) -> tuple[np.ndarray, np.ndarray]:
-        """(q*(t), v*(t)) at once (full, nq and nv)."""
+        """(q*(t), v*(t)) at once (full, nq and nv).
+
+        Examples
+        --------
+        The Kapitza pendulum hangs still while its pivot moves as 0.02 sin(200 t):
+
+        >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+        >>> q, v = pinlin.periodic_orbit(spec.scene, spec.q0).state(0.01)
+        >>> print(np.round(q + 0.0, 6), np.round(v + 0.0, 6))
+        [ 0.018186 -1.        0.      ] [-1.664587  0.      ]
+        """
         return self._state(t)
 
     def _state(self, t: float) -> tuple[np.ndarray, np.ndarray]:
@@ -113,16 +123,38 @@ class PeriodicOrbit(Result):
         return q, v
 
     def q(self, t: float) -> np.ndarray:
-        """Configuration q*(t) (nq,)."""
+        """Configuration q*(t) (nq,).
+
+        Examples
+        --------
+        >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+        >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+        >>> print(np.round(orbit.q(0.01) + 0.0, 6), bool(np.allclose(orbit.q(0.01 + orbit.period), orbit.q(0.01))))
+        [ 0.018186 -1.        0.      ] True
+        """
         return self._state(t)[0]
 
     def v(self, t: float) -> np.ndarray:
-        """Velocity v*(t) (nv,)."""
+        """Velocity v*(t) (nv,).
+
+        Examples
+        --------
+        >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+        >>> print(np.round(pinlin.periodic_orbit(spec.scene, spec.q0).v(0.0) + 0.0, 6))  # the pivot at 0.02 * 200 m/s
+        [4. 0.]
+        """
         return self._state(t)[1]
 
     def a(self, t: float) -> np.ndarray:
         """Acceleration a*(t) (nv,): the free accelerations from the dynamics at (q*(t), v*(t)), the
-        prescribed ones a_p(t) (constant-speed joints 0)."""
+        prescribed ones a_p(t) (constant-speed joints 0).
+
+        Examples
+        --------
+        >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+        >>> print(np.round(pinlin.periodic_orbit(spec.scene, spec.q0).a(0.01) + 0.0, 4))  # -800 sin(2) at the pivot
+        [-727.4379    0.    ]
+        """
         q, v = self._state(t)
         dyn = FreeDynamics(self.scene)
         a_p = dyn.apply_motions(float(t), q, v)

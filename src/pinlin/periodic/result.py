@@ -147,6 +147,13 @@ class FloquetAnalysis(Result):
         ------
         MissingDependencyError
             pandas is not installed (``pip install 'pinlin[pandas]'``).
+
+        Examples
+        --------
+        >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[1.3 + 0.4 * np.cos(t)]], 2 * np.pi)
+        >>> df = flo.to_pandas()
+        >>> df.shape, list(df.columns[:4]), df["harmonic"].tolist()
+        ((2, 10), ['mu_re', 'mu_im', 'abs_mu', 'error_bound'], [-1, 1])
         """
         pd = import_pandas()
         J = (self.harmonic_content.shape[1] - 1) // 2
@@ -161,7 +168,18 @@ class FloquetAnalysis(Result):
 
     def table(self) -> str:
         """One line per multiplier: mu, |mu|, its bound, the exponent's real part (0 where it is within its own
-        error, bound / (|mu| T)), the chosen frequency in rad/s and Hz, and the share of its harmonic."""
+        error, bound / (|mu| T)), the chosen frequency in rad/s and Hz, and the share of its harmonic.
+
+        Examples
+        --------
+        >>> flo = pinlin.floquet_analysis_matrices([[1.0]], None, lambda t: [[1.3 + 0.4 * np.cos(t)]], 2 * np.pi)
+        >>> print(flo.table())
+          k   multiplier   |mu|   bound   Re exponent   frequency      j*  share
+                                          [1/s]         [rad/s]  [Hz]
+          0   0.679569...-0.733610...j  1.0000e+00 ... -1.13108  -0.18  -1  0.967
+          1   0.679569...+0.733610...j  1.0000e+00 ...  1.13108   0.18   1  0.967
+        stability: marginally stable: ...
+        """
         lines = [f"{'k':>3} {'multiplier':>34} {'|mu|':>11} {'bound':>9} {'Re exponent':>12} "
                  f"{'frequency':>12} {'':>10} {'j*':>4} {'share':>6}",
                  f"{'':>3} {'':>34} {'':>11} {'':>9} {'[1/s]':>12} {'[rad/s]':>12} {'[Hz]':>10}"]

@@ -128,7 +128,23 @@ class ModeEnergy(Result):
         return max(rows, key=rows.get) if rows else None
 
     def table(self) -> str:
-        """The three tables as text: one row per body, element and damper with its share [%]."""
+        """The three tables as text: one row per body, element and damper with its share [%].
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> scene = pinlin.Scene(robot, [pinlin.JointSpring(j, 10.0) for j in robot.joint_names])
+        >>> print(pinlin.modal_analysis(pinlin.linearize(scene, robot.neutral())).energy(0, scene).table())
+        Energy of mode 1: lam = ... (0.7333 Hz)
+          kinetic (bodies): total ... J
+            link1     18.18 %
+            link2     81.82 %
+          strain (elements): total ... J
+            spring joint1       40.33 %
+            spring joint2        2.67 %
+            gravity             57.00 %
+        ...
+        """
         lam = self.eigenvalue
         parts = ("elements", "dampers") if self.by == "bodies" else ("coordinates", "coordinates")
         lines = [f"Energy of mode {self.index + 1}: lam = {lam.real + 0.0:.6g} {lam.imag + 0.0:+.6g}j"

@@ -164,6 +164,19 @@ class SweepResult(Result):
         ------
         MissingDependencyError
             pandas is not installed (``pip install 'pinlin[pandas]'``).
+
+        Examples
+        --------
+        >>> result = pinlin.sweep(lambda m, k: np.sqrt(k / m), {"m": [1.0, 4.0], "k": [1.0, 4.0]})
+        >>> df = result.to_pandas()
+        >>> list(df.columns)
+        ['m', 'k', 'value', 'error', 'elapsed', 'failure']
+        >>> print(df[["m", "k", "value"]])
+             m    k  value
+        0  1.0  1.0    1.0
+        1  1.0  4.0    2.0
+        2  4.0  1.0    0.5
+        3  4.0  4.0    1.0
         """
         pd = import_pandas()
         rows = []
@@ -189,6 +202,16 @@ class SweepResult(Result):
         ------
         ParameterError
             Every point failed, or two points gave values of different shapes.
+
+        Examples
+        --------
+        A massless point fails (``on_error="record"`` keeps it) and is filled with NaN:
+
+        >>> def modes(m):
+        ...     return pinlin.modal_analysis(pinlin.LinearizedSystem.from_matrices([[m]], None, [[4.0]]))
+        >>> result = pinlin.sweep(modes, {"m": [1.0, 4.0, 0.0]}, on_error="record")
+        >>> np.round(result.collect(lambda modes: modes.natural_frequency[0]), 6)
+        array([ 2.,  1., nan])
         """
         extract = extract or (lambda v: v)
         items = [None if isinstance(v, SweepFailure) else np.asarray(extract(v)) for v in self.values]

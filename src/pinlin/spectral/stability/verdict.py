@@ -162,7 +162,21 @@ class Stability(Result):
         raise AttributeError(f"Stability is immutable: cannot delete {name!r}")
 
     def replace(self, **changes) -> Stability:
-        """A copy with some attributes changed (as :func:`dataclasses.replace`); a lazy margin stays lazy."""
+        """A copy with some attributes changed (as :func:`dataclasses.replace`); a lazy margin stays lazy.
+
+        Raises
+        ------
+        TypeError
+            An unknown attribute name.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, -1.0], [-1.0, 2.0]])
+        >>> verdict = pinlin.modal_analysis(sys).stability
+        >>> relaxed = verdict.replace(safety=2.0)
+        >>> relaxed.safety, verdict.safety, relaxed.kind
+        (2.0, 10.0, 'asymptotically_stable')
+        """
         args = {name: changes.pop(name, getattr(self, "_basis" if name == "reason" else name))
                 for name in ("kind", "reason", "theorem", "eigenvalue", "error_bound", "bounded", "safety",
                              "elapsed", "uncertainty")}
