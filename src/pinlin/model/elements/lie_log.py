@@ -44,8 +44,9 @@ SERIES_BELOW = 4.0
 #: (successive terms shrink like t^2 / (4 pi^2)).
 SERIES_TERMS = 22
 
-#: Coefficients of t^(2m) of beta and gamma from the highest (``np.polyval``'s order), one column each.
-_SERIES = SERIES_COEFFICIENTS[:SERIES_TERMS, :2][::-1]
+#: Coefficients of t^(2m) of beta and gamma (one column each), and the powers m.
+_SERIES = SERIES_COEFFICIENTS[:SERIES_TERMS, :2]
+_POWERS = np.arange(SERIES_TERMS)
 
 
 def beta_gamma(t2) -> tuple[np.ndarray, np.ndarray]:
@@ -59,15 +60,15 @@ def beta_gamma(t2) -> tuple[np.ndarray, np.ndarray]:
     """
     t2 = np.asarray(t2, dtype=float)
     series = t2 < SERIES_BELOW
-    b = np.polyval(_SERIES[:, 0], np.where(series, t2, 0.0))
-    g = np.polyval(_SERIES[:, 1], np.where(series, t2, 0.0))
-    if not series.all():
-        closed = np.where(series, SERIES_BELOW, t2)
-        t = np.sqrt(closed)
-        s = np.sin(0.5 * t)
-        cot = np.cos(0.5 * t) / s  # (1 + cos t) / sin t
-        b = np.where(series, b, 1.0 / closed - cot / (2.0 * t))
-        g = np.where(series, g, (-2.0 / (closed * t) + 1.0 / (4.0 * t * s * s) + cot / (2.0 * closed)) / t)
+    if series.all():
+        return np.moveaxis(np.power.outer(t2, _POWERS) @ _SERIES, -1, 0)
+    b, g = np.moveaxis(np.power.outer(np.where(series, t2, 0.0), _POWERS) @ _SERIES, -1, 0)
+    closed = np.where(series, SERIES_BELOW, t2)
+    t = np.sqrt(closed)
+    s = np.sin(0.5 * t)
+    cot = np.cos(0.5 * t) / s  # (1 + cos t) / sin t
+    b = np.where(series, b, 1.0 / closed - cot / (2.0 * t))
+    g = np.where(series, g, (-2.0 / (closed * t) + 1.0 / (4.0 * t * s * s) + cot / (2.0 * closed)) / t)
     return b, g
 
 
@@ -87,22 +88,16 @@ def se3_log(theta, p, jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | N
     (4, 6) (4, 6, 6) True
     """
     theta, p = np.asarray(theta, dtype=float), np.asarray(p, dtype=float)
-    t2 = np.einsum("...i,...i->...", theta, theta)
-    b, g = beta_gamma(t2)
+    b, g = beta_gamma((theta * theta).sum(axis=-1))
     b, g = b[..., None, None], g[..., None, None]
-    outer = theta[..., :, None] * theta[..., None, :]  # theta theta^T
-    eye = np.eye(3)
-    # A = I + [theta]x / 2 + b [theta]x^2, with [theta]x^2 = theta theta^T - t^2 I
-    A = (1.0 - b * t2[..., None, None]) * eye + b * outer + 0.5 * skew(theta)
-    e = np.concatenate([np.einsum("...ji,...j->...i", A, p), theta], axis=-1)  # (W p, theta), W = A^T
+    S, P = skew(theta), skew(p)
+    SS = S @ S  # [theta]x^2 = theta theta^T - t^2 I
+    A = np.eye(3) + 0.5 * S + b * SS
+    e = np.concatenate([(p[..., None, :] @ A)[..., 0, :], theta], axis=-1)  # (W p, theta), W = A^T
     if not jacobian:
         return e, None
-    tp = np.einsum("...i,...i->...", theta, p)[..., None, None]
-    # D(p) = [p]x / 2 + g [theta]x^2 p theta^T - b ([theta]x [p]x + [theta x p]x),
-    # with [theta]x [p]x = p theta^T - (theta . p) I
-    u = theta * tp[..., 0] - t2[..., None] * p  # [theta]x^2 p
-    D = 0.5 * skew(p) + g * u[..., :, None] * theta[..., None, :]
-    D -= b * (p[..., :, None] * theta[..., None, :] - tp * eye + skew(np.cross(theta, p)))
+    # D(p) = [p]x / 2 + g [theta]x^2 p theta^T - b ([theta]x [p]x + [theta x p]x)
+    D = 0.5 * P + g * (SS @ p[..., :, None]) * theta[..., None, :] - b * (S @ P + skew((S @ p[..., :, None])[..., 0]))
     J = np.zeros(theta.shape[:-1] + (6, 6))
     J[..., :3, :3] = A
     J[..., 3:, 3:] = A
@@ -111,7 +106,7 @@ def se3_log(theta, p, jacobian: bool = True) -> tuple[np.ndarray, np.ndarray | N
 
 
 #: The coordinates of SE(3)'s (v, omega) that each group's tangent coordinates are.
-_TANGENT = {"SE(3)": [0, 1, 2, 3, 4, 5], "SO(3)": [3, 4, 5], "SE(2)": [0, 1, 5]}
+_TANGENT = {"SE(3)": slice(None), "SO(3)": slice(3, 6), "SE(2)": [0, 1, 5]}
 
 
 def _quaternion_log(w: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -130,7 +125,16 @@ def _relative(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """
     a_v, a_w = a[:3], a[3]
     b_v, b_w = b[..., :3], b[..., 3:]
-    return b @ a, (a_w * b_v - b_w * a_v) + np.cross(b_v, a_v)
+    return b @ a, (a_w * b_v - b_w * a_v) + _cross(b_v, a_v)
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a x b along the last axis, each entry a difference of two products (exactly 0 when a = b)."""
+    return a[..., _NEXT] * b[..., _PREVIOUS] - a[..., _PREVIOUS] * b[..., _NEXT]
+
+
+#: The index of the next and the previous axis: (a x b)_i = a_{i+1} b_{i-1} - a_{i-1} b_{i+1}.
+_NEXT, _PREVIOUS = [1, 2, 0], [2, 0, 1]
 
 
 class JointLog:
@@ -285,4 +289,4 @@ def exp_chart_rate(name: str, dq: np.ndarray, v: np.ndarray) -> np.ndarray:
     twist[index] = dq
     rho, theta = twist[:3], twist[3:]
     _, J = se3_log(theta, _left_jacobian(theta) @ rho)
-    return J[np.ix_(index, index)] @ v
+    return J[index][:, index] @ v
