@@ -4,7 +4,7 @@
 of prescribed joints) compute every point's matrices on stacked arrays (P, n, n);
 this module takes their norms (:func:`norms`), runs the single call's checks on
 all points at once, raising the single call's own error at the first bad point
-(:func:`check_points`), and builds the result objects (:class:`Systems`).
+(:func:`check_points`), and builds the result objects (:func:`build_systems`).
 
 The norms are taken for all points in one reduction, so the figures built on them
 (``residual``, ``dropped``) agree with ``linearize``'s to rounding; where such a
@@ -16,8 +16,6 @@ every decision is the single call's.
 from __future__ import annotations
 
 import math
-from itertools import repeat
-
 import numpy as np
 
 from ..errors import ComputationError
@@ -29,7 +27,7 @@ from .plan import plan_of
 from .system import LinearizedSystem
 
 __all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "rows_or_zero",
-           "Systems", "TINY"]
+           "build_systems", "TINY"]
 
 TINY = float(np.finfo(float).tiny)
 
@@ -147,43 +145,20 @@ def rows_or_zero(X: np.ndarray, sizes: list[float], tol: float, name: str, zero:
     return rows
 
 
-class Systems:
-    """Builds the batch's LinearizedSystem objects: what is common to all points, once.
+def build_systems(scene: Scene, calls: tuple, notes: tuple, elapsed: float, balancing: bool, matrices: dict,
+                  qs: np.ndarray, rel: list[float], r: np.ndarray, dropped: list[dict]) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+    """The batch's systems through :meth:`LinearizedSystem.stack`, with the single call's notes and figures.
 
-    Each system is a copy of the scene's template (:func:`~.templates.system_template`,
-    kept by its plan) with the batch's ``calls``, ``notes`` and ``elapsed`` filled in
-    once, then the per-point entries (the matrices, q, the figures, ``dropped``, and
-    with ``balancing`` the notes and the actuator forces): the same attributes, in the
-    same order, as the single call's.  Every array handed in must be read-only
-    already (rows of the batch's read-only stacks, shared read-only views).
+    ``matrices`` maps M, D, G, S, N to a stack (P, n, n), a list of P matrices or one
+    matrix shared by the batch; ``r`` holds the residuals on the free coordinates
+    (kept with ``balancing``), ``rel`` the relative residuals, ``dropped`` one
+    dictionary per point (taken over).
     """
-
-    __slots__ = ("template", "notes", "balancing")
-
-    def __init__(self, scene: Scene, calls: tuple, notes: tuple, elapsed: float, balancing: bool):
-        template = plan_of(scene).template.copy()
-        template["calls"], template["notes"], template["elapsed"] = calls, notes, elapsed
-        self.template, self.notes, self.balancing = template, notes, balancing
-
-    def build(self, M, D, G, S, N, qs, rel: list[float], r, dropped: list[dict]) -> tuple[LinearizedSystem, ...]:
-        """The systems of all points.
-
-        Each of M, D, G, S, N, qs and r iterates over the points (a stack's rows, a list,
-        or ``itertools.repeat`` of one shared array); ``r`` holds the residuals on the free
-        coordinates (kept with ``balancing``), ``rel`` the relative residuals,
-        ``dropped`` one dictionary per point (taken over).
-        """
-        template, new, cls = self.template, object.__new__, LinearizedSystem
-        residuals = r if self.balancing else repeat(None)  # no row views when they are not kept
-        out = []
-        for Mi, Di, Gi, Si, Ni, q, rel_i, ri, dropped_i in zip(M, D, G, S, N, qs, rel, residuals, dropped):
-            attributes = template.copy()
-            attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = Mi, Di, Gi, Si, Ni
-            attributes["q"], attributes["residual"], attributes["dropped"] = q, rel_i, dropped_i
-            if self.balancing:
-                attributes["balancing"] = ri
-                attributes["notes"] = self.notes + (f"held at q by constant actuator forces (relative residual {rel_i:.2e})",)
-            system = new(cls)
-            object.__setattr__(system, "__dict__", attributes)
-            out.append(system)
-        return tuple(out)
+    if balancing:
+        point_notes = [notes + (f"held at q by constant actuator forces (relative residual {rel_i:.2e})",) for rel_i in rel]
+    else:
+        point_notes = [notes] * len(rel)
+    return LinearizedSystem.stack(
+        **matrices, dof_names=scene.dof_names, q=qs, v=scene.v0, residual=rel, balancing=r if balancing else None,
+        elapsed=elapsed, calls=calls, dropped=dropped, notes=point_notes,
+    )  # fmt: skip

@@ -25,7 +25,7 @@ import pinocchio as pin
 from ..model.evaluation import BatchPoints, Evaluation, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
+from .batch_common import TINY, build_systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -110,8 +110,9 @@ def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: 
         if size <= tol and size:
             dropped[p]["D (Coriolis rounding)"] = size
     G = rows_or_zero(G, G_sizes.tolist(), tol, "G", zero, dropped)
-    systems = Systems(scene, ("computeRNEADerivatives",), plan.proof_notes, (clock() - elapsed0) / len(qs), balancing)
-    return systems.build(M, D, G, S, N, qs, rel.tolist(), r, dropped)
+    matrices = {"M": M, "D": D, "G": G, "S": S, "N": N}
+    elapsed = (clock() - elapsed0) / len(qs)
+    return build_systems(scene, ("computeRNEADerivatives",), plan.proof_notes, elapsed, balancing, matrices, qs, rel.tolist(), r, dropped)
 
 
 def _split_damping(plan, C: np.ndarray, pinocchio_C: np.ndarray, scale_C: np.ndarray, tol: float):

@@ -214,23 +214,13 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
             f"held at q by constant actuator forces (relative residual {rel:.2e}): the minimum-norm joint forces "
             f"g = r - J_c^T lambda, orthogonal to the constraint forces; balancing = B^T g"
         )
-    return LinearizedSystem.trusted(
-        M, D, G, S, N,
-        dof_names=names,
-        q=q,
-        v=scene.v0,
-        residual=rel,
-        balancing=balance,
-        elapsed=time.perf_counter() - t0,
-        calls=tuple(calls),
-        dropped=dropped,
-        notes=tuple(notes),
-        method="analytic",
-        basis=B,
-        basis_names=scene.dof_names,
-        basis_condition=condition,
+    (system,) = LinearizedSystem.stack(
+        M=M, D=D, G=G, S=S, N=N, dof_names=names, q=q[None], v=scene.v0, residual=[rel],
+        balancing=None if balance is None else balance[None], elapsed=time.perf_counter() - t0, calls=calls,
+        dropped=[dropped], notes=[tuple(notes)], basis=B, basis_names=scene.dof_names, basis_condition=condition,
         constraint_forces=constraint_forces(scene, lam),
     )  # fmt: skip
+    return system
 
 
 def constraint_stiffness(scene: Scene, q, lam) -> np.ndarray:

@@ -29,7 +29,6 @@ from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan, plan_of
 from .split import split_damping as _split_damping
 from .split import split_stiffness as _split_stiffness
 from .system import LinearizedSystem
-from .templates import system_from_template
 
 __all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES", "STRUCTURE_EPS_FACTOR"]
 
@@ -170,10 +169,12 @@ def linearize(
     D, G = _split_damping(C, base, plan, tol, dropped)
     if balancing:
         notes.append(f"held at q by constant actuator forces (relative residual {rel:.2e})")
-    return system_from_template(
-        plan.template, M, D, G, S, N, q, rel, r.copy() if balancing else None, time.perf_counter() - t0,
-        tuple(calls), dropped, tuple(notes),
+    (system,) = LinearizedSystem.stack(
+        M=M, D=D, G=G, S=S, N=N, dof_names=scene.dof_names, q=q[None], v=scene.v0, residual=[rel],
+        balancing=r[None].copy() if balancing else None, elapsed=time.perf_counter() - t0, calls=calls,
+        dropped=[dropped], notes=[tuple(notes)],
     )  # fmt: skip
+    return system
 
 
 

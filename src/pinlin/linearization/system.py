@@ -9,22 +9,16 @@ import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from itertools import repeat
 
 import numpy as np
 
-from ..errors import ParameterError, SingularMassError
-from ..numerics.arrays import readonly
-from ..numerics.norms import fro
+from ..errors import ParameterError
 from ..results import Result
-from .state_form import first_order_form, null_motion
+from .matrices import MATRIX_NAMES, SYMMETRY_TOL, checked_matrices
+from .state_form import first_order_form
 
-__all__ = ["LinearizedSystem", "check_system", "MATRIX_NAMES"]
-
-#: The five matrices of the linearized equation, in the paper's order.
-MATRIX_NAMES = ("M", "D", "G", "S", "N")
-
-#: Default relative tolerance of the (skew-)symmetry checks of the constructor.
-SYMMETRY_TOL = 1e-10
+__all__ = ["LinearizedSystem", "check_system", "MATRIX_NAMES", "SYMMETRY_TOL"]
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
@@ -123,72 +117,17 @@ class LinearizedSystem(Result):
     constraint_forces: tuple = ()
 
     def __post_init__(self):
-        mats = {}
-        n = None
-        for name in MATRIX_NAMES:
-            try:
-                a = np.array(getattr(self, name), dtype=float)
-            except (TypeError, ValueError):
-                raise ParameterError(name, "expected a real matrix") from None
-            if a.ndim != 2 or a.shape[0] != a.shape[1]:
-                raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
-            if n is None:
-                n = a.shape[0]
-                if n == 0:
-                    raise ParameterError(name, "the system has no coordinates (n = 0)")
-            elif a.shape != (n, n):
-                raise ParameterError(name, f"expected shape {(n, n)} like M, got {a.shape}")
-            if not np.all(np.isfinite(a)):
-                raise ParameterError(name, "has non-finite entries")
-            mats[name] = a
-        for name, sign in (("M", 1), ("D", 1), ("S", 1), ("G", -1), ("N", -1)):
-            a = mats[name]
-            defect = fro(a - sign * a.T)
-            if defect > SYMMETRY_TOL * max(fro(a), np.finfo(float).tiny):
-                kind = "symmetric" if sign == 1 else "skew-symmetric"
-                raise ParameterError(
-                    name, f"must be {kind}; relative defect {defect / fro(a):.2e} > {SYMMETRY_TOL:g}"
-                )
-            mats[name] = (a + sign * a.T) / 2
+        matrices = {name: _matrix(name, getattr(self, name)) for name in MATRIX_NAMES}
+        n = matrices["M"].shape[0]
         names = tuple(str(s) for s in self.dof_names) or tuple(f"x{i + 1}" for i in range(n))
-        if len(names) != n:
-            raise ParameterError("dof_names", f"expected {n} names, got {len(names)}")
-        if len(set(names)) != n:
-            raise ParameterError("dof_names", f"names must be unique, got {names}")
-        try:
-            np.linalg.cholesky(mats["M"])
-        except np.linalg.LinAlgError:
-            smallest, weak = null_motion(mats["M"], names)
-            raise SingularMassError(
-                f"the mass matrix is not positive definite (smallest eigenvalue {smallest:.3g}); "
-                f"the coordinates {weak} carry no inertia",
-                weak,
-            ) from None
-        for name, a in mats.items():
-            object.__setattr__(self, name, readonly(a, float))
-        object.__setattr__(self, "dof_names", names)
-        object.__setattr__(self, "q", readonly(self.q, float))
-        object.__setattr__(self, "v", readonly(self.v, float))
-        object.__setattr__(self, "balancing", readonly(self.balancing, float))
-        object.__setattr__(self, "dropped", dict(self.dropped))
-        object.__setattr__(self, "calls", tuple(self.calls))
-        object.__setattr__(self, "notes", tuple(self.notes))
-        self._check_basis(n)
-
-    def _check_basis(self, n: int) -> None:
-        if self.basis is None:
-            return
-        try:
-            B = np.array(self.basis, dtype=float)
-        except (TypeError, ValueError):
-            raise ParameterError("basis", "expected a real matrix") from None
-        if B.ndim != 2 or B.shape[1] != n or not np.all(np.isfinite(B)):
-            raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
-        if self.basis_names and len(self.basis_names) != B.shape[0]:
-            raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(self.basis_names)}")
-        object.__setattr__(self, "basis", readonly(B, float))
-        object.__setattr__(self, "basis_names", tuple(str(x) for x in self.basis_names))
-        object.__setattr__(self, "constraint_forces", tuple(self.constraint_forces))
+        (system,) = type(self).stack(
+            **matrices, dof_names=names, q=None if self.q is None else _copy(self.q)[None], v=_copy(self.v),
+            residual=[self.residual], balancing=None if self.balancing is None else _copy(self.balancing)[None],
+            elapsed=self.elapsed, calls=self.calls, dropped=[dict(self.dropped)], notes=[tuple(self.notes)],
+            method=self.method, basis=_copy(self.basis), basis_names=self.basis_names,
+            basis_condition=self.basis_condition, constraint_forces=self.constraint_forces,
+        )  # fmt: skip
+        self.__dict__.update(vars(system))
 
     # ------------------------------------------------------------------ construction
 
@@ -241,54 +180,74 @@ class LinearizedSystem(Result):
         return cls(M, D, G, S, N, dof_names=tuple(dof_names))
 
     @classmethod
-    def trusted(
+    def stack(
         cls,
-        M: np.ndarray,
-        D: np.ndarray,
-        G: np.ndarray,
-        S: np.ndarray,
-        N: np.ndarray,
         *,
-        dof_names: tuple[str, ...],
-        q: np.ndarray | None = None,
+        M,
+        D,
+        G,
+        S,
+        N,
+        dof_names: Sequence[str],
+        residual: Sequence[float],
+        dropped: Sequence[Mapping[str, float]],
+        notes: Sequence[Sequence[str]],
+        q=None,
         v: np.ndarray | None = None,
-        residual: float = 0.0,
-        balancing: np.ndarray | None = None,
+        balancing=None,
         elapsed: float = 0.0,
-        calls: tuple[str, ...] = (),
-        dropped: Mapping[str, float] | None = None,
-        notes: tuple[str, ...] = (),
+        calls: Sequence[str] = (),
         method: str = "analytic",
         basis: np.ndarray | None = None,
-        basis_names: tuple[str, ...] = (),
+        basis_names: Sequence[str] = (),
         basis_condition: float | None = None,
-        constraint_forces: tuple = (),
-        frozen: bool = False,
-    ) -> LinearizedSystem:
-        """Wrap matrices that are valid by construction, without re-validating them.
+        constraint_forces: Sequence = (),
+    ) -> tuple[LinearizedSystem, ...]:
+        """The systems of P operating points of one model, their matrices checked in one pass.
 
-        For builders (such as :func:`pinlin.linearize`) that produce M, D, S
-        exactly symmetric and G, N exactly skew, with M already checked positive
-        definite and every entry finite, and ``dof_names`` of the right length.
-        The arrays are taken over (not copied) and made read-only; ``frozen=True``
-        says M, D, G, S, N, q and basis are read-only already (views of read-only
-        arrays, as :func:`pinlin.linearize_many` hands over).  Everyone else should
-        call the constructor, which validates.
+        For builders (:func:`pinlin.linearize` with P = 1, :func:`pinlin.linearize_many`);
+        the constructor is this with P = 1 and copies of its arguments.  Each of M, D, G, S,
+        N is a (P, n, n) stack, a sequence of P matrices, or one (n, n) matrix the systems
+        share; ``q`` (P, nq) or None, ``balancing`` (P, n) or None, and ``residual``,
+        ``dropped`` (dictionaries), ``notes`` (tuples), one entry per point, vary with the
+        point, the rest is shared.  The arrays and dictionaries are taken over (not copied),
+        the arrays made read-only.
+
+        Raises
+        ------
+        ParameterError, SingularMassError
+            As the constructor (:func:`~pinlin.linearization.matrices.checked_matrices`).
+
+        Examples
+        --------
+        >>> M = np.stack([np.eye(2), 2.0 * np.eye(2)])
+        >>> systems = pinlin.LinearizedSystem.stack(
+        ...     M=M, D=np.zeros((2, 2)), G=np.zeros((2, 2)), S=np.eye(2), N=np.zeros((2, 2)),
+        ...     dof_names=("a", "b"), residual=[0.0, 0.0], dropped=[{}, {}], notes=[(), ()])
+        >>> [float(s.M[0, 0]) for s in systems]
+        [1.0, 2.0]
         """
-        obj = object.__new__(cls)
-        for a in (balancing,) if frozen else (M, D, G, S, N, q, balancing, basis):
-            if a is not None:
-                a.setflags(False)  # write=False; positional: a third of the keyword call's cost
-        if v is not None and v.flags.writeable:  # a scene's v0 is read-only already: no copy, no flag
-            v.setflags(False)
-        object.__setattr__(obj, "__dict__", {
-            "M": M, "D": D, "G": G, "S": S, "N": N, "dof_names": tuple(dof_names), "q": q, "v": v,
-            "residual": residual, "balancing": balancing, "elapsed": elapsed, "calls": tuple(calls),
-            "dropped": dict(dropped or {}), "notes": tuple(notes), "method": method, "basis": basis,
-            "basis_names": tuple(basis_names), "basis_condition": basis_condition,
-            "constraint_forces": tuple(constraint_forces),
-        })  # fmt: skip
-        return obj
+        names = tuple(str(s) for s in dof_names)
+        matrices = checked_matrices({"M": M, "D": D, "G": G, "S": S, "N": N}, names)
+        n = matrices["M"].shape[-1]
+        template = dict.fromkeys(_FIELDS)  # the attributes in field order: shared ones now, the others per point
+        template.update(
+            dof_names=names, v=_taken(v), elapsed=elapsed, calls=tuple(calls), method=method,
+            basis=_checked_basis(basis, basis_names, n), basis_names=tuple(str(x) for x in basis_names),
+            basis_condition=basis_condition, constraint_forces=tuple(constraint_forces),
+        )  # fmt: skip
+        per_point = {name: repeat(a) if a.ndim == 2 else a for name, a in matrices.items()}
+        per_point["q"] = repeat(None) if q is None else _taken(q)
+        per_point["balancing"] = repeat(None) if balancing is None else _taken(balancing)
+        per_point["residual"], per_point["dropped"], per_point["notes"] = residual, dropped, notes
+        keys, out = tuple(per_point), []
+        for values in zip(*per_point.values()):
+            attributes = template.copy()
+            attributes.update(zip(keys, values))
+            system = object.__new__(cls)
+            object.__setattr__(system, "__dict__", attributes)
+            out.append(system)
+        return tuple(out)
 
     @cached_property
     def C(self) -> np.ndarray:
@@ -378,8 +337,48 @@ class LinearizedSystem(Result):
         )
 
 
+#: The declared fields, in order: the attributes of every system.
+_FIELDS = tuple(f.name for f in dataclasses.fields(LinearizedSystem))
 #: ``to_dict`` dumps the declared fields, then C and K (formed on access), as before they became lazy.
-LinearizedSystem._dict_fields = tuple(f.name for f in dataclasses.fields(LinearizedSystem)) + ("C", "K")
+LinearizedSystem._dict_fields = _FIELDS + ("C", "K")
+
+
+def _matrix(name: str, value) -> np.ndarray:
+    """A float copy of a square matrix given to the constructor."""
+    try:
+        a = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, "expected a real matrix") from None
+    if a.ndim != 2 or a.shape[0] != a.shape[1]:
+        raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
+    return a
+
+
+def _copy(a) -> np.ndarray | None:
+    """A float copy (None stays None)."""
+    return None if a is None else np.array(a, dtype=float)
+
+
+def _taken(a) -> np.ndarray | None:
+    """``a`` itself made read-only (None stays None): builders hand over arrays nobody else writes to."""
+    if a is not None and a.flags.writeable:
+        a.flags.writeable = False
+    return a
+
+
+def _checked_basis(basis, basis_names, n: int) -> np.ndarray | None:
+    """The basis of ker J_c (nv, n), checked and read-only, or None."""
+    if basis is None:
+        return None
+    try:
+        B = np.asarray(basis, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError("basis", "expected a real matrix") from None
+    if B.ndim != 2 or B.shape[1] != n or not np.all(np.isfinite(B)):
+        raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
+    if basis_names and len(basis_names) != B.shape[0]:
+        raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(basis_names)}")
+    return _taken(B)
 
 def check_system(sys) -> LinearizedSystem:
     """``sys`` itself if it is a :class:`~pinlin.LinearizedSystem`.

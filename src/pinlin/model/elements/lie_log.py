@@ -49,6 +49,17 @@ _SERIES = SERIES_COEFFICIENTS[:SERIES_TERMS, :2]
 _POWERS = np.arange(SERIES_TERMS)
 
 
+def _series(t2: np.ndarray) -> np.ndarray:
+    """beta and gamma from their series at t^2 (any shape): (2, ...).
+
+    A sum of products per entry (``einsum``), whose order does not depend on how many
+    points are stacked (a matrix product would hand one point and many to different BLAS
+    kernels): a point's log is the same in a batch of one and in a batch of many.
+    """
+    bg = np.einsum("...k,kc->...c", np.power.outer(t2, _POWERS), _SERIES)
+    return bg[..., 0], bg[..., 1]
+
+
 def beta_gamma(t2) -> tuple[np.ndarray, np.ndarray]:
     """beta(t) = 1/t^2 - (1 + cos t) / (2 t sin t) and gamma = beta'(t) / t at t^2 (any shape).
 
@@ -61,8 +72,8 @@ def beta_gamma(t2) -> tuple[np.ndarray, np.ndarray]:
     t2 = np.asarray(t2, dtype=float)
     series = t2 < SERIES_BELOW
     if series.all():
-        return np.moveaxis(np.power.outer(t2, _POWERS) @ _SERIES, -1, 0)
-    b, g = np.moveaxis(np.power.outer(np.where(series, t2, 0.0), _POWERS) @ _SERIES, -1, 0)
+        return _series(t2)
+    b, g = _series(np.where(series, t2, 0.0))
     closed = np.where(series, SERIES_BELOW, t2)
     t = np.sqrt(closed)
     s = np.sin(0.5 * t)
@@ -111,11 +122,10 @@ _TANGENT = {"SE(3)": slice(None), "SO(3)": slice(3, 6), "SE(2)": [0, 1, 5]}
 
 def _quaternion_log(w: np.ndarray, v: np.ndarray) -> np.ndarray:
     """log3 of the rotations of quaternions w (...), v (..., 3): 2 atan2(|v|, w) v / |v|, exactly 0 where v = 0."""
-    n = np.linalg.norm(v, axis=-1)
-    sign = np.where(w >= 0.0, 1.0, -1.0)  # the rotation of angle <= pi
-    angle = 2.0 * sign * np.arctan2(n, sign * w)
-    scale = np.divide(angle, n, out=np.zeros_like(n), where=n > 0.0)
-    return scale[..., None] * v
+    n = np.sqrt((v * v).sum(axis=-1))
+    sign = np.where(w >= 0.0, 2.0, -2.0)  # the rotation of angle <= pi
+    angle = sign * np.arctan2(n, 0.5 * sign * w)
+    return (angle / np.where(n > 0.0, n, 1.0))[..., None] * v  # v = 0: theta = 0
 
 
 def _relative(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,130 @@
+"""The checks every :class:`~pinlin.LinearizedSystem`'s five matrices pass, on stacks of systems.
+
+Shapes, finite entries, symmetry of M, D, S and skewness of G, N (within
+:data:`SYMMETRY_TOL`, then made exact), and a positive definite M.  One system is
+a stack of one; :func:`pinlin.linearize_many` checks all its points' matrices in
+one pass, which is why the checks are written on stacks.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.linalg.lapack as lapack
+
+from ..errors import ParameterError, SingularMassError
+from .state_form import null_motion
+
+__all__ = ["MATRIX_NAMES", "SYMMETRY_TOL", "checked_matrices"]
+
+#: The five matrices of the linearized equation, in the paper's order.
+MATRIX_NAMES = ("M", "D", "G", "S", "N")
+
+#: Relative tolerance of the (skew-)symmetry checks of the constructor.
+SYMMETRY_TOL = 1e-10
+
+#: The symmetry each matrix has: +1 symmetric, -1 skew-symmetric.
+_SIGNS = {"M": 1, "D": 1, "G": -1, "S": 1, "N": -1}
+
+
+def _as_stack(name: str, value, count: int | None) -> np.ndarray:
+    """``value`` as a float array (P, n, n) or one shared (n, n) matrix; a sequence of matrices is stacked."""
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, "expected a real matrix") from None
+    if a.ndim not in (2, 3) or a.shape[-1] != a.shape[-2] or (a.ndim == 3 and count is not None and len(a) != count):
+        raise ParameterError(name, f"expected a square matrix (or one per point), got shape {a.shape}")
+    return a
+
+
+def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """The five matrices checked and made exactly (skew-)symmetric, read-only: name -> (P, n, n) or (n, n).
+
+    ``matrices`` maps each of M, D, G, S, N to a (P, n, n) stack, a sequence of P
+    matrices, or one (n, n) matrix shared by the P systems.  Matrices that are
+    exactly (skew-)symmetric already are taken over as they are and made read-only
+    (callers hand over arrays nobody else writes to).
+
+    Raises
+    ------
+    ParameterError
+        Not square, shapes that differ, no coordinates, non-finite entries, or a
+        symmetry defect above :data:`SYMMETRY_TOL` (relative, Frobenius norm).
+    SingularMassError
+        An M that is not positive definite; the message names the coordinates
+        that carry no inertia.
+    """
+    stacks = {}
+    n = count = None
+    for name in MATRIX_NAMES:
+        a = _as_stack(name, matrices[name], count)
+        if n is None:
+            n = a.shape[-1]
+            if n == 0:
+                raise ParameterError(name, "the system has no coordinates (n = 0)")
+        elif a.shape[-1] != n:
+            raise ParameterError(name, f"expected shape {(n, n)} like M, got {a.shape}")
+        if a.ndim == 3:
+            count = len(a)
+        stacks[name] = a
+    # the matrices of one shape checked together: exactly (skew-)symmetric and finite is the usual case
+    shared = [name for name, a in stacks.items() if a.ndim == 2]
+    groups = [shared] * bool(shared) + [[name] for name, a in stacks.items() if a.ndim == 3]
+    out = {}
+    for names in groups:
+        X = np.stack([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]][None]
+        signs = np.array([_SIGNS[name] for name in names], dtype=float).reshape((-1,) + (1,) * (X.ndim - 1))
+        exact = bool(np.isfinite(X).all() and (X == signs * X.swapaxes(-1, -2)).all())
+        for name in names:
+            out[name] = stacks[name] if exact else _symmetric(name, stacks[name])
+            out[name].flags.writeable = False  # taken over
+    if len(dof_names) != n:
+        raise ParameterError("dof_names", f"expected {n} names, got {len(dof_names)}")
+    if len(set(dof_names)) != n:
+        raise ParameterError("dof_names", f"names must be unique, got {dof_names}")
+    _check_mass(out["M"], dof_names)
+    return out
+
+
+def _symmetric(name: str, a: np.ndarray) -> np.ndarray:
+    """``a`` made exactly (skew-)symmetric, after the checks of its entries and of its symmetry defect."""
+    if not np.isfinite(a).all():
+        raise ParameterError(name, "has non-finite entries")
+    mirrored = _SIGNS[name] * a.swapaxes(-1, -2)
+    big = np.abs(a).max(axis=(-2, -1), keepdims=True)
+    scaled = a / np.where(big > 0, big, 1.0)  # the norms of entries near 1e300 do not overflow
+    defect = np.linalg.norm(scaled - _SIGNS[name] * scaled.swapaxes(-1, -2), axis=(-2, -1))
+    size = np.linalg.norm(scaled, axis=(-2, -1))
+    bad = defect > SYMMETRY_TOL * np.maximum(size, np.finfo(float).tiny)
+    if bad.any():
+        worst = float(np.max(np.where(bad, defect / np.where(size > 0, size, 1.0), 0.0)))
+        kind = "symmetric" if _SIGNS[name] == 1 else "skew-symmetric"
+        raise ParameterError(name, f"must be {kind}; relative defect {worst:.2e} > {SYMMETRY_TOL:g}")
+    return (a + mirrored) / 2
+
+
+def _check_mass(M: np.ndarray, dof_names: tuple[str, ...]) -> None:
+    """SingularMassError at the first M of the stack (or the one M) that is not positive definite."""
+    if M.ndim == 2:
+        definite = _positive_definite(M)
+    else:
+        try:
+            np.linalg.cholesky(M)  # the whole stack in one call
+            definite = True
+        except np.linalg.LinAlgError:
+            definite = False
+    if definite:
+        return
+    for Mi in M.reshape(-1, *M.shape[-2:]):
+        if not _positive_definite(Mi):
+            smallest, weak = null_motion(Mi, dof_names)
+            raise SingularMassError(
+                f"the mass matrix is not positive definite (smallest eigenvalue {smallest:.3g}); "
+                f"the coordinates {weak} carry no inertia",
+                weak,
+            )
+
+
+def _positive_definite(M: np.ndarray) -> bool:
+    """One Cholesky factorization of M (n, n) succeeds."""
+    return lapack.dpotrf(M, lower=True, clean=False)[1] == 0
