@@ -416,3 +416,13 @@ def test_ground_contacts_and_scene_replace(four_bar, four_bar_scene):
     assert_allclose(c.target, [0.7, 0.0, 0.0], atol=1e-12)  # the loop is closed at that q
     assert four_bar_scene.replace(gravity=(0, 0, 0)).constraints == four_bar_scene.constraints
     assert "1 constraints (m = 3)" in repr(four_bar_scene)
+
+
+def test_close_loops_old_tol_keyword_warns_and_still_works(four_bar_scene):
+    with pytest.warns(DeprecationWarning, match=r"close_loops\(tol=...\) is deprecated .* use closure_tol=..."):
+        old = pinlin.close_loops(four_bar_scene, np.zeros(3), tol=1e-9)
+    new = pinlin.close_loops(four_bar_scene, np.zeros(3), closure_tol=1e-9)
+    np.testing.assert_array_equal(old.q, new.q)
+    assert new.gap <= 1e-9
+    with pytest.raises(pinlin.ParameterError, match="closure_tol: must be a positive number"):
+        pinlin.close_loops(four_bar_scene, np.zeros(3), closure_tol=float("nan"))

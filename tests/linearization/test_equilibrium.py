@@ -180,3 +180,14 @@ def test_zero_quaternion_is_not_taken_as_the_identity():
     q0[3:7] = 0.0
     with pytest.raises(pinlin.ConfigurationError, match=r"q0\[3:7\] = \[0.0, 0.0, 0.0, 0.0\] of joint 'root_joint' is not"):
         pinlin.find_equilibrium(pinlin.Scene(robot, gravity=(0, 0, 0)), q0)
+
+
+def test_find_equilibrium_old_tol_keyword_warns_and_still_works():
+    scene = double_pendulum()
+    with pytest.warns(DeprecationWarning, match=r"find_equilibrium\(tol=...\) is deprecated .* use rtol=..."):
+        old = pinlin.find_equilibrium(scene, np.array([0.1, -0.1]), tol=1e-10)
+    new = pinlin.find_equilibrium(scene, np.array([0.1, -0.1]), rtol=1e-10)
+    np.testing.assert_array_equal(old.q, new.q)
+    assert new.relative_residual <= 1e-10
+    with pytest.raises(pinlin.ParameterError, match="rtol: must be a positive number"):
+        pinlin.find_equilibrium(scene, rtol=0.0)

@@ -21,6 +21,7 @@ than the stacking cost).
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 import pinocchio as pin
@@ -30,7 +31,7 @@ from ..model.evaluation import BatchPoints
 from ..model.scene import UNIT_NORM_MIN, Scene
 from . import batch_moving, batch_static
 from .linearize import linearize
-from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, LinearizeOptions
 from .periodicity import refuse_motions
 from .plan import plan_of
 from .system import LinearizedSystem
@@ -102,7 +103,7 @@ def linearize_many(
         decides.
     """
     t0 = time.perf_counter()
-    check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    options = LinearizeOptions(balancing, equilibrium_tol, structure_tol, periodic_tol, constraint_tol, rank_tol)
     if scene.motions:  # time-periodic: as linearize refuses it
         refuse_motions(scene)
     rows = _rows(scene, qs)
@@ -111,17 +112,20 @@ def linearize_many(
     elif batch_moving.applies(scene, periodic_tol):
         path = batch_moving.linearize_moving
     else:
-        options = dict(balancing=balancing, equilibrium_tol=equilibrium_tol, structure_tol=structure_tol,
-                       periodic_tol=periodic_tol, constraint_tol=constraint_tol, rank_tol=rank_tol)  # fmt: skip
-        return tuple(linearize(scene, q, **options) for q in rows)
+        return tuple(
+            linearize(scene, q, balancing=balancing, equilibrium_tol=equilibrium_tol, structure_tol=structure_tol,
+                      periodic_tol=periodic_tol, constraint_tol=constraint_tol, rank_tol=rank_tol)
+            for q in rows
+        )  # fmt: skip
     points = configurations(scene, rows)
-    tol = plan_of(scene).structure_tol if structure_tol is None else float(structure_tol)
+    if structure_tol is None:  # the scene's default: fixed once for the batch
+        options = replace(options, structure_tol=plan_of(scene).structure_tol)
     step = max(1, CHUNK_ENTRIES // scene.model.nv**2)
     batch = BatchPoints(points)  # what the element groups compute once for every chunk
     systems: tuple[LinearizedSystem, ...] = ()
     for start in range(0, len(points), step):  # the first chunk's time includes the checks above
         chunk = batch.chunk(start, start + step)
-        systems += path(scene, points[chunk.rows], equilibrium_tol, tol, balancing, t0, time.perf_counter, chunk)
+        systems += path(scene, points[chunk.rows], options, t0, time.perf_counter, chunk)
         t0 = time.perf_counter()
     return systems
 

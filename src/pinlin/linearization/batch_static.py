@@ -29,6 +29,7 @@ from ..model.evaluation import BatchPoints, crba_is_symmetric, live_view, worksp
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .batch_common import TINY, build_systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
+from .options import LinearizeOptions
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -85,12 +86,14 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
     return tau, K, M, calls
 
 
-def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
-                      elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+def linearize_at_rest(scene: Scene, qs: np.ndarray, options: LinearizeOptions, elapsed0: float, clock,
+                      batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
     """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
 
-    ``batch``: the call's points, qs its chunk (the element groups' work shared by the chunks).
+    ``options``: its ``structure_tol`` set (not None); ``batch``: the call's points, qs its chunk (the
+    element groups' work shared by the chunks).
     """
+    equilibrium_tol, tol, balancing = options.equilibrium_tol, options.structure_tol, options.balancing
     plan = plan_of(scene)
     tau, K, M, calls = _pinocchio(scene, qs)
     scale_K = norms(K)

@@ -49,8 +49,6 @@ from ..model.scene import Scene
 from ..numerics.norms import fro
 from .constrained_structure import structurally_redundant
 from .constraint_set import (
-    CONSTRAINT_TOL,
-    RANK_TOL,
     check_motion_left,
     constrained_point,
     constraint_forces,
@@ -59,7 +57,7 @@ from .constraint_set import (
     relative_residual,
 )
 from .coordinates import PIVOTED_METHOD, coordinate_basis, pivoted_basis
-from .options import EQUILIBRIUM_TOL
+from .options import LinearizeOptions
 from .plan import STRUCTURE_EPS_FACTOR
 from .singularity import check_regular
 from .state_form import null_motion
@@ -82,22 +80,13 @@ COORDINATE_CONDITION_WARN = 1e4
 #: What sys.notes says about contacts (the linearization keeps them bilateral).
 BILATERAL_NOTE = "contacts are treated as bilateral (the stance linearization): they neither lift off nor slide"
 
-def linearize_constrained(
-    scene: Scene,
-    q,
-    *,
-    coordinates=None,
-    balancing: bool = False,
-    equilibrium_tol: float = EQUILIBRIUM_TOL,
-    structure_tol: float | None = None,
-    constraint_tol: float = CONSTRAINT_TOL,
-    rank_tol: float = RANK_TOL,
-) -> LinearizedSystem:
+def linearize_constrained(scene: Scene, q: np.ndarray, coordinates, options: LinearizeOptions) -> LinearizedSystem:
     """The linearized equations of a scene with constraints in independent coordinates (theory: constraints).
 
     Called by :func:`pinlin.linearize` for scenes with constraints, with ``q``
     already checked (:meth:`Scene.check_configuration`); see there for the
-    parameters, and the module docstring for the mathematics.
+    parameters (``options`` holds the checked tolerances), and the module docstring for the
+    mathematics.
 
     Raises
     ------
@@ -120,7 +109,9 @@ def linearize_constrained(
         The coordinates are nearly singular: cond(J_d) > :data:`COORDINATE_CONDITION_WARN`.
     """
     t0 = time.perf_counter()
-    state = evaluate_constraints(scene, q, rank_tol=rank_tol)
+    balancing, equilibrium_tol, constraint_tol = options.balancing, options.equilibrium_tol, options.constraint_tol
+    structure_tol = options.structure_tol
+    state = evaluate_constraints(scene, q, rank_tol=options.rank_tol)
     calls = list(state.calls)
     gap, rot, worst = state.gaps()
     if gap > constraint_tol or rot > constraint_tol:

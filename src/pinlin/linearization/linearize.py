@@ -23,7 +23,7 @@ from ..model.scene import Scene
 from .assembly import Assembly, assemble
 from .checks import check_equilibrium, check_finite_and_mass
 from .constrained import linearize_constrained
-from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, LinearizeOptions
 from .periodicity import PERIODIC_TEST_ANGLES, numeric_change, refuse_motions
 from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan, plan_of
 from .split import split_damping as _split_damping
@@ -144,12 +144,9 @@ def linearize(
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
-    check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    options = LinearizeOptions(balancing, equilibrium_tol, structure_tol, periodic_tol, constraint_tol, rank_tol)
     if scene.constraints:
-        return linearize_constrained(
-            scene, q, coordinates=coordinates, balancing=balancing, equilibrium_tol=equilibrium_tol,
-            structure_tol=structure_tol, constraint_tol=constraint_tol, rank_tol=rank_tol,
-        )  # fmt: skip
+        return linearize_constrained(scene, q, coordinates, options)
     if coordinates is not None:
         raise ParameterError("coordinates", "applies to scenes with constraints only; this scene has none")
     if scene.motions:
