@@ -1,4 +1,4 @@
-"""linearize_many: one scene at many configurations equals linearize point by point, bitwise (issue 14)."""
+"""linearize_many: one scene at many configurations equals linearize point by point, bitwise."""
 
 import numpy as np
 import pinocchio as pin

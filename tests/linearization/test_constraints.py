@@ -1,5 +1,5 @@
 """Constraints: Jacobians and constraint stiffness by finite differences, assembly, KKT equilibrium,
-coordinates, contacts and every bad-input path (theory: constraints, issue 11)."""
+coordinates, contacts and every bad-input path (theory: constraints)."""
 
 import math
 
@@ -226,7 +226,7 @@ def test_constraint_stiffness_is_subtracted(four_bar_scene):
     assert_allclose(sys.K, B.T @ (K - pinlin.constraint_stiffness(four_bar_scene, q, lam)) @ B, rtol=1e-12)
 
 
-# ----------------------------------------------------------------------------- bad input (issue 11, item 7)
+# ----------------------------------------------------------------------------- bad input
 
 
 def test_unknown_frames(four_bar):
@@ -348,7 +348,7 @@ def test_contact_that_must_pull():
 
 
 def test_the_verdict_quotes_a_violated_contact():
-    """Issue 11 part 5: the stability verdict's reason says the contact would have to pull (the linearization
+    """The stability verdict's reason says the contact would have to pull (the linearization
     keeps it bilateral); a contact that holds adds nothing to the reason."""
     scene = _box_on_ground(push=(0.0, 0.0, 20.0))
     eq = pinlin.find_equilibrium(scene, scene.neutral())
@@ -368,7 +368,7 @@ def test_contact_that_would_slip():
     assert any("needs friction coefficient 0.612 > mu = 0.5" in n for n in eq.notes)
 
 
-# ----------------------------------------------------------------------------- downstream (issue 11, part 6)
+# ----------------------------------------------------------------------------- downstream analyses
 
 
 def test_downstream_analyses_of_a_constrained_system(four_bar_scene):

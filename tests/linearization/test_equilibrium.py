@@ -128,7 +128,7 @@ def test_equilibrium_result_convention():
     assert len(repr(sys).splitlines()) == 1
 
 
-# --- bad input gets a clear error, never a history of inf and a "relative nan" (issue 13, item 9)
+# --- bad input gets a clear error, never a history of inf and a "relative nan"
 
 SLIDER = """<robot name="slider"><link name="world_link"/>
   <link name="block"><inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>

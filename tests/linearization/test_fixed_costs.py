@@ -1,4 +1,4 @@
-"""linearize's fixed costs paid once per scene (issue 27 part 3): each cheaper route against the general one.
+"""linearize's fixed costs paid once per scene: each cheaper route against the general one.
 
 The mirror of Pinocchio's upper-triangular M by flat indices against ``np.where``,
 the split of a block view against the split of its copy, and halving by the 0-d

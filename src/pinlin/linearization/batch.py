@@ -1,4 +1,4 @@
-"""Linearization at many configurations of one scene (issue 14): :func:`linearize_many`.
+"""Linearization at many configurations of one scene: :func:`linearize_many`.
 
 A parameter study or a gain schedule linearizes one scene at many q.  Called
 point by point, :func:`~pinlin.linearization.linearize.linearize` pays per point

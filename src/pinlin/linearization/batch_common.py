@@ -69,13 +69,10 @@ def halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """((A^T + A) / 2, A - A^T) of each A[p] of a stack (P, n, n): :func:`~.split.split_stiffness`'s arithmetic.
 
     The same operations, entry by entry, as the single call's split; both results
-    are fresh C-contiguous stacks.
+    are new stacks.
     """
-    T = A.transpose(0, 2, 1).copy()
-    difference = A - T
-    T += A
-    T *= 0.5
-    return T, difference
+    At = A.transpose(0, 2, 1)
+    return (A + At) / 2, A - At
 
 
 def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray]:

@@ -192,7 +192,7 @@ class ConstraintState:
         rot = 0.0
         if len(scene.rotation_rows):
             R = self.phi[scene.rotation_rows]
-            rot = math.sqrt(float(np.maximum.reduce(np.add.reduce(R * R, axis=1))))
+            rot = math.sqrt(float((R * R).sum(axis=1).max()))
         return math.sqrt(largest), rot, scene.constraints[worst].label
 
     def contacts_violated(self, lam: np.ndarray) -> bool:

@@ -1,4 +1,4 @@
-"""What a linearization of one scene runs, decided once per scene (issue 14).
+"""What a linearization of one scene runs, decided once per scene.
 
 A :class:`~pinlin.Scene` is immutable, so everything :func:`pinlin.linearize`
 decides without looking at q is decided once, on first use, and kept by this
