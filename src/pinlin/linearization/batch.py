@@ -101,6 +101,14 @@ def linearize_many(
         points of a chunk (every residual, then finite entries, then every mass
         matrix), so with several bad points in one chunk the first failing stage
         decides.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> systems = pinlin.linearize_many(scene, np.zeros((3, 2)))
+    >>> len(systems), np.array_equal(systems[2].K, pinlin.linearize(scene, np.zeros(2)).K)
+    (3, True)
     """
     t0 = time.perf_counter()
     options = LinearizeOptions(balancing, equilibrium_tol, structure_tol, periodic_tol, constraint_tol, rank_tol)

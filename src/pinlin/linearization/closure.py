@@ -68,6 +68,15 @@ class ClosureResult(Result):
         The headline error figure: ``gap`` [m] (absolute).
     held : tuple of str
         Joints kept where they were.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> closed = pinlin.close_loops(scene, np.array([0.3, 0.0, 0.0]), hold=["crank_joint"])
+    >>> closed.held, bool(closed.error == closed.gap <= 1e-12), closed.initial_gap > 0.01
+    (('crank_joint',), True, True)
     """
 
     q: np.ndarray
@@ -202,6 +211,15 @@ def close_loops(
     LoopClosureError
         The targets cannot be reached from q0: the message and ``gap`` say by how many
         metres (and radians) the closest configuration found misses them.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> closed = pinlin.close_loops(scene, np.array([0.3, 0.0, 0.0]), hold=["crank_joint"])
+    >>> bool(closed.gap <= 1e-12), closed.iterations > 0, float(closed.q[0])
+    (True, True, 0.3)
     """
     t0 = time.perf_counter()
     if not scene.constraints:

@@ -215,6 +215,16 @@ def constraint_stiffness(scene: Scene, q, lam) -> np.ndarray:
         No constraints, or lam of the wrong size.
     ConfigurationError
         q has the wrong size or is not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> eq = pinlin.find_equilibrium(scene, np.zeros(3))
+    >>> K_lambda = pinlin.constraint_stiffness(scene, eq.q, eq.constraint_forces[0].force)
+    >>> K_lambda.shape, bool(np.allclose(K_lambda, K_lambda.T))
+    ((3, 3), True)
     """
     if not scene.constraints:
         raise ParameterError("scene", "has no constraints")

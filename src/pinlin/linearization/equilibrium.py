@@ -74,6 +74,13 @@ def equilibrium_residual(scene: Scene, q) -> np.ndarray:
     ------
     ConfigurationError
         q has the wrong size or is not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> pinlin.equilibrium_residual(scene, np.zeros(2))  # hanging straight down: balanced
+    array([0., 0.])
     """
     q = scene.check_configuration(q)
     return assemble(scene, q, stiffness=False).residual[scene.free_dofs]
@@ -131,6 +138,14 @@ def find_equilibrium(
         (With constraints) the constraints cannot be closed from q0.
     TimePeriodicError
         The scene has periodic prescribed motions (use :func:`pinlin.periodic_orbit`).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0, rest=0.2)])
+    >>> eq = pinlin.find_equilibrium(scene, np.zeros(2))
+    >>> np.round(eq.q, 6), bool(eq.relative_residual <= 1e-12)
+    (array([ 0.043987, -0.043987]), True)
     """
     check_solver_parameters(rtol, max_iterations, min_step)
     if scene.motions:  # no steady equilibrium: the periodic reference motion is pinlin.periodic_orbit's

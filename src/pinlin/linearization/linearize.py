@@ -141,6 +141,17 @@ def linearize(
         The constraints leave no motion (rank J_c = nv).
     SingularConstraintError
         J_c loses rank at q (a linkage at a toggle or change point), naming the constraints.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> sys.n, sys.nonzero, sys.calls
+    (2, ('M', 'S'), ('computeGeneralizedGravityDerivatives', 'crba'))
+    >>> np.round(sys.K, 4)
+    array([[15.8511,  2.2073],
+           [ 2.2073,  2.2073]])
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
@@ -224,6 +235,14 @@ def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:
         Its frame is not in the robot.
     ConfigurationError
         q has the wrong size or is not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> wrench = pinlin.FollowerWrench("tip", force=(1.0, 0.0, 0.0))
+    >>> pinlin.generalized_force(scene, np.zeros(2), wrench)  # [N m]: the tip is 1.2 m and 0.5 m out
+    array([-1.2, -0.5])
     """
     if not isinstance(wrench, WrenchElement):
         raise ParameterError("wrench", f"expected a FollowerWrench or DeadWrench, got {wrench!r}")

@@ -14,7 +14,7 @@ import scipy.linalg.lapack as lapack
 from ..errors import ParameterError, SingularMassError
 from .state_form import null_motion
 
-__all__ = ["MATRIX_NAMES", "SYMMETRY_TOL", "checked_matrices"]
+__all__ = ["MATRIX_NAMES", "SYMMETRY_TOL", "checked_matrices", "checked_basis", "square_matrix", "copied", "taken"]
 
 #: The five matrices of the linearized equation, in the paper's order.
 MATRIX_NAMES = ("M", "D", "G", "S", "N")
@@ -128,3 +128,41 @@ def _check_mass(M: np.ndarray, dof_names: tuple[str, ...]) -> None:
 def _positive_definite(M: np.ndarray) -> bool:
     """One Cholesky factorization of M (n, n) succeeds."""
     return lapack.dpotrf(M, lower=True, clean=False)[1] == 0
+
+
+def square_matrix(name: str, value) -> np.ndarray:
+    """A float copy of a square matrix given to the constructor."""
+    try:
+        a = np.array(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(name, "expected a real matrix") from None
+    if a.ndim != 2 or a.shape[0] != a.shape[1]:
+        raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
+    return a
+
+
+def copied(a) -> np.ndarray | None:
+    """A float copy (None stays None)."""
+    return None if a is None else np.array(a, dtype=float)
+
+
+def taken(a) -> np.ndarray | None:
+    """``a`` itself made read-only (None stays None): builders hand over arrays nobody else writes to."""
+    if a is not None and a.flags.writeable:
+        a.flags.writeable = False
+    return a
+
+
+def checked_basis(basis, basis_names, n: int) -> np.ndarray | None:
+    """The basis of ker J_c (nv, n), checked and read-only, or None."""
+    if basis is None:
+        return None
+    try:
+        B = np.asarray(basis, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError("basis", "expected a real matrix") from None
+    if B.ndim != 2 or B.shape[1] != n or not np.all(np.isfinite(B)):
+        raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
+    if basis_names and len(basis_names) != B.shape[0]:
+        raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(basis_names)}")
+    return taken(B)

@@ -15,15 +15,10 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..results import Result
-from .matrices import MATRIX_NAMES, SYMMETRY_TOL, checked_matrices
+from .matrices import MATRIX_NAMES, SYMMETRY_TOL, checked_basis, checked_matrices, copied, square_matrix, taken
 from .state_form import first_order_form
 
 __all__ = ["LinearizedSystem", "check_system", "MATRIX_NAMES", "SYMMETRY_TOL"]
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a.setflags(write=False)
-    return a
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -37,21 +32,14 @@ class LinearizedSystem(Result):
 
     Attributes
     ----------
-    M : (n, n) ndarray
-        Mass matrix, symmetric positive definite [kg, kg m^2].
-    D : (n, n) ndarray
-        Damping, symmetric.
-    G : (n, n) ndarray
-        Gyroscopic, skew-symmetric.
-    S : (n, n) ndarray
-        Stiffness, symmetric.
-    N : (n, n) ndarray
-        Circulatory, skew-symmetric.
+    M, D, S : (n, n) ndarray
+        Mass (symmetric positive definite [kg, kg m^2]), damping and stiffness (symmetric).
+    G, N : (n, n) ndarray
+        Gyroscopic and circulatory, skew-symmetric.
     dof_names : tuple of str
         Name of each coordinate.
     q, v : ndarray or None
-        The operating point (full Pinocchio configuration and velocity, prescribed
-        joints included) when built from a scene.
+        The operating point (full configuration and velocity) when built from a scene.
     residual : float
         Relative equilibrium residual at q (0 for plain matrices).
     balancing : ndarray or None
@@ -62,9 +50,8 @@ class LinearizedSystem(Result):
         How it was built: ``"analytic"`` (Pinocchio's analytic derivatives and the
         elements' own, :func:`pinlin.linearize`) or ``"matrices"`` (given).
     error : float
-        The headline error figure: the relative equilibrium residual at q (how far
-        q is from the operating point the matrices assume; 0 for given matrices).
-        The rounding left in the matrices is at the level of ``dropped``.
+        The headline error figure: ``residual`` (the rounding left in the matrices
+        is at the level of ``dropped``).
     calls : tuple of str
         Pinocchio algorithms run to build it, in order.
     dropped : mapping
@@ -73,20 +60,15 @@ class LinearizedSystem(Result):
     notes : tuple of str
         Anything the builder wants the user to know.
     basis : (nv, n) ndarray or None
-        For a scene with constraints (theory: constraints): the basis B of ker J_c
-        with joint velocities = ``basis @ z`` (z the coordinates, ``dof_names``);
-        ``expand`` maps mode shapes and responses to all joints.  None without
-        constraints (the coordinates are the free joints themselves).
+        With constraints (theory: constraints): the basis B of ker J_c, joint
+        velocities = ``basis @ z`` (``expand``); None without constraints.
     basis_names : tuple of str
-        Names of the rows of ``basis`` (the robot's degrees of freedom); empty
-        without constraints.
+        Names of the rows of ``basis`` (the robot's degrees of freedom), or empty.
     basis_condition : float or None
         cond(J_d) of the joints that follow the coordinates (1 for an orthonormal
-        basis); it grows without bound near a position where the chosen
-        coordinates cannot drive the mechanism.  None without constraints.
+        basis; unbounded where they cannot drive the mechanism), or None.
     constraint_forces : tuple of ConstraintForce
-        The constraint forces at q (world axes, on each constraint's frame), in
-        scene order; empty without constraints.
+        The constraint forces at q (world axes, on each constraint's frame), or empty.
 
     Raises
     ------
@@ -94,6 +76,15 @@ class LinearizedSystem(Result):
         Matrices of the wrong shape, non-finite, or violating their symmetry.
     SingularMassError
         M is not positive definite.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, 1.0], [0.0, 3.0]])
+    >>> sys
+    LinearizedSystem(n=2, dofs=('x1', 'x2'), nonzero=M+D+S+N, method='matrices', error=0.0e+00)
+    >>> sys.N
+    array([[ 0. ,  0.5],
+           [-0.5,  0. ]])
     """
 
     M: np.ndarray
@@ -117,14 +108,14 @@ class LinearizedSystem(Result):
     constraint_forces: tuple = ()
 
     def __post_init__(self):
-        matrices = {name: _matrix(name, getattr(self, name)) for name in MATRIX_NAMES}
+        matrices = {name: square_matrix(name, getattr(self, name)) for name in MATRIX_NAMES}
         n = matrices["M"].shape[0]
         names = tuple(str(s) for s in self.dof_names) or tuple(f"x{i + 1}" for i in range(n))
         (system,) = type(self).stack(
-            **matrices, dof_names=names, q=None if self.q is None else _copy(self.q)[None], v=_copy(self.v),
-            residual=[self.residual], balancing=None if self.balancing is None else _copy(self.balancing)[None],
+            **matrices, dof_names=names, q=None if self.q is None else copied(self.q)[None], v=copied(self.v),
+            residual=[self.residual], balancing=None if self.balancing is None else copied(self.balancing)[None],
             elapsed=self.elapsed, calls=self.calls, dropped=[dict(self.dropped)], notes=[tuple(self.notes)],
-            method=self.method, basis=_copy(self.basis), basis_names=self.basis_names,
+            method=self.method, basis=copied(self.basis), basis_names=self.basis_names,
             basis_condition=self.basis_condition, constraint_forces=self.constraint_forces,
         )  # fmt: skip
         self.__dict__.update(vars(system))
@@ -151,6 +142,12 @@ class LinearizedSystem(Result):
             Not real square matrices of one shape, non-finite entries, bad ``dof_names``.
         SingularMassError
             M is not positive definite.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.diag([1.0, 4.0]), dof_names=("a", "b"))
+        >>> sys.dof_names, sys.nonzero
+        (('a', 'b'), ('M', 'S'))
         """
         for name, a in (("M", M), ("C", C), ("K", K)):  # numpy would drop the imaginary part with a warning
             try:
@@ -232,13 +229,13 @@ class LinearizedSystem(Result):
         n = matrices["M"].shape[-1]
         template = dict.fromkeys(_FIELDS)  # the attributes in field order: shared ones now, the others per point
         template.update(
-            dof_names=names, v=_taken(v), elapsed=elapsed, calls=tuple(calls), method=method,
-            basis=_checked_basis(basis, basis_names, n), basis_names=tuple(str(x) for x in basis_names),
+            dof_names=names, v=taken(v), elapsed=elapsed, calls=tuple(calls), method=method,
+            basis=checked_basis(basis, basis_names, n), basis_names=tuple(str(x) for x in basis_names),
             basis_condition=basis_condition, constraint_forces=tuple(constraint_forces),
         )  # fmt: skip
         per_point = {name: repeat(a) if a.ndim == 2 else a for name, a in matrices.items()}
-        per_point["q"] = repeat(None) if q is None else _taken(q)
-        per_point["balancing"] = repeat(None) if balancing is None else _taken(balancing)
+        per_point["q"] = repeat(None) if q is None else taken(q)
+        per_point["balancing"] = repeat(None) if balancing is None else taken(balancing)
         per_point["residual"], per_point["dropped"], per_point["notes"] = residual, dropped, notes
         keys, out = tuple(per_point), []
         for values in zip(*per_point.values()):
@@ -251,16 +248,25 @@ class LinearizedSystem(Result):
 
     @cached_property
     def C(self) -> np.ndarray:
-        """C = D + G (n x n), read-only; formed on first access."""
-        return _frozen(self.D + self.G)
+        """C = D + G (n x n), read-only; formed on first access.
+        """
+        return taken(self.D + self.G)
 
     @cached_property
     def K(self) -> np.ndarray:
-        """K = S + N (n x n), read-only; formed on first access."""
-        return _frozen(self.S + self.N)
+        """K = S + N (n x n), read-only; formed on first access.
+        """
+        return taken(self.S + self.N)
 
     def replace(self, **changes) -> LinearizedSystem:
-        """A copy with some fields changed (validated again)."""
+        """A copy with some fields changed (validated again).
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.eye(2))
+        >>> sys.replace(dof_names=("a", "b")).dof_names
+        ('a', 'b')
+        """
         changes.pop("C", None)
         changes.pop("K", None)
         return dataclasses.replace(self, **changes)
@@ -269,23 +275,38 @@ class LinearizedSystem(Result):
 
     @property
     def error(self) -> float:
-        """The relative equilibrium residual at q (0 for given matrices); see the class docstring."""
+        """The relative equilibrium residual at q (0 for given matrices); see the class docstring.
+        """
         return float(self.residual)
 
     @property
     def n(self) -> int:
-        """Number of coordinates."""
+        """Number of coordinates.
+        """
         return self.M.shape[0]
 
     def is_zero(self, name: str) -> bool:
-        """True when matrix ``name`` (one of M, D, G, S, N, C, K) is exactly zero."""
+        """True when matrix ``name`` (one of M, D, G, S, N, C, K) is exactly zero.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.eye(2))
+        >>> sys.is_zero("G"), sys.is_zero("K")
+        (True, False)
+        """
         if name not in MATRIX_NAMES + ("C", "K"):
             raise ParameterError("name", f"expected one of {MATRIX_NAMES + ('C', 'K')}, got {name!r}")
         return not np.any(getattr(self, name))
 
     @property
     def nonzero(self) -> tuple[str, ...]:
-        """Names of the matrices among M, D, G, S, N that are not exactly zero."""
+        """Names of the matrices among M, D, G, S, N that are not exactly zero.
+
+        Examples
+        --------
+        >>> pinlin.LinearizedSystem.from_matrices(np.eye(2), [[0.0, 1.0], [-1.0, 0.0]]).nonzero
+        ('M', 'G')
+        """
         return tuple(name for name in MATRIX_NAMES if not self.is_zero(name))
 
     def expand(self, x) -> np.ndarray:
@@ -302,6 +323,12 @@ class LinearizedSystem(Result):
         ------
         ParameterError
             The first axis of x is not of length n.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2))
+        >>> sys.expand(np.array([1.0, 2.0]))  # no constraints: x itself (a copy)
+        array([1., 2.])
         """
         x = np.asarray(x)
         if x.ndim == 0 or x.shape[0] != self.n:
@@ -321,7 +348,14 @@ class LinearizedSystem(Result):
     # ------------------------------------------------------------------ dynamic stiffness
 
     def dynamic_stiffness(self, lam) -> np.ndarray:
-        """L(lam) = lam^2 M + lam C + K: (n, n) for a scalar, (len(lam), n, n) for an array."""
+        """L(lam) = lam^2 M + lam C + K: (n, n) for a scalar, (len(lam), n, n) for an array.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(1), [[0.5]], [[4.0]])
+        >>> sys.dynamic_stiffness(2.0), sys.dynamic_stiffness([1.0, 2.0]).shape
+        (array([[9.]]), (2, 1, 1))
+        """
         lam = np.asarray(lam)
         if lam.ndim == 0:
             return lam * lam * self.M + lam * self.C + self.K
@@ -343,43 +377,6 @@ _FIELDS = tuple(f.name for f in dataclasses.fields(LinearizedSystem))
 LinearizedSystem._dict_fields = _FIELDS + ("C", "K")
 
 
-def _matrix(name: str, value) -> np.ndarray:
-    """A float copy of a square matrix given to the constructor."""
-    try:
-        a = np.array(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(name, "expected a real matrix") from None
-    if a.ndim != 2 or a.shape[0] != a.shape[1]:
-        raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
-    return a
-
-
-def _copy(a) -> np.ndarray | None:
-    """A float copy (None stays None)."""
-    return None if a is None else np.array(a, dtype=float)
-
-
-def _taken(a) -> np.ndarray | None:
-    """``a`` itself made read-only (None stays None): builders hand over arrays nobody else writes to."""
-    if a is not None and a.flags.writeable:
-        a.flags.writeable = False
-    return a
-
-
-def _checked_basis(basis, basis_names, n: int) -> np.ndarray | None:
-    """The basis of ker J_c (nv, n), checked and read-only, or None."""
-    if basis is None:
-        return None
-    try:
-        B = np.asarray(basis, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError("basis", "expected a real matrix") from None
-    if B.ndim != 2 or B.shape[1] != n or not np.all(np.isfinite(B)):
-        raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
-    if basis_names and len(basis_names) != B.shape[0]:
-        raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(basis_names)}")
-    return _taken(B)
-
 def check_system(sys) -> LinearizedSystem:
     """``sys`` itself if it is a :class:`~pinlin.LinearizedSystem`.
 
@@ -387,6 +384,12 @@ def check_system(sys) -> LinearizedSystem:
     ------
     ParameterError
         ``sys`` is anything else.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(1))
+    >>> check_system(sys) is sys
+    True
     """
     if not isinstance(sys, LinearizedSystem):
         raise ParameterError(
