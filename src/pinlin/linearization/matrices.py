@@ -74,7 +74,8 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
     for names in groups:
         X = np.stack([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]][None]
         signs = np.array([_SIGNS[name] for name in names], dtype=float).reshape((-1,) + (1,) * (X.ndim - 1))
-        exact = bool(np.isfinite(X).all() and (X == signs * X.swapaxes(-1, -2)).all())
+        # X - mirrored is exactly zero only where X is exactly (skew-)symmetric and finite: inf - inf and NaN are NaN
+        exact = not (X - signs * X.swapaxes(-1, -2)).any()
         for name in names:
             out[name] = stacks[name] if exact else _symmetric(name, stacks[name])
             out[name].flags.writeable = False  # taken over

@@ -115,7 +115,7 @@ class LinearizedSystem(Result):
             **matrices, dof_names=names, q=None if self.q is None else copied(self.q)[None], v=copied(self.v),
             residual=[self.residual], balancing=None if self.balancing is None else copied(self.balancing)[None],
             elapsed=self.elapsed, calls=self.calls, dropped=[dict(self.dropped)], notes=[tuple(self.notes)],
-            method=self.method, basis=copied(self.basis), basis_names=self.basis_names,
+            method=self.method, basis=copied(self.basis), basis_names=tuple(str(x) for x in self.basis_names),
             basis_condition=self.basis_condition, constraint_forces=self.constraint_forces,
         )  # fmt: skip
         self.__dict__.update(vars(system))
@@ -224,13 +224,13 @@ class LinearizedSystem(Result):
         >>> [float(s.M[0, 0]) for s in systems]
         [1.0, 2.0]
         """
-        names = tuple(str(s) for s in dof_names)
+        names = tuple(dof_names)
         matrices = checked_matrices({"M": M, "D": D, "G": G, "S": S, "N": N}, names)
         n = matrices["M"].shape[-1]
         template = dict.fromkeys(_FIELDS)  # the attributes in field order: shared ones now, the others per point
         template.update(
             dof_names=names, v=taken(v), elapsed=elapsed, calls=tuple(calls), method=method,
-            basis=checked_basis(basis, basis_names, n), basis_names=tuple(str(x) for x in basis_names),
+            basis=checked_basis(basis, basis_names, n), basis_names=tuple(basis_names),
             basis_condition=basis_condition, constraint_forces=tuple(constraint_forces),
         )  # fmt: skip
         per_point = {name: repeat(a) if a.ndim == 2 else a for name, a in matrices.items()}

@@ -144,7 +144,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 #: The index of the next and the previous axis: (a x b)_i = a_{i+1} b_{i-1} - a_{i-1} b_{i+1}.
-_NEXT, _PREVIOUS = [1, 2, 0], [2, 0, 1]
+_NEXT, _PREVIOUS = np.array([1, 2, 0]), np.array([2, 0, 1])
 
 
 class JointLog:
