@@ -11,7 +11,6 @@ import pytest
 
 import pinlin
 from pinlin.linearization import batch_moving, batch_static
-from pinlin.linearization.plan import plan_of
 from pinlin.linearization.system import LinearizedSystem
 from pinlin.linearization.split import split_stiffness
 from pinlin.model.evaluation import live_view, symmetric_from_upper, workspace
