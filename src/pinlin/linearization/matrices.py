@@ -72,7 +72,7 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
     groups = [shared] * bool(shared) + [[name] for name, a in stacks.items() if a.ndim == 3]
     out = {}
     for names in groups:
-        X = np.stack([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]][None]
+        X = np.array([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]][None]  # (k, ..., n, n)
         signs = np.array([_SIGNS[name] for name in names], dtype=float).reshape((-1,) + (1,) * (X.ndim - 1))
         # X - mirrored is exactly zero only where X is exactly (skew-)symmetric and finite: inf - inf and NaN are NaN
         exact = not (X - signs * X.swapaxes(-1, -2)).any()
