@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import numpy as np
 
-from ..errors import ComputationError
+from ..errors import ComputationError, SingularMassError
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .assembly import Assembly
@@ -26,7 +26,7 @@ from .checks import check_equilibrium, check_finite_and_mass, check_mass
 from .plan import plan_of
 from .system import LinearizedSystem
 
-__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "rows_or_zero",
+__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "check_points", "rows_or_zero",
            "build_systems", "TINY"]
 
 TINY = float(np.finfo(float).tiny)
@@ -35,13 +35,6 @@ TINY = float(np.finfo(float).tiny)
 #: taken again with the single call's ``fro`` before the comparison: the two norms differ by a
 #: few rounding errors of a sum of squares (about 1e-16 relative), far below this margin.
 DECISION_MARGIN = 1e-12
-
-
-#: A mass matrix passes the stacked Cholesky check outright when every pivot satisfies
-#: L_jj^2 >= PIVOT_MARGIN M_jj; a Cholesky factorization's pivots are off by about n eps M_jj, so
-#: any LAPACK's (the single call's is scipy's, the stack's numpy's) succeeds on it too.  Closer
-#: ones go through the single call's check.
-PIVOT_MARGIN = 1e-8
 
 
 def norms(X: np.ndarray) -> np.ndarray:
@@ -92,12 +85,13 @@ def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray
 
 
 def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, balancing: bool) -> None:
-    """The single call's equilibrium, finite-entry and mass checks on all points; its own errors at the first bad one.
+    """The single call's equilibrium and finite-entry checks on all points; its own errors at the first bad one.
 
     ``residual`` (P, nv) holds the residuals on all coordinates, ``rel`` (P,) their
     relative sizes on the free ones, ``M`` (P, n, n) the mass matrices and ``C`` the
     damping matrices (P, n, n), or one (n, n) matrix for all points.  The checks run
-    stage by stage (every residual, then finite entries, then every mass matrix).
+    stage by stage (every residual, then finite entries); the mass matrices are the
+    constructor's to check (:func:`build_systems`), once.
     """
     plan = plan_of(scene)
     if not balancing and (rel > tol).any():
@@ -107,16 +101,6 @@ def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, bal
         for i in range(len(M)):  # raises at the first bad point
             check_finite_and_mass(scene, M[i], C[i] if C.ndim == 3 else C, _assembly(residual[i], force_scale[i]))
         raise ComputationError("linearize_many: non-finite entries in M, C, K or the residual")  # pragma: no cover
-    try:
-        L = np.linalg.cholesky(M)  # all points at once (numpy's LAPACK potrf)
-    except np.linalg.LinAlgError:
-        for Mi in M:  # the single call's check, point by point, raises for the first singular M
-            check_mass(scene, Mi)
-        return
-    pivots = np.diagonal(L, axis1=1, axis2=2)
-    close = (pivots * pivots < PIVOT_MARGIN * np.diagonal(M, axis1=1, axis2=2)).any(axis=1)
-    for i in np.flatnonzero(close).tolist():  # nearly singular: the single call's own Cholesky decides
-        check_mass(scene, M[i])
 
 
 def _assembly(residual: np.ndarray, force_scale: float) -> Assembly:
@@ -155,7 +139,12 @@ def build_systems(scene: Scene, calls: tuple, notes: tuple, elapsed: float, bala
         point_notes = [notes + (f"held at q by constant actuator forces (relative residual {rel_i:.2e})",) for rel_i in rel]
     else:
         point_notes = [notes] * len(rel)
-    return LinearizedSystem.stack(
-        **matrices, dof_names=scene.dof_names, q=qs, v=scene.v0, residual=rel, balancing=r if balancing else None,
-        elapsed=elapsed, calls=calls, dropped=dropped, notes=point_notes,
-    )  # fmt: skip
+    try:
+        return LinearizedSystem.stack(
+            **matrices, dof_names=scene.dof_names, q=qs, v=scene.v0, residual=rel, balancing=r if balancing else None,
+            elapsed=elapsed, calls=calls, dropped=dropped, notes=point_notes,
+        )  # fmt: skip
+    except SingularMassError:  # the constructor decides; the single call's message names the scene's joints
+        for Mi in matrices["M"]:
+            check_mass(scene, Mi)
+        raise

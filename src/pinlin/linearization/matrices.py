@@ -14,13 +14,19 @@ import scipy.linalg.lapack as lapack
 from ..errors import ParameterError, SingularMassError
 from .state_form import null_motion
 
-__all__ = ["MATRIX_NAMES", "SYMMETRY_TOL", "checked_matrices", "checked_basis", "square_matrix", "copied", "taken"]
+__all__ = ["MATRIX_NAMES", "SYMMETRY_TOL", "PIVOT_MARGIN", "checked_matrices", "checked_basis", "square_matrix", "copied", "taken"]
 
 #: The five matrices of the linearized equation, in the paper's order.
 MATRIX_NAMES = ("M", "D", "G", "S", "N")
 
 #: Relative tolerance of the (skew-)symmetry checks of the constructor.
 SYMMETRY_TOL = 1e-10
+
+#: A mass matrix of a stack passes the stacked Cholesky check outright when every pivot satisfies
+#: L_jj^2 >= PIVOT_MARGIN M_jj; a Cholesky factorization's pivots are off by about n eps M_jj, so
+#: any LAPACK's (one matrix's is scipy's, the stack's numpy's) succeeds on it too.  Closer ones are
+#: decided by the one matrix's factorization.
+PIVOT_MARGIN = 1e-8
 
 #: The symmetry each matrix has: +1 symmetric, -1 skew-symmetric.
 _SIGNS = {"M": 1, "D": 1, "G": -1, "S": 1, "N": -1}
@@ -67,15 +73,13 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
         if a.ndim == 3:
             count = len(a)
         stacks[name] = a
-    # the matrices of one shape checked together: exactly (skew-)symmetric and finite is the usual case
-    shared = [name for name, a in stacks.items() if a.ndim == 2]
-    groups = [shared] * bool(shared) + [[name] for name, a in stacks.items() if a.ndim == 3]
+    # exactly (skew-)symmetric and finite is the usual case, decided by one sum per group: the shared
+    # matrices of one symmetry stacked, each per-point stack alone (no sign factor, no second temporary:
+    # a (P, n, n) temporary costs page faults)
     out = {}
-    for names in groups:
-        X = np.array([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]][None]  # (k, ..., n, n)
-        signs = np.array([_SIGNS[name] for name in names], dtype=float).reshape((-1,) + (1,) * (X.ndim - 1))
-        # X - mirrored is exactly zero only where X is exactly (skew-)symmetric and finite: inf - inf and NaN are NaN
-        exact = not (X - signs * X.swapaxes(-1, -2)).any()
+    for names in _groups(stacks):
+        X = np.array([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]]
+        exact = not _defect(X, _SIGNS[names[0]]).any()  # inf - inf and NaN are NaN, not zero
         for name in names:
             out[name] = stacks[name] if exact else _symmetric(name, stacks[name])
             out[name].flags.writeable = False  # taken over
@@ -84,7 +88,18 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
     if len(set(dof_names)) != n:
         raise ParameterError("dof_names", f"names must be unique, got {dof_names}")
     _check_mass(out["M"], dof_names)
-    return out
+    return {name: out[name] for name in MATRIX_NAMES}
+
+
+def _groups(stacks: dict[str, np.ndarray]) -> list[list[str]]:
+    """The names checked together: the shared (n, n) matrices of each symmetry, then each per-point stack."""
+    shared = [[name for name, a in stacks.items() if a.ndim == 2 and _SIGNS[name] == sign] for sign in (1, -1)]
+    return [names for names in shared if names] + [[name] for name, a in stacks.items() if a.ndim == 3]
+
+
+def _defect(X: np.ndarray, sign: int) -> np.ndarray:
+    """X - sign X^T over the last two axes: exactly zero where X is finite and symmetric (sign +1) or skew (-1)."""
+    return X - X.swapaxes(-1, -2) if sign > 0 else X + X.swapaxes(-1, -2)
 
 
 def _symmetric(name: str, a: np.ndarray) -> np.ndarray:
@@ -105,20 +120,26 @@ def _symmetric(name: str, a: np.ndarray) -> np.ndarray:
 
 
 def _check_mass(M: np.ndarray, dof_names: tuple[str, ...]) -> None:
-    """SingularMassError at the first M of the stack (or the one M) that is not positive definite."""
-    if M.ndim == 2:
-        definite = _positive_definite(M)
-    else:
+    """SingularMassError at the first M of the stack (or the one M) that is not positive definite.
+
+    One M is decided by its own Cholesky factorization (:func:`_positive_definite`); a stack
+    by one factorization of all its matrices, the points whose pivots come within
+    :data:`PIVOT_MARGIN` of failing (or all, when it fails) decided again one by one, so
+    that every point is decided as it would be alone.
+    """
+    stack = M.reshape(-1, *M.shape[-2:])
+    undecided = range(len(stack))
+    if M.ndim == 3:
         try:
-            np.linalg.cholesky(M)  # the whole stack in one call
-            definite = True
+            L = np.linalg.cholesky(stack)
+            pivots = np.diagonal(L, axis1=1, axis2=2)
+            close = pivots * pivots < PIVOT_MARGIN * np.diagonal(stack, axis1=1, axis2=2)
+            undecided = np.flatnonzero(close.any(axis=1))
         except np.linalg.LinAlgError:
-            definite = False
-    if definite:
-        return
-    for Mi in M.reshape(-1, *M.shape[-2:]):
-        if not _positive_definite(Mi):
-            smallest, weak = null_motion(Mi, dof_names)
+            pass
+    for i in undecided:
+        if not _positive_definite(stack[i]):
+            smallest, weak = null_motion(stack[i], dof_names)
             raise SingularMassError(
                 f"the mass matrix is not positive definite (smallest eigenvalue {smallest:.3g}); "
                 f"the coordinates {weak} carry no inertia",

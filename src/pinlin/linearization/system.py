@@ -233,14 +233,17 @@ class LinearizedSystem(Result):
             basis=checked_basis(basis, basis_names, n), basis_names=tuple(basis_names),
             basis_condition=basis_condition, constraint_forces=tuple(constraint_forces),
         )  # fmt: skip
-        per_point = {name: repeat(a) if a.ndim == 2 else a for name, a in matrices.items()}
-        per_point["q"] = repeat(None) if q is None else taken(q)
-        per_point["balancing"] = repeat(None) if balancing is None else taken(balancing)
-        per_point["residual"], per_point["dropped"], per_point["notes"] = residual, dropped, notes
-        keys, out = tuple(per_point), []
-        for values in zip(*per_point.values()):
+        Ms, Ds, Gs, Ss, Ns = (repeat(a) if a.ndim == 2 else a for a in map(matrices.get, MATRIX_NAMES))
+        qs = repeat(None) if q is None else taken(q)
+        forces = repeat(None) if balancing is None else taken(balancing)
+        out = []
+        for M_p, D_p, G_p, S_p, N_p, q_p, forces_p, residual_p, dropped_p, notes_p in zip(
+            Ms, Ds, Gs, Ss, Ns, qs, forces, residual, dropped, notes
+        ):
             attributes = template.copy()
-            attributes.update(zip(keys, values))
+            attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = M_p, D_p, G_p, S_p, N_p
+            attributes["q"], attributes["balancing"], attributes["residual"] = q_p, forces_p, residual_p
+            attributes["dropped"], attributes["notes"] = dropped_p, notes_p
             system = object.__new__(cls)
             object.__setattr__(system, "__dict__", attributes)
             out.append(system)
