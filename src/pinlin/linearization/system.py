@@ -233,17 +233,14 @@ class LinearizedSystem(Result):
             basis=checked_basis(basis, basis_names, n), basis_names=tuple(basis_names),
             basis_condition=basis_condition, constraint_forces=tuple(constraint_forces),
         )  # fmt: skip
-        Ms, Ds, Gs, Ss, Ns = (repeat(a) if a.ndim == 2 else a for a in map(matrices.get, MATRIX_NAMES))
-        qs = repeat(None) if q is None else taken(q)
-        forces = repeat(None) if balancing is None else taken(balancing)
+        per_point = [repeat(a) if a.ndim == 2 else a for a in map(matrices.get, MATRIX_NAMES)]
+        per_point += [repeat(None) if a is None else taken(a) for a in (q, balancing)]
         out = []
-        for M_p, D_p, G_p, S_p, N_p, q_p, forces_p, residual_p, dropped_p, notes_p in zip(
-            Ms, Ds, Gs, Ss, Ns, qs, forces, residual, dropped, notes
-        ):
+        for M_p, D_p, G_p, S_p, N_p, q_p, b_p, r_p, d_p, n_p in zip(*per_point, residual, dropped, notes):
             attributes = template.copy()
             attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = M_p, D_p, G_p, S_p, N_p
-            attributes["q"], attributes["balancing"], attributes["residual"] = q_p, forces_p, residual_p
-            attributes["dropped"], attributes["notes"] = dropped_p, notes_p
+            attributes["q"], attributes["balancing"], attributes["residual"] = q_p, b_p, r_p
+            attributes["dropped"], attributes["notes"] = d_p, n_p
             system = object.__new__(cls)
             object.__setattr__(system, "__dict__", attributes)
             out.append(system)
