@@ -8,6 +8,8 @@ one pass, which is why the checks are written on stacks.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import scipy.linalg.lapack as lapack
 
@@ -73,13 +75,11 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
         if a.ndim == 3:
             count = len(a)
         stacks[name] = a
-    # exactly (skew-)symmetric and finite is the usual case, decided by one sum per group: the shared
-    # matrices of one symmetry stacked, each per-point stack alone (no sign factor, no second temporary:
-    # a (P, n, n) temporary costs page faults)
+    # exactly (skew-)symmetric and finite is the usual case: one test for the shared matrices, one per stack
+    shared = tuple(name for name, a in stacks.items() if a.ndim == 2)
     out = {}
-    for names in _groups(stacks):
-        X = np.array([stacks[name] for name in names]) if len(names) > 1 else stacks[names[0]]
-        exact = not _defect(X, _SIGNS[names[0]]).any()  # inf - inf and NaN are NaN, not zero
+    for names in [shared] * bool(shared) + [(name,) for name, a in stacks.items() if a.ndim == 3]:
+        exact = not _defect(names, stacks).any()  # inf - inf and NaN are NaN, not zero
         for name in names:
             out[name] = stacks[name] if exact else _symmetric(name, stacks[name])
             out[name].flags.writeable = False  # taken over
@@ -91,15 +91,26 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
     return {name: out[name] for name in MATRIX_NAMES}
 
 
-def _groups(stacks: dict[str, np.ndarray]) -> list[list[str]]:
-    """The names checked together: the shared (n, n) matrices of each symmetry, then each per-point stack."""
-    shared = [[name for name, a in stacks.items() if a.ndim == 2 and _SIGNS[name] == sign] for sign in (1, -1)]
-    return [names for names in shared if names] + [[name] for name, a in stacks.items() if a.ndim == 3]
+def _defect(names: tuple[str, ...], stacks: dict[str, np.ndarray]) -> np.ndarray:
+    """X - sign X^T of the matrices ``names``: exactly zero where they are finite and exactly (skew-)symmetric.
+
+    Shared (n, n) matrices are stacked and tested at once; a per-point stack (P, n, n)
+    alone, with no sign factor, so that it costs one temporary of its size (a second one
+    costs as much again in page faults).
+    """
+    if len(names) > 1:
+        X = np.array([stacks[name] for name in names])
+        return X - _signs(names) * X.swapaxes(-1, -2)
+    a = stacks[names[0]]
+    return a - a.swapaxes(-1, -2) if _SIGNS[names[0]] > 0 else a + a.swapaxes(-1, -2)
 
 
-def _defect(X: np.ndarray, sign: int) -> np.ndarray:
-    """X - sign X^T over the last two axes: exactly zero where X is finite and symmetric (sign +1) or skew (-1)."""
-    return X - X.swapaxes(-1, -2) if sign > 0 else X + X.swapaxes(-1, -2)
+@functools.cache
+def _signs(names: tuple[str, ...]) -> np.ndarray:
+    """The symmetry signs of the matrices ``names``, shaped (k, 1, 1) to scale a stack of them."""
+    signs = np.array([_SIGNS[name] for name in names], dtype=float)[:, None, None]
+    signs.flags.writeable = False  # shared by every call
+    return signs
 
 
 def _symmetric(name: str, a: np.ndarray) -> np.ndarray:
