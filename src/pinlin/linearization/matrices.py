@@ -79,7 +79,7 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
     shared = tuple(name for name, a in stacks.items() if a.ndim == 2)
     out = {}
     for names in [shared] * bool(shared) + [(name,) for name, a in stacks.items() if a.ndim == 3]:
-        exact = not _defect(names, stacks).any()  # inf - inf and NaN are NaN, not zero
+        exact = _exact(names, stacks)
         for name in names:
             out[name] = stacks[name] if exact else _symmetric(name, stacks[name])
             out[name].flags.writeable = False  # taken over
@@ -91,18 +91,22 @@ def checked_matrices(matrices: dict, dof_names: tuple[str, ...]) -> dict[str, np
     return {name: out[name] for name in MATRIX_NAMES}
 
 
-def _defect(names: tuple[str, ...], stacks: dict[str, np.ndarray]) -> np.ndarray:
-    """X - sign X^T of the matrices ``names``: exactly zero where they are finite and exactly (skew-)symmetric.
+def _exact(names: tuple[str, ...], stacks: dict[str, np.ndarray]) -> bool:
+    """The matrices ``names`` are finite and exactly (skew-)symmetric.
 
-    Shared (n, n) matrices are stacked and tested at once; a per-point stack (P, n, n)
-    alone, with no sign factor, so that it costs one temporary of its size (a second one
-    costs as much again in page faults).
+    Shared (n, n) matrices are stacked and tested at once (X - sign X^T is zero only
+    there: inf - inf and NaN are NaN).  A per-point stack (P, n, n) is tested without a
+    temporary of its size where it can (a symmetric one by a comparison and a finiteness
+    test, whose results are an eighth of its size), since a large temporary costs as much
+    again in page faults; a skew one takes its X + X^T.
     """
     if len(names) > 1:
         X = np.array([stacks[name] for name in names])
-        return X - _signs(names) * X.swapaxes(-1, -2)
+        return not (X - _signs(names) * X.swapaxes(-1, -2)).any()
     a = stacks[names[0]]
-    return a - a.swapaxes(-1, -2) if _SIGNS[names[0]] > 0 else a + a.swapaxes(-1, -2)
+    if _SIGNS[names[0]] > 0:
+        return not (a != a.swapaxes(-1, -2)).any() and np.isfinite(a).all()
+    return not (a + a.swapaxes(-1, -2)).any()
 
 
 @functools.cache
