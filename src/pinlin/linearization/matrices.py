@@ -16,7 +16,9 @@ import scipy.linalg.lapack as lapack
 from ..errors import ParameterError, SingularMassError
 from .state_form import null_motion
 
-__all__ = ["MATRIX_NAMES", "SYMMETRY_TOL", "PIVOT_MARGIN", "checked_matrices", "checked_basis", "square_matrix", "copied", "taken"]
+__all__ = [
+    "MATRIX_NAMES", "SYMMETRY_TOL", "PIVOT_MARGIN", "checked_matrices", "checked_basis", "square_matrix", "copied", "taken",
+]
 
 #: The five matrices of the linearized equation, in the paper's order.
 MATRIX_NAMES = ("M", "D", "G", "S", "N")
