@@ -28,7 +28,6 @@ import pinocchio as pin
 
 import pinlin
 from pinlin.linearization.plan import plan_of
-from pinlin.linearization.system import LinearizedSystem
 
 from .bench_linearize import (
     bare_differences,
@@ -85,10 +84,10 @@ def instructions(run, n: int) -> float:
 
 
 def lower_bound(scene: pinlin.Scene, q: np.ndarray, calls) -> callable:
-    """The cheapest Python function returning a LinearizedSystem from the floor's Pinocchio calls.
+    """The cheapest Python function returning the floor's matrices from its Pinocchio calls.
 
     The derivative call, ``crba`` (at rest), the free block of each (copies), zero matrices
-    for the rest and ``LinearizedSystem.trusted``: no element, check, split or error figure.
+    for the rest, returned bare: no element, check, split, error figure or result object.
     """
     model = scene.model
     data = model.createData()
@@ -98,20 +97,14 @@ def lower_bound(scene: pinlin.Scene, q: np.ndarray, calls) -> callable:
     if "computeRNEADerivatives" in calls:
         def run():
             dq, dv, Mu = pin.computeRNEADerivatives(model, data, q, v0, zero, *extra)
-            return LinearizedSystem.trusted(
-                Mu[block].copy(), np.zeros((n, n)), dv[block].copy(), dq[block].copy(), np.zeros((n, n)),
-                dof_names=names, q=q.copy(), v=v0,
-            )  # fmt: skip
+            return Mu[block].copy(), dv[block].copy(), dq[block].copy(), names, q.copy(), v0
         return run
     derivative = pin.computeStaticTorqueDerivatives if fext is not None else pin.computeGeneralizedGravityDerivatives
 
     def run():
         K = derivative(model, data, q, *extra)
         M = pin.crba(model, data, q)
-        return LinearizedSystem.trusted(
-            M[block].copy(), np.zeros((n, n)), np.zeros((n, n)), K[block].copy(), np.zeros((n, n)),
-            dof_names=names, q=q.copy(), v=v0,
-        )  # fmt: skip
+        return M[block].copy(), np.zeros((n, n)), K[block].copy(), names, q.copy(), v0
 
     return run
 

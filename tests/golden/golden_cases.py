@@ -1,4 +1,4 @@
-"""A fixed set of results whose values must not move when the code is reorganized (issue 22).
+"""A fixed set of results whose values must not move when the code is reorganized.
 
 :func:`compute` returns named arrays from the public API on the bundled scenes and a few robots; the stored
 copy ``golden_values.npz`` was written by ``python tests/golden/golden_cases.py`` before the package's

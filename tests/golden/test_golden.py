@@ -1,4 +1,4 @@
-"""Results are bitwise what they were before the package's layout changed (issue 22).
+"""Results are bitwise what they were before the package's layout changed.
 
 The stored values come from ``golden_cases.py`` run on the code before the move; every array must be equal
 to the last bit (``assert_array_equal``, NaN in the same places).

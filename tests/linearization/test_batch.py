@@ -1,4 +1,4 @@
-"""linearize_many: one scene at many configurations equals linearize point by point, bitwise (issue 14)."""
+"""linearize_many: one scene at many configurations equals linearize point by point, bitwise."""
 
 import numpy as np
 import pinocchio as pin
@@ -14,7 +14,8 @@ from pinlin.errors import (
     SingularMassError,
     TimePeriodicError,
 )
-from pinlin.linearization import batch_common, batch_static
+from pinlin.linearization import batch_common, batch_static, matrices
+from pinlin.linearization.system import LinearizedSystem
 from pinlin.linearization.plan import plan_of
 
 FIELDS = ("M", "D", "G", "S", "N", "C", "K", "q", "v")
@@ -383,20 +384,22 @@ def test_large_batches_are_taken_in_chunks(monkeypatch):
     assert len(pinlin.linearize_many(scene, rows[:3])) == 3
 
 
-def test_nearly_singular_mass_matrices_are_decided_by_the_single_calls_cholesky(monkeypatch):
-    scene = _pendulum_scene()
+def _stack_of_three(M):
+    return LinearizedSystem.stack(M=M, D=np.zeros((2, 2)), G=np.zeros((2, 2)), S=np.eye(2), N=np.zeros((2, 2)),
+                                  dof_names=("a", "b"), residual=[0.0] * 3, dropped=[{}, {}, {}],
+                                  notes=[(), (), ()])  # fmt: skip
+
+
+def test_nearly_singular_mass_matrices_are_decided_by_the_single_matrix_cholesky(monkeypatch):
     seen = []
-    single_check = batch_common.check_mass
-    monkeypatch.setattr(batch_common, "check_mass", lambda s, M: seen.append(M.copy()) or single_check(s, M))
+    single_check = matrices._positive_definite
+    monkeypatch.setattr(matrices, "_positive_definite", lambda M: seen.append(M.copy()) or single_check(M))
     delta = 1e-10  # [[1, 1 - delta], [1 - delta, 1]]: second pivot 2 delta - delta^2, below PIVOT_MARGIN
     near = np.array([[1.0, 1.0 - delta], [1.0 - delta, 1.0]])
-    assert 2 * delta < batch_common.PIVOT_MARGIN
-    M = np.stack([np.eye(2), near, np.diag([2.0, 3.0])])
-    zeros = np.zeros(3)
-    batch_common.check_points(scene, np.zeros((3, 2)), zeros + 1.0, zeros, M, np.zeros((2, 2)), 1e-8, False)
+    assert 2 * delta < matrices.PIVOT_MARGIN
+    assert len(_stack_of_three(np.stack([np.eye(2), near, np.diag([2.0, 3.0])]))) == 3
     assert len(seen) == 1  # only the close one, and it passes (positive definite)
     assert_array_equal(seen[0], near)
     indefinite = np.array([[1.0, 2.0], [2.0, 1.0]])  # eigenvalues 3 and -1
-    with pytest.raises(SingularMassError, match=r"smallest eigenvalue -1\).*joints \['joint1', 'joint2'\]"):
-        batch_common.check_points(scene, np.zeros((3, 2)), zeros + 1.0, zeros, np.stack([np.eye(2), indefinite, near]),
-                                  np.zeros((2, 2)), 1e-8, False)  # fmt: skip
+    with pytest.raises(SingularMassError, match=r"smallest eigenvalue -1\).*coordinates \['a', 'b'\]"):
+        _stack_of_three(np.stack([np.eye(2), indefinite, near]))

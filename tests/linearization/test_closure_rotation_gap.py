@@ -1,4 +1,4 @@
-"""close_loops closes a frame constraint's rotation too, not only its position (issue 25 part 6 (iii)).
+"""close_loops closes a frame constraint's rotation too, not only its position.
 
 A FrameConstraint asks for the frame's placement: position and orientation.  Started from a configuration
 where the position is already closed but the orientation is off by 0.036 rad, the closure must iterate (and

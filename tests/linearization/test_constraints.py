@@ -1,5 +1,5 @@
 """Constraints: Jacobians and constraint stiffness by finite differences, assembly, KKT equilibrium,
-coordinates, contacts and every bad-input path (theory: constraints, issue 11)."""
+coordinates, contacts and every bad-input path (theory: constraints)."""
 
 import math
 
@@ -226,7 +226,7 @@ def test_constraint_stiffness_is_subtracted(four_bar_scene):
     assert_allclose(sys.K, B.T @ (K - pinlin.constraint_stiffness(four_bar_scene, q, lam)) @ B, rtol=1e-12)
 
 
-# ----------------------------------------------------------------------------- bad input (issue 11, item 7)
+# ----------------------------------------------------------------------------- bad input
 
 
 def test_unknown_frames(four_bar):
@@ -348,7 +348,7 @@ def test_contact_that_must_pull():
 
 
 def test_the_verdict_quotes_a_violated_contact():
-    """Issue 11 part 5: the stability verdict's reason says the contact would have to pull (the linearization
+    """The stability verdict's reason says the contact would have to pull (the linearization
     keeps it bilateral); a contact that holds adds nothing to the reason."""
     scene = _box_on_ground(push=(0.0, 0.0, 20.0))
     eq = pinlin.find_equilibrium(scene, scene.neutral())
@@ -368,7 +368,7 @@ def test_contact_that_would_slip():
     assert any("needs friction coefficient 0.612 > mu = 0.5" in n for n in eq.notes)
 
 
-# ----------------------------------------------------------------------------- downstream (issue 11, part 6)
+# ----------------------------------------------------------------------------- downstream analyses
 
 
 def test_downstream_analyses_of_a_constrained_system(four_bar_scene):
@@ -416,3 +416,13 @@ def test_ground_contacts_and_scene_replace(four_bar, four_bar_scene):
     assert_allclose(c.target, [0.7, 0.0, 0.0], atol=1e-12)  # the loop is closed at that q
     assert four_bar_scene.replace(gravity=(0, 0, 0)).constraints == four_bar_scene.constraints
     assert "1 constraints (m = 3)" in repr(four_bar_scene)
+
+
+def test_close_loops_old_tol_keyword_warns_and_still_works(four_bar_scene):
+    with pytest.warns(DeprecationWarning, match=r"close_loops\(tol=...\) is deprecated .* use closure_tol=..."):
+        old = pinlin.close_loops(four_bar_scene, np.zeros(3), tol=1e-9)
+    new = pinlin.close_loops(four_bar_scene, np.zeros(3), closure_tol=1e-9)
+    np.testing.assert_array_equal(old.q, new.q)
+    assert new.gap <= 1e-9
+    with pytest.raises(pinlin.ParameterError, match="closure_tol: must be a positive number"):
+        pinlin.close_loops(four_bar_scene, np.zeros(3), closure_tol=float("nan"))

@@ -1,4 +1,4 @@
-"""The lean constrained linearization (issue 14): the planar proof of redundancy against the rank of J_c
+"""The lean constrained linearization: the planar proof of redundancy against the rank of J_c
 and the probes, and the cheaper paths against the plain formulas they replace (bitwise where they are
 the same arithmetic, to rounding where the factorization changed)."""
 

@@ -128,7 +128,7 @@ def test_equilibrium_result_convention():
     assert len(repr(sys).splitlines()) == 1
 
 
-# --- bad input gets a clear error, never a history of inf and a "relative nan" (issue 13, item 9)
+# --- bad input gets a clear error, never a history of inf and a "relative nan"
 
 SLIDER = """<robot name="slider"><link name="world_link"/>
   <link name="block"><inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/>
@@ -180,3 +180,14 @@ def test_zero_quaternion_is_not_taken_as_the_identity():
     q0[3:7] = 0.0
     with pytest.raises(pinlin.ConfigurationError, match=r"q0\[3:7\] = \[0.0, 0.0, 0.0, 0.0\] of joint 'root_joint' is not"):
         pinlin.find_equilibrium(pinlin.Scene(robot, gravity=(0, 0, 0)), q0)
+
+
+def test_find_equilibrium_old_tol_keyword_warns_and_still_works():
+    scene = double_pendulum()
+    with pytest.warns(DeprecationWarning, match=r"find_equilibrium\(tol=...\) is deprecated .* use rtol=..."):
+        old = pinlin.find_equilibrium(scene, np.array([0.1, -0.1]), tol=1e-10)
+    new = pinlin.find_equilibrium(scene, np.array([0.1, -0.1]), rtol=1e-10)
+    np.testing.assert_array_equal(old.q, new.q)
+    assert new.relative_residual <= 1e-10
+    with pytest.raises(pinlin.ParameterError, match="rtol: must be a positive number"):
+        pinlin.find_equilibrium(scene, rtol=0.0)

@@ -138,7 +138,7 @@ def test_structure_tol_keeps_tiny_circulatory_part_when_asked(chain):
     assert pinlin.linearize(scene, np.zeros(3)).is_zero("N") is False  # default tol keeps it too
 
 
-# --- parameters and configurations (issue 13, item 9)
+# --- parameters and configurations
 
 
 @pytest.mark.parametrize("value", [-1e-12, np.nan, np.inf, "tight", True])

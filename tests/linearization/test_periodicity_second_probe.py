@@ -1,4 +1,4 @@
-"""The time-invariance check uses both of its probes (issue 25 part 6 (vi); theory: elements).
+"""The time-invariance check uses both of its probes (theory: elements).
 
 A prescribed joint's position is probed at two offsets (PERIODIC_TEST_ANGLES, 1.0 and 2.5 rad) because one
 probe can land where a periodic dependence happens to repeat.  Here it does: a radial slider (mass m,

@@ -1,4 +1,4 @@
-"""Time invariance of prescribed joints: proofs once per scene, the numerical check elsewhere (issues 13, 14).
+"""Time invariance of prescribed joints: proofs once per scene, the numerical check elsewhere.
 
 A proof (:mod:`pinlin.linearization.time_invariance`) replaces the two extra
 assemblies per prescribed joint that the numerical check costs; every proof is
@@ -95,7 +95,7 @@ def test_root_turntable_is_proved_and_costs_one_pass():
 
 
 def test_axisymmetric_rotor_on_undamped_pendulum_is_proved():
-    """The spurious TimePeriodicError of issue 13: C is exactly zero here (n = 1: no gyroscopic term)."""
+    """A TimePeriodicError once raised spuriously here: C is exactly zero here (n = 1: no gyroscopic term)."""
     scene = rotor_scene()
     proof = plan_of(scene).proofs["spin"]
     assert "axisymmetric rigid rotor" in proof.note and proof.departure == 0.0
@@ -214,7 +214,7 @@ def test_matrices_do_not_depend_on_the_angle_of_a_proved_joint():
     assert np.array_equal(systems[0].M, [[1.0 * 0.5**2 + 0.1 + 0.5 + 0.02]])
 
 
-# ----------------------------------------------------------------------------- declared kinds (issue 14)
+# ----------------------------------------------------------------------------- declared kinds
 
 
 @pytest.mark.parametrize(

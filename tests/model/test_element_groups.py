@@ -1,4 +1,4 @@
-"""Joint spring and damper groups: data prepared once per scene against the elements' own methods (issue 14).
+"""Joint spring and damper groups: data prepared once per scene against the elements' own methods.
 
 The groups must give bitwise what the elements compute one by one (their
 ``generalized_force``, ``add_stiffness``, ``add_damping``), on every joint kind

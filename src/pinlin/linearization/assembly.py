@@ -32,7 +32,6 @@ import pinocchio as pin
 
 from ..model.evaluation import Evaluation, Workspace, symmetric_from_upper
 from ..model.scene import Scene
-from ..numerics.arrays import HALF
 from ..numerics.norms import fro
 from .plan import plan_of
 
@@ -170,8 +169,8 @@ def assemble(
             if plan.undamped:  # C stays Pinocchio's alone: the split's D of C is this part, bitwise
                 coriolis_D = C
             else:
-                coriolis_D = C + C.T.copy()  # (C + C^T) / 2; the contiguous copy makes the sum cheaper
-                coriolis_D *= HALF
+                coriolis_D = C + C.T  # (C + C^T) / 2
+                coriolis_D *= 0.5
     elif damping:  # at rest: C is the elements' damping alone
         if plan.rest_damping is None:
             C = np.zeros((nv, nv))

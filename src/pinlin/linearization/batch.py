@@ -1,4 +1,4 @@
-"""Linearization at many configurations of one scene (issue 14): :func:`linearize_many`.
+"""Linearization at many configurations of one scene: :func:`linearize_many`.
 
 A parameter study or a gain schedule linearizes one scene at many q.  Called
 point by point, :func:`~pinlin.linearization.linearize.linearize` pays per point
@@ -21,6 +21,7 @@ than the stacking cost).
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 import pinocchio as pin
@@ -30,7 +31,7 @@ from ..model.evaluation import BatchPoints
 from ..model.scene import UNIT_NORM_MIN, Scene
 from . import batch_moving, batch_static
 from .linearize import linearize
-from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, LinearizeOptions
 from .periodicity import refuse_motions
 from .plan import plan_of
 from .system import LinearizedSystem
@@ -100,9 +101,17 @@ def linearize_many(
         points of a chunk (every residual, then finite entries, then every mass
         matrix), so with several bad points in one chunk the first failing stage
         decides.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> systems = pinlin.linearize_many(scene, np.zeros((3, 2)))
+    >>> len(systems), np.array_equal(systems[2].K, pinlin.linearize(scene, np.zeros(2)).K)
+    (3, True)
     """
     t0 = time.perf_counter()
-    check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    options = LinearizeOptions(balancing, equilibrium_tol, structure_tol, periodic_tol, constraint_tol, rank_tol)
     if scene.motions:  # time-periodic: as linearize refuses it
         refuse_motions(scene)
     rows = _rows(scene, qs)
@@ -111,17 +120,20 @@ def linearize_many(
     elif batch_moving.applies(scene, periodic_tol):
         path = batch_moving.linearize_moving
     else:
-        options = dict(balancing=balancing, equilibrium_tol=equilibrium_tol, structure_tol=structure_tol,
-                       periodic_tol=periodic_tol, constraint_tol=constraint_tol, rank_tol=rank_tol)  # fmt: skip
-        return tuple(linearize(scene, q, **options) for q in rows)
+        return tuple(
+            linearize(scene, q, balancing=balancing, equilibrium_tol=equilibrium_tol, structure_tol=structure_tol,
+                      periodic_tol=periodic_tol, constraint_tol=constraint_tol, rank_tol=rank_tol)
+            for q in rows
+        )  # fmt: skip
     points = configurations(scene, rows)
-    tol = plan_of(scene).structure_tol if structure_tol is None else float(structure_tol)
+    if structure_tol is None:  # the scene's default: fixed once for the batch
+        options = replace(options, structure_tol=plan_of(scene).structure_tol)
     step = max(1, CHUNK_ENTRIES // scene.model.nv**2)
     batch = BatchPoints(points)  # what the element groups compute once for every chunk
     systems: tuple[LinearizedSystem, ...] = ()
     for start in range(0, len(points), step):  # the first chunk's time includes the checks above
         chunk = batch.chunk(start, start + step)
-        systems += path(scene, points[chunk.rows], equilibrium_tol, tol, balancing, t0, time.perf_counter, chunk)
+        systems += path(scene, points[chunk.rows], options, t0, time.perf_counter, chunk)
         t0 = time.perf_counter()
     return systems
 

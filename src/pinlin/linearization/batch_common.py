@@ -4,7 +4,7 @@
 of prescribed joints) compute every point's matrices on stacked arrays (P, n, n);
 this module takes their norms (:func:`norms`), runs the single call's checks on
 all points at once, raising the single call's own error at the first bad point
-(:func:`check_points`), and builds the result objects (:class:`Systems`).
+(:func:`check_points`), and builds the result objects (:func:`build_systems`).
 
 The norms are taken for all points in one reduction, so the figures built on them
 (``residual``, ``dropped``) agree with ``linearize``'s to rounding; where such a
@@ -16,11 +16,9 @@ every decision is the single call's.
 from __future__ import annotations
 
 import math
-from itertools import repeat
-
 import numpy as np
 
-from ..errors import ComputationError
+from ..errors import ComputationError, SingularMassError
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .assembly import Assembly
@@ -28,8 +26,8 @@ from .checks import check_equilibrium, check_finite_and_mass, check_mass
 from .plan import plan_of
 from .system import LinearizedSystem
 
-__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "PIVOT_MARGIN", "check_points", "rows_or_zero",
-           "Systems", "TINY"]
+__all__ = ["norms", "near", "halves", "relative_residuals", "DECISION_MARGIN", "check_points", "rows_or_zero",
+           "build_systems", "TINY"]
 
 TINY = float(np.finfo(float).tiny)
 
@@ -37,13 +35,6 @@ TINY = float(np.finfo(float).tiny)
 #: taken again with the single call's ``fro`` before the comparison: the two norms differ by a
 #: few rounding errors of a sum of squares (about 1e-16 relative), far below this margin.
 DECISION_MARGIN = 1e-12
-
-
-#: A mass matrix passes the stacked Cholesky check outright when every pivot satisfies
-#: L_jj^2 >= PIVOT_MARGIN M_jj; a Cholesky factorization's pivots are off by about n eps M_jj, so
-#: any LAPACK's (the single call's is scipy's, the stack's numpy's) succeeds on it too.  Closer
-#: ones go through the single call's check.
-PIVOT_MARGIN = 1e-8
 
 
 def norms(X: np.ndarray) -> np.ndarray:
@@ -71,13 +62,10 @@ def halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """((A^T + A) / 2, A - A^T) of each A[p] of a stack (P, n, n): :func:`~.split.split_stiffness`'s arithmetic.
 
     The same operations, entry by entry, as the single call's split; both results
-    are fresh C-contiguous stacks.
+    are new stacks.
     """
-    T = A.transpose(0, 2, 1).copy()
-    difference = A - T
-    T += A
-    T *= 0.5
-    return T, difference
+    At = A.transpose(0, 2, 1)
+    return (A + At) / 2, A - At
 
 
 def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray]:
@@ -97,12 +85,13 @@ def relative_residuals(tau, Q, K, r, tol: float) -> tuple[np.ndarray, np.ndarray
 
 
 def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, balancing: bool) -> None:
-    """The single call's equilibrium, finite-entry and mass checks on all points; its own errors at the first bad one.
+    """The single call's equilibrium and finite-entry checks on all points; its own errors at the first bad one.
 
     ``residual`` (P, nv) holds the residuals on all coordinates, ``rel`` (P,) their
     relative sizes on the free ones, ``M`` (P, n, n) the mass matrices and ``C`` the
     damping matrices (P, n, n), or one (n, n) matrix for all points.  The checks run
-    stage by stage (every residual, then finite entries, then every mass matrix).
+    stage by stage (every residual, then finite entries); the mass matrices are the
+    constructor's to check (:func:`build_systems`), once.
     """
     plan = plan_of(scene)
     if not balancing and (rel > tol).any():
@@ -112,16 +101,6 @@ def check_points(scene: Scene, residual, force_scale, rel, M, C, tol: float, bal
         for i in range(len(M)):  # raises at the first bad point
             check_finite_and_mass(scene, M[i], C[i] if C.ndim == 3 else C, _assembly(residual[i], force_scale[i]))
         raise ComputationError("linearize_many: non-finite entries in M, C, K or the residual")  # pragma: no cover
-    try:
-        L = np.linalg.cholesky(M)  # all points at once (numpy's LAPACK potrf)
-    except np.linalg.LinAlgError:
-        for Mi in M:  # the single call's check, point by point, raises for the first singular M
-            check_mass(scene, Mi)
-        return
-    pivots = np.diagonal(L, axis1=1, axis2=2)
-    close = (pivots * pivots < PIVOT_MARGIN * np.diagonal(M, axis1=1, axis2=2)).any(axis=1)
-    for i in np.flatnonzero(close).tolist():  # nearly singular: the single call's own Cholesky decides
-        check_mass(scene, M[i])
 
 
 def _assembly(residual: np.ndarray, force_scale: float) -> Assembly:
@@ -147,43 +126,25 @@ def rows_or_zero(X: np.ndarray, sizes: list[float], tol: float, name: str, zero:
     return rows
 
 
-class Systems:
-    """Builds the batch's LinearizedSystem objects: what is common to all points, once.
+def build_systems(scene: Scene, calls: tuple, notes: tuple, elapsed: float, balancing: bool, matrices: dict,
+                  qs: np.ndarray, rel: list[float], r: np.ndarray, dropped: list[dict]) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+    """The batch's systems through :meth:`LinearizedSystem.stack`, with the single call's notes and figures.
 
-    Each system is a copy of the scene's template (:func:`~.templates.system_template`,
-    kept by its plan) with the batch's ``calls``, ``notes`` and ``elapsed`` filled in
-    once, then the per-point entries (the matrices, q, the figures, ``dropped``, and
-    with ``balancing`` the notes and the actuator forces): the same attributes, in the
-    same order, as the single call's.  Every array handed in must be read-only
-    already (rows of the batch's read-only stacks, shared read-only views).
+    ``matrices`` maps M, D, G, S, N to a stack (P, n, n), a list of P matrices or one
+    matrix shared by the batch; ``r`` holds the residuals on the free coordinates
+    (kept with ``balancing``), ``rel`` the relative residuals, ``dropped`` one
+    dictionary per point (taken over).
     """
-
-    __slots__ = ("template", "notes", "balancing")
-
-    def __init__(self, scene: Scene, calls: tuple, notes: tuple, elapsed: float, balancing: bool):
-        template = plan_of(scene).template.copy()
-        template["calls"], template["notes"], template["elapsed"] = calls, notes, elapsed
-        self.template, self.notes, self.balancing = template, notes, balancing
-
-    def build(self, M, D, G, S, N, qs, rel: list[float], r, dropped: list[dict]) -> tuple[LinearizedSystem, ...]:
-        """The systems of all points.
-
-        Each of M, D, G, S, N, qs and r iterates over the points (a stack's rows, a list,
-        or ``itertools.repeat`` of one shared array); ``r`` holds the residuals on the free
-        coordinates (kept with ``balancing``), ``rel`` the relative residuals,
-        ``dropped`` one dictionary per point (taken over).
-        """
-        template, new, cls = self.template, object.__new__, LinearizedSystem
-        residuals = r if self.balancing else repeat(None)  # no row views when they are not kept
-        out = []
-        for Mi, Di, Gi, Si, Ni, q, rel_i, ri, dropped_i in zip(M, D, G, S, N, qs, rel, residuals, dropped):
-            attributes = template.copy()
-            attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = Mi, Di, Gi, Si, Ni
-            attributes["q"], attributes["residual"], attributes["dropped"] = q, rel_i, dropped_i
-            if self.balancing:
-                attributes["balancing"] = ri
-                attributes["notes"] = self.notes + (f"held at q by constant actuator forces (relative residual {rel_i:.2e})",)
-            system = new(cls)
-            object.__setattr__(system, "__dict__", attributes)
-            out.append(system)
-        return tuple(out)
+    if balancing:
+        point_notes = [notes + (f"held at q by constant actuator forces (relative residual {rel_i:.2e})",) for rel_i in rel]
+    else:
+        point_notes = [notes] * len(rel)
+    try:
+        return LinearizedSystem.stack(
+            **matrices, dof_names=scene.dof_names, q=qs, v=scene.v0, residual=rel, balancing=r if balancing else None,
+            elapsed=elapsed, calls=calls, dropped=dropped, notes=point_notes,
+        )  # fmt: skip
+    except SingularMassError:  # the constructor decides; the single call's message names the scene's joints
+        for Mi in matrices["M"]:
+            check_mass(scene, Mi)
+        raise

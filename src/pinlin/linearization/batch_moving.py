@@ -25,7 +25,8 @@ import pinocchio as pin
 from ..model.evaluation import BatchPoints, Evaluation, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
+from .batch_common import TINY, build_systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
+from .options import LinearizeOptions
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -76,13 +77,14 @@ def _evaluate(scene: Scene, qs: np.ndarray):
     return tau, Q, K, C, M, pinocchio_K, pinocchio_C
 
 
-def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
-                     elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+def linearize_moving(scene: Scene, qs: np.ndarray, options: LinearizeOptions, elapsed0: float, clock,
+                     batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
     """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
 
-    ``batch`` is taken for the paths' common call and not read: this path evaluates its
-    elements point by point on Evaluations (their own memo).
+    ``options``: its ``structure_tol`` set (not None).  ``batch`` is taken for the paths' common call
+    and not read: this path evaluates its elements point by point on Evaluations (their own memo).
     """
+    equilibrium_tol, tol, balancing = options.equilibrium_tol, options.structure_tol, options.balancing
     plan = plan_of(scene)
     tau, Q, K, C, M, pinocchio_K, pinocchio_C = _evaluate(scene, qs)
     scale_C, scale_K = norms(pinocchio_C), norms(pinocchio_K)
@@ -110,8 +112,9 @@ def linearize_moving(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: 
         if size <= tol and size:
             dropped[p]["D (Coriolis rounding)"] = size
     G = rows_or_zero(G, G_sizes.tolist(), tol, "G", zero, dropped)
-    systems = Systems(scene, ("computeRNEADerivatives",), plan.proof_notes, (clock() - elapsed0) / len(qs), balancing)
-    return systems.build(M, D, G, S, N, qs, rel.tolist(), r, dropped)
+    matrices = {"M": M, "D": D, "G": G, "S": S, "N": N}
+    elapsed = (clock() - elapsed0) / len(qs)
+    return build_systems(scene, ("computeRNEADerivatives",), plan.proof_notes, elapsed, balancing, matrices, qs, rel.tolist(), r, dropped)
 
 
 def _split_damping(plan, C: np.ndarray, pinocchio_C: np.ndarray, scale_C: np.ndarray, tol: float):

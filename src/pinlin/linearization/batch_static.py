@@ -8,7 +8,7 @@ into rows of stacked arrays) and the multi-DOF springs' Lie-group derivatives
 remain; the 1-DOF springs, the norms, the residual, finite, mass and structure
 checks and the symmetric/skew split run once on the stacks (the dampers'
 constant matrix and its split come from the scene's plan), and the results are
-built by :class:`~.batch_common.Systems`.
+built by :func:`~.batch_common.build_systems`.
 
 The matrices are bitwise those of ``linearize`` (the same operations entry by
 entry); the norms behind the error figures (``residual``, ``dropped``) are taken
@@ -21,7 +21,6 @@ are the single call's.
 
 from __future__ import annotations
 
-from itertools import repeat
 
 import numpy as np
 import pinocchio as pin
@@ -29,7 +28,8 @@ import pinocchio as pin
 from ..model.evaluation import BatchPoints, crba_is_symmetric, live_view, workspace
 from ..model.scene import Scene
 from ..numerics.norms import fro
-from .batch_common import TINY, Systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
+from .batch_common import TINY, build_systems, check_points, halves, near, norms, relative_residuals, rows_or_zero
+from .options import LinearizeOptions
 from .plan import plan_of
 from .system import LinearizedSystem
 
@@ -86,12 +86,14 @@ def _pinocchio(scene: Scene, qs: np.ndarray):
     return tau, K, M, calls
 
 
-def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol: float, balancing: bool,
-                      elapsed0: float, clock, batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
+def linearize_at_rest(scene: Scene, qs: np.ndarray, options: LinearizeOptions, elapsed0: float, clock,
+                      batch: BatchPoints | None = None) -> tuple[LinearizedSystem, ...]:  # fmt: skip
     """The systems at the rows of ``qs`` (checked configurations, (P, nq), owned) of a scene for which :func:`applies`.
 
-    ``batch``: the call's points, qs its chunk (the element groups' work shared by the chunks).
+    ``options``: its ``structure_tol`` set (not None); ``batch``: the call's points, qs its chunk (the
+    element groups' work shared by the chunks).
     """
+    equilibrium_tol, tol, balancing = options.equilibrium_tol, options.structure_tol, options.balancing
     plan = plan_of(scene)
     tau, K, M, calls = _pinocchio(scene, qs)
     scale_K = norms(K)
@@ -120,5 +122,5 @@ def linearize_at_rest(scene: Scene, qs: np.ndarray, equilibrium_tol: float, tol:
     if damped:
         for entry in dropped:
             entry.update(damped)
-    systems = Systems(scene, calls, (), (clock() - elapsed0) / len(qs), balancing)
-    return systems.build(M, repeat(D), repeat(G), S, N, qs, rel.tolist(), r, dropped)
+    matrices = {"M": M, "D": D, "G": G, "S": S, "N": N}
+    return build_systems(scene, calls, (), (clock() - elapsed0) / len(qs), balancing, matrices, qs, rel.tolist(), r, dropped)

@@ -45,7 +45,7 @@ def massless_joints(scene: Scene) -> list[str]:
 
 def check_mass(scene: Scene, M: np.ndarray) -> None:
     """Raise SingularMassError, naming the joints, unless M is positive definite (one Cholesky)."""
-    if lapack.dpotrf(M, 1, 0)[1] == 0:  # lower, no clean (positional: cheaper); Cholesky succeeded: PD
+    if lapack.dpotrf(M, lower=True, clean=False)[1] == 0:  # the Cholesky factorization succeeded: PD
         return
     joints = massless_joints(scene)
     if not joints:

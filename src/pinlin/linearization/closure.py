@@ -26,6 +26,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import LoopClosureError, ParameterError
+from ..errors.deprecated import renamed_keywords
 from ..model.scene import Scene
 from ..results import Result
 from .constraint_set import RANK_TOL, ConstraintState, evaluate_constraints
@@ -67,6 +68,15 @@ class ClosureResult(Result):
         The headline error figure: ``gap`` [m] (absolute).
     held : tuple of str
         Joints kept where they were.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> closed = pinlin.close_loops(scene, np.array([0.3, 0.0, 0.0]), hold=["crank_joint"])
+    >>> closed.held, bool(closed.error == closed.gap <= 1e-12), closed.initial_gap > 0.01
+    (('crank_joint',), True, True)
     """
 
     q: np.ndarray
@@ -159,12 +169,13 @@ def _velocity_range(scene: Scene, joint: str) -> tuple[int, int]:
     return j.idx_v, j.idx_v + j.nv
 
 
+@renamed_keywords(tol="closure_tol")
 def close_loops(
     scene: Scene,
     q0=None,
     *,
     hold: Sequence[str] = (),
-    tol: float = CLOSURE_TOL,
+    closure_tol: float = CLOSURE_TOL,
     max_iterations: int = 100,
     rank_tol: float = RANK_TOL,
 ) -> ClosureResult:
@@ -183,8 +194,8 @@ def close_loops(
         Start; default Pinocchio's neutral configuration.
     hold : sequence of str
         Joints that keep their value in q0 (the input of a mechanism).
-    tol : float
-        Largest gap [m] and rotation [rad] accepted as closed.
+    closure_tol : float
+        Largest gap [m] and rotation [rad] accepted as closed (``tol`` before 0.4, deprecated).
     max_iterations : int
     rank_tol : float
         Relative singular-value threshold of the least-squares steps.
@@ -200,12 +211,21 @@ def close_loops(
     LoopClosureError
         The targets cannot be reached from q0: the message and ``gap`` say by how many
         metres (and radians) the closest configuration found misses them.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> closed = pinlin.close_loops(scene, np.array([0.3, 0.0, 0.0]), hold=["crank_joint"])
+    >>> bool(closed.gap <= 1e-12), closed.iterations > 0, float(closed.q[0])
+    (True, True, 0.3)
     """
     t0 = time.perf_counter()
     if not scene.constraints:
         raise ParameterError("scene", "has no constraints to close")
-    if not (math.isfinite(tol) and tol > 0):
-        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
+    if not (math.isfinite(closure_tol) and closure_tol > 0):
+        raise ParameterError("closure_tol", f"must be a positive number, got {closure_tol!r}")
     q = scene.check_configuration(scene.neutral() if q0 is None else q0, "q0")
     if isinstance(hold, str):
         hold = [hold]
@@ -213,13 +233,13 @@ def close_loops(
     start = evaluate_constraints(scene, q, rank_tol=rank_tol)
     gap0, rot0, _ = start.gaps()
     q, state, history, ok = project(
-        scene, q, tol=tol, max_iterations=max_iterations, held=held, rank_tol=rank_tol
+        scene, q, tol=closure_tol, max_iterations=max_iterations, held=held, rank_tol=rank_tol
     )
     gap, rot, worst = state.gaps()
     if not ok:
         raise LoopClosureError(
             f"loop closure failed: the constraints cannot be closed from q0; the closest configuration found "
-            f"leaves a gap of {gap:.6g} m" + (f" and {rot:.3g} rad" if rot > tol else "") + f" at constraint "
+            f"leaves a gap of {gap:.6g} m" + (f" and {rot:.3g} rad" if rot > closure_tol else "") + f" at constraint "
             f"{worst!r} (from {gap0:.6g} m at q0, after {len(history) - 1} steps); the target may be out of "
             f"reach, or the start too far from an assembled configuration",
             gap,

@@ -40,7 +40,6 @@ import scipy.linalg.lapack as lapack
 from ..errors import (
     AccuracyWarning,
     ComputationError,
-    ConstraintViolationError,
     NotAnEquilibriumError,
     ParameterError,
     SingularMassError,
@@ -48,18 +47,9 @@ from ..errors import (
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .constrained_structure import structurally_redundant
-from .constraint_set import (
-    CONSTRAINT_TOL,
-    RANK_TOL,
-    check_motion_left,
-    constrained_point,
-    constraint_forces,
-    constraint_notes,
-    evaluate_constraints,
-    relative_residual,
-)
+from .constraint_set import ConstrainedPoint, evaluate_constraints, linearization_point
 from .coordinates import PIVOTED_METHOD, coordinate_basis, pivoted_basis
-from .options import EQUILIBRIUM_TOL
+from .options import LinearizeOptions
 from .plan import STRUCTURE_EPS_FACTOR
 from .singularity import check_regular
 from .state_form import null_motion
@@ -82,22 +72,13 @@ COORDINATE_CONDITION_WARN = 1e4
 #: What sys.notes says about contacts (the linearization keeps them bilateral).
 BILATERAL_NOTE = "contacts are treated as bilateral (the stance linearization): they neither lift off nor slide"
 
-def linearize_constrained(
-    scene: Scene,
-    q,
-    *,
-    coordinates=None,
-    balancing: bool = False,
-    equilibrium_tol: float = EQUILIBRIUM_TOL,
-    structure_tol: float | None = None,
-    constraint_tol: float = CONSTRAINT_TOL,
-    rank_tol: float = RANK_TOL,
-) -> LinearizedSystem:
+def linearize_constrained(scene: Scene, q: np.ndarray, coordinates, options: LinearizeOptions) -> LinearizedSystem:
     """The linearized equations of a scene with constraints in independent coordinates (theory: constraints).
 
     Called by :func:`pinlin.linearize` for scenes with constraints, with ``q``
     already checked (:meth:`Scene.check_configuration`); see there for the
-    parameters, and the module docstring for the mathematics.
+    parameters (``options`` holds the checked tolerances), and the module docstring for the
+    mathematics.
 
     Raises
     ------
@@ -120,29 +101,16 @@ def linearize_constrained(
         The coordinates are nearly singular: cond(J_d) > :data:`COORDINATE_CONDITION_WARN`.
     """
     t0 = time.perf_counter()
-    state = evaluate_constraints(scene, q, rank_tol=rank_tol)
-    calls = list(state.calls)
-    gap, rot, worst = state.gaps()
-    if gap > constraint_tol or rot > constraint_tol:
-        raise ConstraintViolationError(
-            f"q violates the constraints: constraint {worst!r} is open by {gap:.4g} m"
-            + (f" (largest rotation gap {rot:.3g} rad)" if rot > constraint_tol else "")
-            + f" > constraint_tol {constraint_tol:g}; close them first with find_equilibrium or close_loops",
-            gap,
-            rot,
-            [worst],
-        )
-    check_motion_left(scene, state)
+    point = linearization_point(scene, q, rank_tol=options.rank_tol, constraint_tol=options.constraint_tol)
+    state, g, rel = point.state, point.g, point.relative_residual
+    probes: list[str] = []
     if state.rank < state.m and state.rank != state.m - structurally_redundant(scene, state):
-        check_regular(scene, q, state, calls)  # no structural proof of the redundancy: probe nearby
-    lam, g, asm, Kt = constrained_point(scene, q, state, stiffness=True, damping=True, mass=True)
-    calls += asm.calls
-    rel = relative_residual(g, state, lam, asm, Kt)
-    if rel > equilibrium_tol and not balancing:
+        check_regular(scene, q, state, probes)  # no structural proof of the redundancy: probe nearby
+    if rel > options.equilibrium_tol and not options.balancing:
         worst_dof = int(np.argmax(np.abs(g)))
         raise NotAnEquilibriumError(
             f"q is not an equilibrium of the constrained scene: relative residual of r - J_c^T lambda {rel:.3e} "
-            f"> equilibrium_tol {equilibrium_tol:g} (largest unbalanced force {g[worst_dof]:.4g} on "
+            f"> equilibrium_tol {options.equilibrium_tol:g} (largest unbalanced force {g[worst_dof]:.4g} on "
             f"{scene.dof_names[worst_dof]!r}); use find_equilibrium, or balancing=True",
             residual=fro(g),
             relative_residual=rel,
@@ -162,16 +130,17 @@ def linearize_constrained(
             AccuracyWarning,
             stacklevel=3,
         )
-    return _project_system(
-        scene, q, state, lam, g, asm, Kt, (B, names, condition, method), rel, balancing, structure_tol, calls, t0
-    )
+    calls = state.calls + probes + point.assembly.calls
+    return _project_system(scene, q, point, (B, names, condition, method), options, calls, t0)
 
 
-def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, structure_tol, calls, t0):
+def _project_system(scene, q, point: ConstrainedPoint, basis, options: LinearizeOptions, calls, t0):
+    """B^T M B, B^T C B and B^T (K - K_lambda) B split into the system's five matrices, with its notes."""
     B, names, condition, method = basis
+    state, asm, rel, structure_tol = point.state, point.assembly, point.relative_residual, options.structure_tol
     # B^T A B of the three matrices in one batched product (each slice is the same gemm, bitwise),
     # and their symmetric parts in one sum: M, D = (C + C^T) / 2 and S = (K + K^T) / 2
-    P = B.T @ np.array((asm.M, asm.C, Kt)) @ B
+    P = B.T @ np.array((asm.M, asm.C, point.Kt)) @ B
     H = P + P.transpose(0, 2, 1)
     H *= 0.5
     # one product: a NaN or inf anywhere makes it non-finite (inf * 0 is NaN); P finite if H is
@@ -199,7 +168,7 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
         N = G  # both zero and read-only in the result: one array
     else:
         N *= 0.5
-    notes, _ = constraint_notes(scene, state, lam, all_contacts=False)
+    notes = list(point.notes)
     if scene.contact_index:
         notes.append(BILATERAL_NOTE)
     notes.append(
@@ -208,29 +177,19 @@ def _project_system(scene, q, state, lam, g, asm, Kt, basis, rel, balancing, str
         f"(rank J_c = {state.rank} of m = {state.m}); joint velocities = basis @ z; cond(J_d) = {condition:.3g}"
     )
     balance = None
-    if balancing:
-        balance = B.T @ g
+    if options.balancing:
+        balance = B.T @ point.g
         notes.append(
             f"held at q by constant actuator forces (relative residual {rel:.2e}): the minimum-norm joint forces "
             f"g = r - J_c^T lambda, orthogonal to the constraint forces; balancing = B^T g"
         )
-    return LinearizedSystem.trusted(
-        M, D, G, S, N,
-        dof_names=names,
-        q=q,
-        v=scene.v0,
-        residual=rel,
-        balancing=balance,
-        elapsed=time.perf_counter() - t0,
-        calls=tuple(calls),
-        dropped=dropped,
-        notes=tuple(notes),
-        method="analytic",
-        basis=B,
-        basis_names=scene.dof_names,
-        basis_condition=condition,
-        constraint_forces=constraint_forces(scene, lam),
+    (system,) = LinearizedSystem.stack(
+        M=M, D=D, G=G, S=S, N=N, dof_names=names, q=q[None], v=scene.v0, residual=[rel],
+        balancing=None if balance is None else balance[None], elapsed=time.perf_counter() - t0, calls=calls,
+        dropped=[dropped], notes=[tuple(notes)], basis=B, basis_names=scene.dof_names, basis_condition=condition,
+        constraint_forces=point.forces,
     )  # fmt: skip
+    return system
 
 
 def constraint_stiffness(scene: Scene, q, lam) -> np.ndarray:
@@ -256,6 +215,16 @@ def constraint_stiffness(scene: Scene, q, lam) -> np.ndarray:
         No constraints, or lam of the wrong size.
     ConfigurationError
         q has the wrong size or is not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> eq = pinlin.find_equilibrium(scene, np.zeros(3))
+    >>> K_lambda = pinlin.constraint_stiffness(scene, eq.q, eq.constraint_forces[0].force)
+    >>> K_lambda.shape, bool(np.allclose(K_lambda, K_lambda.T))
+    ((3, 3), True)
     """
     if not scene.constraints:
         raise ParameterError("scene", "has no constraints")

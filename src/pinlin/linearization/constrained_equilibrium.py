@@ -24,6 +24,7 @@ import pinocchio as pin
 import scipy.linalg
 
 from ..errors import ConvergenceError
+from ..errors.deprecated import renamed_keywords
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .closure import CLOSURE_TOL, close_loops, project
@@ -38,7 +39,7 @@ from .constraint_set import (
     relative_residual,
 )
 from .equilibrium_result import EquilibriumResult
-from .newton import ARMIJO, MAX_ITERATIONS, MIN_STEP, TOL, check_solver_parameters, newton_step
+from .newton import ARMIJO, MAX_ITERATIONS, MIN_STEP, RTOL, check_solver_parameters, newton_step
 
 __all__ = ["find_constrained_equilibrium", "PROJECTION_ITERATIONS"]
 
@@ -57,11 +58,12 @@ def _kkt_step(Kt: np.ndarray, state: ConstraintState, g: np.ndarray) -> tuple[np
     return step[:nv], lstsq
 
 
+@renamed_keywords(tol="rtol")
 def find_constrained_equilibrium(
     scene: Scene,
     q0=None,
     *,
-    tol: float = TOL,
+    rtol: float = RTOL,
     max_iterations: int = MAX_ITERATIONS,
     min_step: float = MIN_STEP,
     closure_tol: float = CLOSURE_TOL,
@@ -77,9 +79,9 @@ def find_constrained_equilibrium(
     q0 : (nq,) array, optional
         Start, which need not satisfy the constraints (the loop-closure step closes
         them and the result's notes and ``assembly`` say so); default neutral.
-    tol : float
+    rtol : float
         Stop when ||r - J_c^T lambda|| / (||tau|| + ||Q_e|| + ||J_c^T lambda|| +
-        ||K - K_lambda||) <= tol.
+        ||K - K_lambda||) <= rtol (``tol`` before 0.4, deprecated).
     max_iterations : int
     min_step : float
         Smallest line-search fraction before giving up.
@@ -103,8 +105,8 @@ def find_constrained_equilibrium(
         Newton did not converge; ``.history`` holds the residual norms.
     """
     t0 = time.perf_counter()
-    check_solver_parameters(tol, max_iterations, min_step)
-    closure = close_loops(scene, q0, tol=closure_tol, rank_tol=rank_tol)
+    check_solver_parameters(rtol, max_iterations, min_step)
+    closure = close_loops(scene, q0, closure_tol=closure_tol, rank_tol=rank_tol)
     q = closure.q
     state = evaluate_constraints(scene, q, rank_tol=rank_tol)
     check_motion_left(scene, state)  # as linearize does: at the closed configuration
@@ -115,7 +117,7 @@ def find_constrained_equilibrium(
         norm = fro(g)
         history.append(norm)
         rel = relative_residual(g, state, lam, asm, Kt)
-        if rel <= tol:
+        if rel <= rtol:
             return _equilibrium_result(scene, q, state, lam, norm, rel, iteration, history, least_squares, closure, t0)
         if iteration == max_iterations:
             break
@@ -146,7 +148,7 @@ def find_constrained_equilibrium(
                 )
     raise ConvergenceError(
         f"find_equilibrium: no convergence in {max_iterations} iteration{'s' if max_iterations != 1 else ''} on the constraint manifold "
-        f"(relative residual {rel:.2e} > tol {tol:g}); residual history: {[f'{h:.2e}' for h in history]}",
+        f"(relative residual {rel:.2e} > rtol {rtol:g}); residual history: {[f'{h:.2e}' for h in history]}",
         history,
     )
 

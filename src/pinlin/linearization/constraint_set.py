@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg.lapack as lapack
 
-from ..errors import OverconstrainedError
+from ..errors import ConstraintViolationError, OverconstrainedError
 from ..model.constraints import ConstraintForce, ContactStatus, dead_wrench_stiffness, stack_wrenches
 from ..model.evaluation import Evaluation, Workspace
 from ..model.scene import Scene
@@ -32,6 +32,8 @@ from .assembly import Assembly, assemble
 
 __all__ = [
     "ConstraintState",
+    "ConstrainedPoint",
+    "linearization_point",
     "constrained_point",
     "relative_residual",
     "constraint_notes",
@@ -125,8 +127,9 @@ class ConstraintState:
         """Full SVD of J_c: U (m x m), s, Vt (nv x nv) (bases of the null spaces, minimum-norm multipliers)."""
         return np.linalg.svd(self.J, full_matrices=True)
 
-    @property
+    @_once
     def m(self) -> int:
+        """Number of constraint equations."""
         return len(self.phi)
 
     @_once
@@ -189,7 +192,7 @@ class ConstraintState:
         rot = 0.0
         if len(scene.rotation_rows):
             R = self.phi[scene.rotation_rows]
-            rot = math.sqrt(float(np.maximum.reduce(np.add.reduce(R * R, axis=1))))
+            rot = math.sqrt(float((R * R).sum(axis=1).max()))
         return math.sqrt(largest), rot, scene.constraints[worst].label
 
     def contacts_violated(self, lam: np.ndarray) -> bool:
@@ -327,3 +330,64 @@ def check_motion_left(scene: Scene, state: ConstraintState) -> None:
             nv,
             labels,
         )
+
+
+@dataclass(frozen=True)
+class ConstrainedPoint:
+    """What one linearization reads of a scene with constraints at q, each evaluated once.
+
+    Attributes
+    ----------
+    state : ConstraintState
+        Phi, J_c and its factorizations at q (closure gaps, rank, basis).
+    lam, g : ndarray
+        The minimum-norm multipliers (m,) and g = r - J_c^T lambda (nv,).
+    assembly : Assembly
+        The scene's own M, C, K and residual at q.
+    Kt : (nv, nv) ndarray
+        K - K_lambda, the stiffness the projection reads.
+    relative_residual : float
+        ||g|| over the force scale (:func:`relative_residual`).
+    notes : list of str
+        Redundancy and contact notes (:func:`constraint_notes`).
+    forces : tuple of ConstraintForce
+        The constraint forces, in scene order.
+    """
+
+    state: ConstraintState
+    lam: np.ndarray
+    g: np.ndarray
+    assembly: Assembly
+    Kt: np.ndarray
+    relative_residual: float
+    notes: list
+    forces: tuple
+
+
+def linearization_point(scene: Scene, q: np.ndarray, *, rank_tol: float, constraint_tol: float) -> ConstrainedPoint:
+    """The constraints, the assembly and the multipliers at a checked q, in one pass (what linearize reads).
+
+    Raises
+    ------
+    ConstraintViolationError
+        q violates the constraints by more than ``constraint_tol`` (the gap [m] attached).
+    OverconstrainedError
+        No motion is left: rank J_c = nv.
+    """
+    state = evaluate_constraints(scene, q, rank_tol=rank_tol)
+    gap, rot, worst = state.gaps()
+    if gap > constraint_tol or rot > constraint_tol:
+        raise ConstraintViolationError(
+            f"q violates the constraints: constraint {worst!r} is open by {gap:.4g} m"
+            + (f" (largest rotation gap {rot:.3g} rad)" if rot > constraint_tol else "")
+            + f" > constraint_tol {constraint_tol:g}; close them first with find_equilibrium or close_loops",
+            gap,
+            rot,
+            [worst],
+        )
+    check_motion_left(scene, state)  # decides the rank: the projection reads it, and m, from the state
+    lam, g, asm, Kt = constrained_point(scene, q, state, stiffness=True, damping=True, mass=True)
+    notes, _ = constraint_notes(scene, state, lam, all_contacts=False)
+    return ConstrainedPoint(
+        state, lam, g, asm, Kt, relative_residual(g, state, lam, asm, Kt), notes, constraint_forces(scene, lam)
+    )

@@ -183,8 +183,7 @@ def pivoted_basis(state: ConstraintState, dof_names: tuple[str, ...]) -> tuple[n
 
     ``CoordinateBasis(B, names, condition, PIVOTED_METHOD, dependent)`` is what
     :func:`coordinate_basis` returns for them (:func:`pivoted_coordinates`); the
-    linearization reads the first three only, with fewer numpy and Python steps than
-    the dataclass needs (issue 14).
+    linearization reads the first three only, without building the dataclass.
 
     The condition number is LAPACK's ``dtrcon`` 1-norm estimate on R11 (1 when
     nothing depends, rank J_c = 0), as :func:`coordinate_basis` reports it.

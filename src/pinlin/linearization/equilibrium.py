@@ -8,6 +8,7 @@ import numpy as np
 import pinocchio as pin
 
 from ..errors import ConfigurationError, ConvergenceError
+from ..errors.deprecated import renamed_keywords
 from ..model.scene import Scene
 from ..numerics.norms import fro
 from .assembly import assemble
@@ -18,7 +19,7 @@ from .newton import (
     MAX_ITERATIONS,
     MIN_STEP,
     STALL_RATIO,
-    TOL,
+    RTOL,
     check_solver_parameters,
     newton_step,
 )
@@ -73,6 +74,13 @@ def equilibrium_residual(scene: Scene, q) -> np.ndarray:
     ------
     ConfigurationError
         q has the wrong size or is not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> pinlin.equilibrium_residual(scene, np.zeros(2))  # hanging straight down: balanced
+    array([0., 0.])
     """
     q = scene.check_configuration(q)
     return assemble(scene, q, stiffness=False).residual[scene.free_dofs]
@@ -80,11 +88,12 @@ def equilibrium_residual(scene: Scene, q) -> np.ndarray:
 
 
 
+@renamed_keywords(tol="rtol")
 def find_equilibrium(
     scene: Scene,
     q0=None,
     *,
-    tol: float = TOL,
+    rtol: float = RTOL,
     max_iterations: int = MAX_ITERATIONS,
     min_step: float = MIN_STEP,
 ) -> EquilibriumResult:
@@ -110,8 +119,8 @@ def find_equilibrium(
     scene : Scene
     q0 : (nq,) array, optional
         Start; default Pinocchio's neutral configuration.
-    tol : float
-        Stop when ||r|| / (||tau|| + ||Q_e|| + ||K||) <= tol.
+    rtol : float
+        Stop when ||r|| / (||tau|| + ||Q_e|| + ||K||) <= rtol (``tol`` before 0.4, deprecated).
     max_iterations : int
     min_step : float
         Smallest line-search fraction before giving up, in (0, 1).
@@ -119,7 +128,7 @@ def find_equilibrium(
     Raises
     ------
     ParameterError
-        ``tol``, ``max_iterations`` or ``min_step`` is not valid.
+        ``rtol``, ``max_iterations`` or ``min_step`` is not valid.
     ConfigurationError
         q0 has the wrong size, is not finite (or has a revolute angle beyond
         :data:`~pinlin.model.scene.ANGLE_LIMIT`), or its forces overflow.
@@ -129,12 +138,20 @@ def find_equilibrium(
         (With constraints) the constraints cannot be closed from q0.
     TimePeriodicError
         The scene has periodic prescribed motions (use :func:`pinlin.periodic_orbit`).
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0, rest=0.2)])
+    >>> eq = pinlin.find_equilibrium(scene, np.zeros(2))
+    >>> np.round(eq.q, 6), bool(eq.relative_residual <= 1e-12)
+    (array([ 0.043987, -0.043987]), True)
     """
-    check_solver_parameters(tol, max_iterations, min_step)
+    check_solver_parameters(rtol, max_iterations, min_step)
     if scene.motions:  # no steady equilibrium: the periodic reference motion is pinlin.periodic_orbit's
         refuse_motions(scene)
     if scene.constraints:
-        return find_constrained_equilibrium(scene, q0, tol=tol, max_iterations=max_iterations, min_step=min_step)
+        return find_constrained_equilibrium(scene, q0, rtol=rtol, max_iterations=max_iterations, min_step=min_step)
     t0 = time.perf_counter()
     q = scene.check_configuration(scene.neutral() if q0 is None else q0, "q0")
     f = scene.free_dofs
@@ -149,7 +166,7 @@ def find_equilibrium(
             _check_start(scene, q, r)
         history.append(norm)
         rel = _relative(r, asm.force_scale)
-        if rel <= tol:
+        if rel <= rtol:
             return _result(q, norm, rel, iteration, history, least_squares, t0)
         if iteration == max_iterations:
             break
@@ -176,7 +193,7 @@ def find_equilibrium(
     stalled = len(history) > 4 and history[-1] > STALL_RATIO * history[-4]
     raise ConvergenceError(
         f"find_equilibrium: no convergence in {max_iterations} iteration{'s' if max_iterations != 1 else ''} (relative residual "
-        f"{rel:.2e} > tol {tol:g})"
+        f"{rel:.2e} > rtol {rtol:g})"
         + (
             "; the residual has stalled at a local minimum of ||r||, which Newton's line search "
             "cannot leave: start closer to the equilibrium, or raise the load in steps from a "

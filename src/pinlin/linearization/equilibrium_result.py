@@ -57,6 +57,14 @@ class EquilibriumResult(Result):
 
     For a scene with constraints, ``residual`` is ||r - J_c^T lambda|| and the
     relative residual divides it by ||tau|| + ||Q_e|| + ||J_c^T lambda|| + ||K - K_lambda||.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> eq = pinlin.find_equilibrium(scene, np.array([0.1, 0.0]))
+    >>> eq.method, np.round(eq.q, 6), bool(eq.error <= 1e-12), eq.constraint_forces
+    ('newton', array([0., 0.]), True, ())
     """
 
     q: np.ndarray

@@ -23,13 +23,12 @@ from ..model.scene import Scene
 from .assembly import Assembly, assemble
 from .checks import check_equilibrium, check_finite_and_mass
 from .constrained import linearize_constrained
-from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, check_tolerances
+from .options import CONSTRAINT_TOL, EQUILIBRIUM_TOL, PERIODIC_TOL, RANK_TOL, LinearizeOptions
 from .periodicity import PERIODIC_TEST_ANGLES, numeric_change, refuse_motions
 from .plan import STRUCTURE_EPS_FACTOR, LinearizationPlan, plan_of
 from .split import split_damping as _split_damping
 from .split import split_stiffness as _split_stiffness
 from .system import LinearizedSystem
-from .templates import system_from_template
 
 __all__ = ["linearize", "generalized_force", "PERIODIC_TEST_ANGLES", "STRUCTURE_EPS_FACTOR"]
 
@@ -142,15 +141,23 @@ def linearize(
         The constraints leave no motion (rank J_c = nv).
     SingularConstraintError
         J_c loses rank at q (a linkage at a toggle or change point), naming the constraints.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> sys = pinlin.linearize(scene, np.zeros(2))
+    >>> sys.n, sys.nonzero, sys.calls
+    (2, ('M', 'S'), ('computeGeneralizedGravityDerivatives', 'crba'))
+    >>> np.round(sys.K, 4)
+    array([[15.8511,  2.2073],
+           [ 2.2073,  2.2073]])
     """
     t0 = time.perf_counter()
     q = scene.check_configuration(q)
-    check_tolerances(equilibrium_tol, periodic_tol, structure_tol, constraint_tol, rank_tol)
+    options = LinearizeOptions(balancing, equilibrium_tol, structure_tol, periodic_tol, constraint_tol, rank_tol)
     if scene.constraints:
-        return linearize_constrained(
-            scene, q, coordinates=coordinates, balancing=balancing, equilibrium_tol=equilibrium_tol,
-            structure_tol=structure_tol, constraint_tol=constraint_tol, rank_tol=rank_tol,
-        )  # fmt: skip
+        return linearize_constrained(scene, q, coordinates, options)
     if coordinates is not None:
         raise ParameterError("coordinates", "applies to scenes with constraints only; this scene has none")
     if scene.motions:
@@ -170,10 +177,12 @@ def linearize(
     D, G = _split_damping(C, base, plan, tol, dropped)
     if balancing:
         notes.append(f"held at q by constant actuator forces (relative residual {rel:.2e})")
-    return system_from_template(
-        plan.template, M, D, G, S, N, q, rel, r.copy() if balancing else None, time.perf_counter() - t0,
-        tuple(calls), dropped, tuple(notes),
+    (system,) = LinearizedSystem.stack(
+        M=M, D=D, G=G, S=S, N=N, dof_names=scene.dof_names, q=q[None], v=scene.v0, residual=[rel],
+        balancing=r[None].copy() if balancing else None, elapsed=time.perf_counter() - t0, calls=calls,
+        dropped=[dropped], notes=[tuple(notes)],
     )  # fmt: skip
+    return system
 
 
 
@@ -226,6 +235,14 @@ def generalized_force(scene: Scene, q, wrench: WrenchElement) -> np.ndarray:
         Its frame is not in the robot.
     ConfigurationError
         q has the wrong size or is not finite.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 3.0)])
+    >>> wrench = pinlin.FollowerWrench("tip", force=(1.0, 0.0, 0.0))
+    >>> pinlin.generalized_force(scene, np.zeros(2), wrench)  # [N m]: the tip is 1.2 m and 0.5 m out
+    array([-1.2, -0.5])
     """
     if not isinstance(wrench, WrenchElement):
         raise ParameterError("wrench", f"expected a FollowerWrench or DeadWrench, got {wrench!r}")

@@ -2,7 +2,7 @@
 
 - :func:`newton_step` -- the step of a square system, least squares (minimum norm) when it is singular;
 - :data:`ARMIJO`, :data:`STALL_RATIO` -- the line search's sufficient decrease and the stall test;
-- :data:`TOL`, :data:`MAX_ITERATIONS`, :data:`MIN_STEP` -- the solvers' defaults, and
+- :data:`RTOL`, :data:`MAX_ITERATIONS`, :data:`MIN_STEP` -- the solvers' defaults, and
   :func:`check_solver_parameters`, their one check.
 """
 
@@ -15,7 +15,7 @@ import scipy.linalg
 
 from ..errors import ParameterError
 
-__all__ = ["newton_step", "check_solver_parameters", "ARMIJO", "STALL_RATIO", "TOL", "MAX_ITERATIONS", "MIN_STEP"]
+__all__ = ["newton_step", "check_solver_parameters", "ARMIJO", "STALL_RATIO", "RTOL", "MAX_ITERATIONS", "MIN_STEP"]
 
 #: Armijo's sufficient-decrease constant of the line search: a step is taken when
 #: ||r|| falls by at least ARMIJO * alpha of itself (the usual 1e-4 of Nocedal and
@@ -24,8 +24,8 @@ ARMIJO = 1e-4
 #: The residual has stalled when three steps reduced it by less than 1 - STALL_RATIO
 #: (10 %): Newton converging would have cut it by orders of magnitude.
 STALL_RATIO = 0.9
-#: Default tolerance on the relative residual of an equilibrium.
-TOL = 1e-12
+#: Default relative residual at which the equilibrium solvers stop.
+RTOL = 1e-12
 #: Default largest number of Newton steps.
 MAX_ITERATIONS = 50
 #: Default smallest line-search fraction before the search gives up.
@@ -48,10 +48,10 @@ def newton_step(K: np.ndarray, r: np.ndarray) -> tuple[np.ndarray, bool]:
     return scipy.linalg.lstsq(K, -r, check_finite=False)[0], True
 
 
-def check_solver_parameters(tol, max_iterations, min_step) -> None:
-    """Raise ParameterError unless tol > 0 is finite, max_iterations >= 0 an integer and 0 < min_step < 1."""
-    if not (isinstance(tol, (int, float, np.integer, np.floating)) and 0 < tol < np.inf):
-        raise ParameterError("tol", f"must be a positive number, got {tol!r}")
+def check_solver_parameters(rtol, max_iterations, min_step) -> None:
+    """Raise ParameterError unless rtol > 0 is finite, max_iterations >= 0 an integer and 0 < min_step < 1."""
+    if not (isinstance(rtol, (int, float, np.integer, np.floating)) and 0 < rtol < np.inf):
+        raise ParameterError("rtol", f"must be a positive number, got {rtol!r}")
     if isinstance(max_iterations, bool) or not isinstance(max_iterations, (int, np.integer)) or max_iterations < 0:
         raise ParameterError("max_iterations", f"must be an integer >= 0, got {max_iterations!r}")
     if not (isinstance(min_step, (int, float, np.integer, np.floating)) and 0 < min_step < 1):

@@ -1,4 +1,4 @@
-"""What a linearization of one scene runs, decided once per scene (issue 14).
+"""What a linearization of one scene runs, decided once per scene.
 
 A :class:`~pinlin.Scene` is immutable, so everything :func:`pinlin.linearize`
 decides without looking at q is decided once, on first use, and kept by this
@@ -22,7 +22,6 @@ import numpy as np
 from ..model.scene import Scene
 from ..numerics.arrays import readonly
 from .split import choose_element_parts, element_damping_parts
-from .templates import system_template
 from .time_invariance import InvarianceProof, invariance_proofs
 
 __all__ = ["plan_of", "LinearizationPlan", "RestDamping", "STRUCTURE_EPS_FACTOR", "default_structure_tol"]
@@ -121,8 +120,6 @@ class LinearizationPlan:
     undamped : bool
         True when the elements add no damping at any point (their constant damping
         is zero): with a prescribed velocity C is Pinocchio's dtau/dv alone.
-    template : mapping
-        The attributes every system of the scene shares (:func:`~.templates.system_template`).
     """
 
     __slots__ = (
@@ -141,7 +138,6 @@ class LinearizationPlan:
         "largest_departure",
         "rest_damping",
         "undamped",
-        "template",
     )
 
     def __init__(self, scene: Scene):
@@ -165,7 +161,6 @@ class LinearizationPlan:
         constant = all(g.constant_damping for g in scene.groups)
         self.rest_damping = RestDamping(scene, self.block) if constant else None
         self.undamped = constant and not np.count_nonzero(self.rest_damping.C)
-        self.template = system_template(scene.dof_names, scene.v0)
 
     def __repr__(self) -> str:
         proved = ", ".join(self.proofs) or "none"

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..numerics.arrays import HALF
 from ..numerics.norms import fro
 
 __all__ = ["split_stiffness", "split_damping", "element_damping_parts", "choose_element_parts"]
@@ -21,16 +20,10 @@ _TINY = float(np.finfo(float).tiny)
 def _halves(A: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
     """((A^T + A) / 2, A - A^T and ||A - A^T||_F): the arithmetic of the symmetric/skew split.
 
-    ``A`` may be a block view of a larger matrix; the work runs on contiguous arrays
-    (a ufunc over a strided or transposed operand costs about three contiguous ones).
+    ``A`` may be a block view of a larger matrix; both halves are new arrays.
     """
-    if not A.flags.c_contiguous:
-        A = A.copy()
-    T = A.T.copy()  # A^T, contiguous: cheaper sums than with the transposed view
-    difference = A - T
-    T += A  # A^T + A: the same sum as A + A^T (addition commutes exactly), in place
-    T *= HALF
-    return T, difference, fro(difference)
+    difference = A - A.T
+    return (A + A.T) / 2, difference, fro(difference)
 
 
 def split_stiffness(K: np.ndarray, rounding: float, tol: float, dropped: dict) -> tuple[np.ndarray, np.ndarray]:
@@ -55,7 +48,7 @@ def _skew_part(difference: np.ndarray, norm: float, scale: float, tol: float, dr
         if size:
             dropped[name] = size
         return np.zeros(difference.shape)
-    difference *= HALF
+    difference *= 0.5
     return difference
 
 
@@ -64,7 +57,7 @@ def element_damping_parts(C: np.ndarray) -> tuple[np.ndarray, np.ndarray | None,
     D, difference, norm = _halves(C)
     if not norm and not np.count_nonzero(difference):
         return C, None, 0.0
-    difference *= HALF
+    difference *= 0.5
     return D, difference, 0.5 * norm / max(fro(C), _TINY)
 
 

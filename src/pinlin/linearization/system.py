@@ -9,27 +9,16 @@ import dataclasses
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from itertools import repeat
 
 import numpy as np
 
-from ..errors import ParameterError, SingularMassError
-from ..numerics.arrays import readonly
-from ..numerics.norms import fro
+from ..errors import ParameterError
 from ..results import Result
-from .state_form import first_order_form, null_motion
+from .matrices import MATRIX_NAMES, SYMMETRY_TOL, checked_basis, checked_matrices, copied, square_matrix, taken
+from .state_form import first_order_form
 
-__all__ = ["LinearizedSystem", "check_system", "MATRIX_NAMES"]
-
-#: The five matrices of the linearized equation, in the paper's order.
-MATRIX_NAMES = ("M", "D", "G", "S", "N")
-
-#: Default relative tolerance of the (skew-)symmetry checks of the constructor.
-SYMMETRY_TOL = 1e-10
-
-
-def _frozen(a: np.ndarray) -> np.ndarray:
-    a.setflags(write=False)
-    return a
+__all__ = ["LinearizedSystem", "check_system", "MATRIX_NAMES", "SYMMETRY_TOL"]
 
 
 @dataclass(frozen=True, repr=False, eq=False)
@@ -43,21 +32,14 @@ class LinearizedSystem(Result):
 
     Attributes
     ----------
-    M : (n, n) ndarray
-        Mass matrix, symmetric positive definite [kg, kg m^2].
-    D : (n, n) ndarray
-        Damping, symmetric.
-    G : (n, n) ndarray
-        Gyroscopic, skew-symmetric.
-    S : (n, n) ndarray
-        Stiffness, symmetric.
-    N : (n, n) ndarray
-        Circulatory, skew-symmetric.
+    M, D, S : (n, n) ndarray
+        Mass (symmetric positive definite [kg, kg m^2]), damping and stiffness (symmetric).
+    G, N : (n, n) ndarray
+        Gyroscopic and circulatory, skew-symmetric.
     dof_names : tuple of str
         Name of each coordinate.
     q, v : ndarray or None
-        The operating point (full Pinocchio configuration and velocity, prescribed
-        joints included) when built from a scene.
+        The operating point (full configuration and velocity) when built from a scene.
     residual : float
         Relative equilibrium residual at q (0 for plain matrices).
     balancing : ndarray or None
@@ -68,9 +50,8 @@ class LinearizedSystem(Result):
         How it was built: ``"analytic"`` (Pinocchio's analytic derivatives and the
         elements' own, :func:`pinlin.linearize`) or ``"matrices"`` (given).
     error : float
-        The headline error figure: the relative equilibrium residual at q (how far
-        q is from the operating point the matrices assume; 0 for given matrices).
-        The rounding left in the matrices is at the level of ``dropped``.
+        The headline error figure: ``residual`` (the rounding left in the matrices
+        is at the level of ``dropped``).
     calls : tuple of str
         Pinocchio algorithms run to build it, in order.
     dropped : mapping
@@ -79,20 +60,15 @@ class LinearizedSystem(Result):
     notes : tuple of str
         Anything the builder wants the user to know.
     basis : (nv, n) ndarray or None
-        For a scene with constraints (theory: constraints): the basis B of ker J_c
-        with joint velocities = ``basis @ z`` (z the coordinates, ``dof_names``);
-        ``expand`` maps mode shapes and responses to all joints.  None without
-        constraints (the coordinates are the free joints themselves).
+        With constraints (theory: constraints): the basis B of ker J_c, joint
+        velocities = ``basis @ z`` (``expand``); None without constraints.
     basis_names : tuple of str
-        Names of the rows of ``basis`` (the robot's degrees of freedom); empty
-        without constraints.
+        Names of the rows of ``basis`` (the robot's degrees of freedom), or empty.
     basis_condition : float or None
         cond(J_d) of the joints that follow the coordinates (1 for an orthonormal
-        basis); it grows without bound near a position where the chosen
-        coordinates cannot drive the mechanism.  None without constraints.
+        basis; unbounded where they cannot drive the mechanism), or None.
     constraint_forces : tuple of ConstraintForce
-        The constraint forces at q (world axes, on each constraint's frame), in
-        scene order; empty without constraints.
+        The constraint forces at q (world axes, on each constraint's frame), or empty.
 
     Raises
     ------
@@ -100,6 +76,15 @@ class LinearizedSystem(Result):
         Matrices of the wrong shape, non-finite, or violating their symmetry.
     SingularMassError
         M is not positive definite.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), 0.1 * np.eye(2), [[2.0, 1.0], [0.0, 3.0]])
+    >>> sys
+    LinearizedSystem(n=2, dofs=('x1', 'x2'), nonzero=M+D+S+N, method='matrices', error=0.0e+00)
+    >>> sys.N
+    array([[ 0. ,  0.5],
+           [-0.5,  0. ]])
     """
 
     M: np.ndarray
@@ -123,72 +108,17 @@ class LinearizedSystem(Result):
     constraint_forces: tuple = ()
 
     def __post_init__(self):
-        mats = {}
-        n = None
-        for name in MATRIX_NAMES:
-            try:
-                a = np.array(getattr(self, name), dtype=float)
-            except (TypeError, ValueError):
-                raise ParameterError(name, "expected a real matrix") from None
-            if a.ndim != 2 or a.shape[0] != a.shape[1]:
-                raise ParameterError(name, f"expected a square matrix, got shape {a.shape}")
-            if n is None:
-                n = a.shape[0]
-                if n == 0:
-                    raise ParameterError(name, "the system has no coordinates (n = 0)")
-            elif a.shape != (n, n):
-                raise ParameterError(name, f"expected shape {(n, n)} like M, got {a.shape}")
-            if not np.all(np.isfinite(a)):
-                raise ParameterError(name, "has non-finite entries")
-            mats[name] = a
-        for name, sign in (("M", 1), ("D", 1), ("S", 1), ("G", -1), ("N", -1)):
-            a = mats[name]
-            defect = fro(a - sign * a.T)
-            if defect > SYMMETRY_TOL * max(fro(a), np.finfo(float).tiny):
-                kind = "symmetric" if sign == 1 else "skew-symmetric"
-                raise ParameterError(
-                    name, f"must be {kind}; relative defect {defect / fro(a):.2e} > {SYMMETRY_TOL:g}"
-                )
-            mats[name] = (a + sign * a.T) / 2
+        matrices = {name: square_matrix(name, getattr(self, name)) for name in MATRIX_NAMES}
+        n = matrices["M"].shape[0]
         names = tuple(str(s) for s in self.dof_names) or tuple(f"x{i + 1}" for i in range(n))
-        if len(names) != n:
-            raise ParameterError("dof_names", f"expected {n} names, got {len(names)}")
-        if len(set(names)) != n:
-            raise ParameterError("dof_names", f"names must be unique, got {names}")
-        try:
-            np.linalg.cholesky(mats["M"])
-        except np.linalg.LinAlgError:
-            smallest, weak = null_motion(mats["M"], names)
-            raise SingularMassError(
-                f"the mass matrix is not positive definite (smallest eigenvalue {smallest:.3g}); "
-                f"the coordinates {weak} carry no inertia",
-                weak,
-            ) from None
-        for name, a in mats.items():
-            object.__setattr__(self, name, readonly(a, float))
-        object.__setattr__(self, "dof_names", names)
-        object.__setattr__(self, "q", readonly(self.q, float))
-        object.__setattr__(self, "v", readonly(self.v, float))
-        object.__setattr__(self, "balancing", readonly(self.balancing, float))
-        object.__setattr__(self, "dropped", dict(self.dropped))
-        object.__setattr__(self, "calls", tuple(self.calls))
-        object.__setattr__(self, "notes", tuple(self.notes))
-        self._check_basis(n)
-
-    def _check_basis(self, n: int) -> None:
-        if self.basis is None:
-            return
-        try:
-            B = np.array(self.basis, dtype=float)
-        except (TypeError, ValueError):
-            raise ParameterError("basis", "expected a real matrix") from None
-        if B.ndim != 2 or B.shape[1] != n or not np.all(np.isfinite(B)):
-            raise ParameterError("basis", f"expected a finite (nv x {n}) matrix, got shape {B.shape}")
-        if self.basis_names and len(self.basis_names) != B.shape[0]:
-            raise ParameterError("basis_names", f"expected {B.shape[0]} names, got {len(self.basis_names)}")
-        object.__setattr__(self, "basis", readonly(B, float))
-        object.__setattr__(self, "basis_names", tuple(str(x) for x in self.basis_names))
-        object.__setattr__(self, "constraint_forces", tuple(self.constraint_forces))
+        (system,) = type(self).stack(
+            **matrices, dof_names=names, q=None if self.q is None else copied(self.q)[None], v=copied(self.v),
+            residual=[self.residual], balancing=None if self.balancing is None else copied(self.balancing)[None],
+            elapsed=self.elapsed, calls=self.calls, dropped=[dict(self.dropped)], notes=[tuple(self.notes)],
+            method=self.method, basis=copied(self.basis), basis_names=tuple(str(x) for x in self.basis_names),
+            basis_condition=self.basis_condition, constraint_forces=self.constraint_forces,
+        )  # fmt: skip
+        self.__dict__.update(vars(system))
 
     # ------------------------------------------------------------------ construction
 
@@ -212,6 +142,12 @@ class LinearizedSystem(Result):
             Not real square matrices of one shape, non-finite entries, bad ``dof_names``.
         SingularMassError
             M is not positive definite.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.diag([1.0, 4.0]), dof_names=("a", "b"))
+        >>> sys.dof_names, sys.nonzero
+        (('a', 'b'), ('M', 'S'))
         """
         for name, a in (("M", M), ("C", C), ("K", K)):  # numpy would drop the imaginary part with a warning
             try:
@@ -241,67 +177,96 @@ class LinearizedSystem(Result):
         return cls(M, D, G, S, N, dof_names=tuple(dof_names))
 
     @classmethod
-    def trusted(
+    def stack(
         cls,
-        M: np.ndarray,
-        D: np.ndarray,
-        G: np.ndarray,
-        S: np.ndarray,
-        N: np.ndarray,
         *,
-        dof_names: tuple[str, ...],
-        q: np.ndarray | None = None,
+        M,
+        D,
+        G,
+        S,
+        N,
+        dof_names: Sequence[str],
+        residual: Sequence[float],
+        dropped: Sequence[Mapping[str, float]],
+        notes: Sequence[Sequence[str]],
+        q=None,
         v: np.ndarray | None = None,
-        residual: float = 0.0,
-        balancing: np.ndarray | None = None,
+        balancing=None,
         elapsed: float = 0.0,
-        calls: tuple[str, ...] = (),
-        dropped: Mapping[str, float] | None = None,
-        notes: tuple[str, ...] = (),
+        calls: Sequence[str] = (),
         method: str = "analytic",
         basis: np.ndarray | None = None,
-        basis_names: tuple[str, ...] = (),
+        basis_names: Sequence[str] = (),
         basis_condition: float | None = None,
-        constraint_forces: tuple = (),
-        frozen: bool = False,
-    ) -> LinearizedSystem:
-        """Wrap matrices that are valid by construction, without re-validating them.
+        constraint_forces: Sequence = (),
+    ) -> tuple[LinearizedSystem, ...]:
+        """The systems of P operating points of one model, their matrices checked in one pass.
 
-        For builders (such as :func:`pinlin.linearize`) that produce M, D, S
-        exactly symmetric and G, N exactly skew, with M already checked positive
-        definite and every entry finite, and ``dof_names`` of the right length.
-        The arrays are taken over (not copied) and made read-only; ``frozen=True``
-        says M, D, G, S, N, q and basis are read-only already (views of read-only
-        arrays, as :func:`pinlin.linearize_many` hands over).  Everyone else should
-        call the constructor, which validates.
+        For builders (:func:`pinlin.linearize` with P = 1, :func:`pinlin.linearize_many`);
+        the constructor is this with P = 1 and copies of its arguments.  Each of M, D, G, S,
+        N is a (P, n, n) stack, a sequence of P matrices, or one (n, n) matrix the systems
+        share; ``q`` (P, nq) or None, ``balancing`` (P, n) or None, and ``residual``,
+        ``dropped`` (dictionaries), ``notes`` (tuples), one entry per point, vary with the
+        point, the rest is shared.  The arrays and dictionaries are taken over (not copied),
+        the arrays made read-only.
+
+        Raises
+        ------
+        ParameterError, SingularMassError
+            As the constructor (:func:`~pinlin.linearization.matrices.checked_matrices`).
+
+        Examples
+        --------
+        >>> M = np.stack([np.eye(2), 2.0 * np.eye(2)])
+        >>> systems = pinlin.LinearizedSystem.stack(
+        ...     M=M, D=np.zeros((2, 2)), G=np.zeros((2, 2)), S=np.eye(2), N=np.zeros((2, 2)),
+        ...     dof_names=("a", "b"), residual=[0.0, 0.0], dropped=[{}, {}], notes=[(), ()])
+        >>> [float(s.M[0, 0]) for s in systems]
+        [1.0, 2.0]
         """
-        obj = object.__new__(cls)
-        for a in (balancing,) if frozen else (M, D, G, S, N, q, balancing, basis):
-            if a is not None:
-                a.setflags(False)  # write=False; positional: a third of the keyword call's cost
-        if v is not None and v.flags.writeable:  # a scene's v0 is read-only already: no copy, no flag
-            v.setflags(False)
-        object.__setattr__(obj, "__dict__", {
-            "M": M, "D": D, "G": G, "S": S, "N": N, "dof_names": tuple(dof_names), "q": q, "v": v,
-            "residual": residual, "balancing": balancing, "elapsed": elapsed, "calls": tuple(calls),
-            "dropped": dict(dropped or {}), "notes": tuple(notes), "method": method, "basis": basis,
-            "basis_names": tuple(basis_names), "basis_condition": basis_condition,
-            "constraint_forces": tuple(constraint_forces),
-        })  # fmt: skip
-        return obj
+        names = tuple(dof_names)
+        matrices = checked_matrices({"M": M, "D": D, "G": G, "S": S, "N": N}, names)
+        n = matrices["M"].shape[-1]
+        template = dict.fromkeys(_FIELDS)  # the attributes in field order: shared ones now, the others per point
+        template.update(
+            dof_names=names, v=taken(v), elapsed=elapsed, calls=tuple(calls), method=method,
+            basis=checked_basis(basis, basis_names, n), basis_names=tuple(basis_names),
+            basis_condition=basis_condition, constraint_forces=tuple(constraint_forces),
+        )  # fmt: skip
+        per_point = [repeat(a) if a.ndim == 2 else a for a in map(matrices.get, MATRIX_NAMES)]
+        per_point += [repeat(None) if a is None else taken(a) for a in (q, balancing)]
+        out = []
+        for M_p, D_p, G_p, S_p, N_p, q_p, b_p, r_p, d_p, n_p in zip(*per_point, residual, dropped, notes):
+            attributes = template.copy()
+            attributes["M"], attributes["D"], attributes["G"], attributes["S"], attributes["N"] = M_p, D_p, G_p, S_p, N_p
+            attributes["q"], attributes["balancing"], attributes["residual"] = q_p, b_p, r_p
+            attributes["dropped"], attributes["notes"] = d_p, n_p
+            system = object.__new__(cls)
+            object.__setattr__(system, "__dict__", attributes)
+            out.append(system)
+        return tuple(out)
 
     @cached_property
     def C(self) -> np.ndarray:
-        """C = D + G (n x n), read-only; formed on first access."""
-        return _frozen(self.D + self.G)
+        """C = D + G (n x n), read-only; formed on first access.
+        """
+        return taken(self.D + self.G)
 
     @cached_property
     def K(self) -> np.ndarray:
-        """K = S + N (n x n), read-only; formed on first access."""
-        return _frozen(self.S + self.N)
+        """K = S + N (n x n), read-only; formed on first access.
+        """
+        return taken(self.S + self.N)
 
     def replace(self, **changes) -> LinearizedSystem:
-        """A copy with some fields changed (validated again)."""
+        """A copy with some fields changed (validated again).
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.eye(2))
+        >>> sys.replace(dof_names=("a", "b")).dof_names
+        ('a', 'b')
+        """
         changes.pop("C", None)
         changes.pop("K", None)
         return dataclasses.replace(self, **changes)
@@ -310,23 +275,38 @@ class LinearizedSystem(Result):
 
     @property
     def error(self) -> float:
-        """The relative equilibrium residual at q (0 for given matrices); see the class docstring."""
+        """The relative equilibrium residual at q (0 for given matrices); see the class docstring.
+        """
         return float(self.residual)
 
     @property
     def n(self) -> int:
-        """Number of coordinates."""
+        """Number of coordinates.
+        """
         return self.M.shape[0]
 
     def is_zero(self, name: str) -> bool:
-        """True when matrix ``name`` (one of M, D, G, S, N, C, K) is exactly zero."""
+        """True when matrix ``name`` (one of M, D, G, S, N, C, K) is exactly zero.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2), None, np.eye(2))
+        >>> sys.is_zero("G"), sys.is_zero("K")
+        (True, False)
+        """
         if name not in MATRIX_NAMES + ("C", "K"):
             raise ParameterError("name", f"expected one of {MATRIX_NAMES + ('C', 'K')}, got {name!r}")
         return not np.any(getattr(self, name))
 
     @property
     def nonzero(self) -> tuple[str, ...]:
-        """Names of the matrices among M, D, G, S, N that are not exactly zero."""
+        """Names of the matrices among M, D, G, S, N that are not exactly zero.
+
+        Examples
+        --------
+        >>> pinlin.LinearizedSystem.from_matrices(np.eye(2), [[0.0, 1.0], [-1.0, 0.0]]).nonzero
+        ('M', 'G')
+        """
         return tuple(name for name in MATRIX_NAMES if not self.is_zero(name))
 
     def expand(self, x) -> np.ndarray:
@@ -343,6 +323,12 @@ class LinearizedSystem(Result):
         ------
         ParameterError
             The first axis of x is not of length n.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(2))
+        >>> sys.expand(np.array([1.0, 2.0]))  # no constraints: x itself (a copy)
+        array([1., 2.])
         """
         x = np.asarray(x)
         if x.ndim == 0 or x.shape[0] != self.n:
@@ -364,7 +350,14 @@ class LinearizedSystem(Result):
     # ------------------------------------------------------------------ dynamic stiffness
 
     def dynamic_stiffness(self, lam) -> np.ndarray:
-        """L(lam) = lam^2 M + lam C + K: (n, n) for a scalar, (len(lam), n, n) for an array."""
+        """L(lam) = lam^2 M + lam C + K: (n, n) for a scalar, (len(lam), n, n) for an array.
+
+        Examples
+        --------
+        >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(1), [[0.5]], [[4.0]])
+        >>> sys.dynamic_stiffness(2.0), sys.dynamic_stiffness([1.0, 2.0]).shape
+        (array([[9.]]), (2, 1, 1))
+        """
         lam = np.asarray(lam)
         if lam.ndim == 0:
             return lam * lam * self.M + lam * self.C + self.K
@@ -380,8 +373,11 @@ class LinearizedSystem(Result):
         )
 
 
+#: The declared fields, in order: the attributes of every system.
+_FIELDS = tuple(f.name for f in dataclasses.fields(LinearizedSystem))
 #: ``to_dict`` dumps the declared fields, then C and K (formed on access), as before they became lazy.
-LinearizedSystem._dict_fields = tuple(f.name for f in dataclasses.fields(LinearizedSystem)) + ("C", "K")
+LinearizedSystem._dict_fields = _FIELDS + ("C", "K")
+
 
 def check_system(sys) -> LinearizedSystem:
     """``sys`` itself if it is a :class:`~pinlin.LinearizedSystem`.
@@ -390,6 +386,12 @@ def check_system(sys) -> LinearizedSystem:
     ------
     ParameterError
         ``sys`` is anything else.
+
+    Examples
+    --------
+    >>> sys = pinlin.LinearizedSystem.from_matrices(np.eye(1))
+    >>> check_system(sys) is sys
+    True
     """
     if not isinstance(sys, LinearizedSystem):
         raise ParameterError(

@@ -168,7 +168,7 @@ class Evaluation:
 
     # Per-point caches start empty at the class level and are created on first use:
     # most evaluations (a joint-space scene) never read a frame, so building five
-    # containers per call would be a measurable part of a linearization (issue 14).
+    # containers per call would be a measurable part of a linearization.
     _kinematics = False
     _rotations: dict[int, np.ndarray] | None = None
     _jacobians: dict[tuple[int, pin.ReferenceFrame], np.ndarray] | None = None

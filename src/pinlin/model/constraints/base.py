@@ -19,6 +19,12 @@ class Constraint(ABC):
 
     Subclasses are frozen dataclasses with fields ``frame``, ``target`` and
     ``name``; a :class:`~pinlin.Scene` checks them against its robot.
+
+    Examples
+    --------
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0))
+    >>> isinstance(loop, pinlin.Constraint), loop.label, loop.target_frame
+    (True, 'rocker_tip', None)
     """
 
     #: Short label for reports and scene files.

@@ -25,6 +25,15 @@ class ConstraintForce:
         [N], world axes.
     torque : (3,) ndarray or None
         [N m], world axes; None for a point constraint.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> (force,) = pinlin.find_equilibrium(scene, np.zeros(3)).constraint_forces
+    >>> force.constraint, force.frame, np.round(force.force, 3), force.torque
+    ('loop', 'rocker_tip', array([ 5.065,  0.   , 25.363]), None)
     """
 
     constraint: str
@@ -71,6 +80,14 @@ class ContactStatus:
         The ground must pull (normal force < 0).
     slips : bool
         More friction is needed than mu.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> (foot,) = pinlin.ground_contacts(robot, np.zeros(2), ["tip"], friction=0.5)
+    >>> status = foot.contact_status(np.array([0.1, 0.0, 1.0]))
+    >>> status.normal_force, status.pulls, status.slips, status.feasible
+    (1.0, False, False, True)
     """
 
     constraint: str

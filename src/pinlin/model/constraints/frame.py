@@ -65,6 +65,12 @@ class FrameConstraint(Constraint):
     ParameterError
         A target that is neither a frame name nor a placement (4x4 homogeneous
         matrix with a rotation block).
+
+    Examples
+    --------
+    >>> weld = pinlin.FrameConstraint("tip", np.eye(4), name="weld")
+    >>> weld.kind, weld.size, weld.label
+    ('frame', 6, 'weld')
     """
 
     frame: str

@@ -54,6 +54,16 @@ class PointConstraint(Constraint):
         A target that is neither a frame name nor 3 finite numbers, a contact on
         a frame target, a negative or non-finite friction, friction without
         contact, a zero normal.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/four_bar.urdf"))
+    >>> loop = pinlin.PointConstraint("rocker_tip", (0.7, 0.0, 0.0), name="loop")
+    >>> scene = pinlin.Scene(robot, [pinlin.JointSpring("crank_joint", 50.0, rest=0.2)], constraints=[loop])
+    >>> loop.kind, loop.size, loop.label
+    ('point', 3, 'loop')
+    >>> pinlin.linearize(scene, pinlin.find_equilibrium(scene, np.zeros(3)).q).dof_names
+    ('coupler_joint',)
     """
 
     frame: str
@@ -159,6 +169,13 @@ def ground_contacts(
         q has the wrong size or is not finite.
     ParameterError
         Bad friction or normal.
+
+    Examples
+    --------
+    >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    >>> (foot,) = pinlin.ground_contacts(robot, np.zeros(2), ["tip"], friction=0.5)
+    >>> foot.contact, foot.friction, foot.target
+    (True, 0.5, array([ 0. ,  0. , -1.2]))
     """
     q = np.asarray(q, dtype=float)
     if q.shape != (robot.nq,) or not np.all(np.isfinite(q)):

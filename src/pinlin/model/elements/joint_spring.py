@@ -15,12 +15,7 @@ from ..numbers import numeric_array
 from .base import DiagonalIndex, Element, ElementGroup, as_matrix, check_psd, contiguous
 from .lie_log import joint_log
 
-__all__ = ["JointSpring", "SpringGroup", "FEW_SPRINGS"]
-
-#: Up to this many simple springs a point updates Q and K entry by entry with Python floats, the
-#: same arithmetic: two springs cost 6.2k instructions instead of 16.1k (force) and 6.4k instead
-#: of 9.9k (stiffness, callgrind); an entry costs about 3k, so numpy's fixed cost wins above three.
-FEW_SPRINGS = 3
+__all__ = ["JointSpring", "SpringGroup"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -176,23 +171,17 @@ class SpringGroup(ElementGroup):
         self.k = readonly(np.array([float(np.ravel(e.stiffness)[0]) for e in simple]))
         self.rest = readonly(np.array([0.0 if e.rest is None else float(np.ravel(e.rest)[0]) for e in simple]))
         self.unique = len(set(self.iv.tolist())) == len(self.iv)
-        #: iq and iv as slices when consecutive (every joint of a chain sprung): cheaper indexing.
+        #: iq and iv as slices when consecutive (every joint of a chain sprung): views, updated in place.
         self.q_index, self.v_index = contiguous(self.iq), contiguous(self.iv)
         self.v_slice = isinstance(self.v_index, slice)
         self.diagonal = DiagonalIndex(self.iv, robot.nv)
-        #: (iq, iv, k, rest) of each simple spring as Python numbers when there are few (else None).
-        columns = (self.iq.tolist(), self.iv.tolist(), self.k.tolist(), self.rest.tolist())
-        self.few = tuple(zip(*columns)) if len(simple) <= FEW_SPRINGS else None
         self.prepared = tuple(_prepare(e, robot) for e in self.elements)
         self.symmetric_stiffness = all(robot.joint(e.joint).nv == 1 for e in self.elements)
         self.constant_damping = True  # springs add no damping
 
     def add_force(self, ev, Q: np.ndarray) -> None:
         q = ev.q
-        if self.few is not None:  # in order, as element by element: Q_iv - k (q_iq - rest), the same operations
-            for iq, iv, k, rest in self.few:
-                Q[iv] = Q.item(iv) - k * (q.item(iq) - rest)
-        elif len(self.iv):
+        if len(self.iv):
             force = self.k * (q[self.q_index] - self.rest)
             if self.v_slice:  # a view: updated in place, no write-back
                 view = Q[self.v_index]
@@ -211,10 +200,7 @@ class SpringGroup(ElementGroup):
                 view -= np.dot(Ks, log.difference(q[qs]))
 
     def add_stiffness(self, ev, K: np.ndarray) -> None:
-        if self.few is not None:
-            for _, iv, k, _ in self.few:
-                K[iv, iv] = K.item(iv, iv) + k
-        elif len(self.iv):
+        if len(self.iv):
             self.diagonal.add(K, self.k)
         q = ev.q
         for qs, vs, _, log, Ks, derivative in self.prepared:
