@@ -21,6 +21,7 @@ from numpy.testing import assert_allclose
 from scene_cases import pivot_scene
 
 import pinlin
+from pinlin.periodic.family import Family
 
 G, L, MASS = 9.81, 0.5, 1.3
 OMEGA0 = math.sqrt(G / L)
@@ -122,3 +123,32 @@ def test_bad_keep_raises():
     forced = pivot_scene({"pivot_x": pinlin.Harmonic(0.05, 4.0)}, length=L, mass=MASS)
     with pytest.raises(pinlin.ParameterError, match="forced"):
         pinlin.periodic_orbit(forced, np.zeros(forced.model.nq), keep="swing")
+
+
+def test_energy_gradient_against_central_differences():
+    """dE/ds from Pinocchio's RNEA derivatives against central differences of E (springs on both joints)."""
+    robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+    scene = pinlin.Scene(robot, [pinlin.JointSpring("joint1", 2.0), pinlin.JointSpring("joint2", 1.5, rest=0.2)])
+    family = Family(scene, np.array([0.4, -0.3]), np.zeros(2), None)
+    s = np.random.default_rng(7).normal(size=4)
+    h = 1e-6
+    fd = np.array([(family.energy(s + h * e) - family.energy(s - h * e)) / (2 * h) for e in np.eye(4)])
+    assert_allclose(family.energy_gradient(s), fd, rtol=1e-8, atol=1e-8 * np.abs(fd).max())
+
+
+def test_swing_with_a_spring_keeps_its_energy():
+    """E = -m g l cos(theta0) + k theta0^2 / 2 at rest; dT/dE against central differences of the period in
+    theta0 over dE/dtheta0 = m g l sin(theta0) + k theta0."""
+    k = 4.0
+    scene = pivot_scene({}, length=L, mass=MASS, elements=[pinlin.JointSpring("swing", k)])
+
+    def orbit(theta0):
+        return pinlin.periodic_orbit(scene, _start(scene, theta0), period=1.3, residual_tol=1e-12)
+
+    mid = orbit(2.0)
+    assert mid.family == "energy"
+    assert_allclose(mid.q0[2], 2.0, rtol=0, atol=1e-9)
+    assert_allclose(mid.family_value, -MASS * G * L * math.cos(2.0) + k * 2.0**2 / 2, rtol=1e-12)
+    h = 1e-3
+    dT = (orbit(2.0 + h).period - orbit(2.0 - h).period) / (2 * h)
+    assert_allclose(mid.period_derivative, dT / (MASS * G * L * math.sin(2.0) + k * 2.0), rtol=1e-5)

@@ -107,6 +107,13 @@ class Family:
         self.model, self.free, self.n = scene.model, scene.free_dofs, scene.n
         self.ws = workspace(scene)
         self.elements = bool(scene.groups) or scene.constant_fext is not None
+        # the elements' potential is measured from the free joints at Pinocchio's neutral (held joints as in q0)
+        self.reference = q0.copy()
+        neutral = pin.neutral(self.model)
+        for name in scene.robot.joint_names:
+            j = scene.robot.joint(name)
+            if j.nv and j.idx_v in set(self.free.tolist()):
+                self.reference[j.idx_q : j.idx_q + j.nq] = neutral[j.idx_q : j.idx_q + j.nq]
         self.name = ENERGY if keep is None else keep
         self.index = None if keep is None else int(np.flatnonzero(self.free == scene.robot.joint(keep).idx_v)[0])
         self.nodes, self.weights = np.polynomial.legendre.leggauss(QUADRATURE_NODES)
@@ -143,16 +150,15 @@ class Family:
 
     def energy(self, s: np.ndarray) -> float:
         """E(s) = T(q, v) + V_g(q) + V_e(q) [J]: Pinocchio's kinetic and gravity energies (V_g zero at the
-        world origin), and the elements' and wrenches' V_e measured from q0 (V_e(q0) = 0), by Gauss-Legendre
-        along q0 + tau dq, tau in [0, 1]."""
+        world origin), and the elements' and wrenches' V_e, zero with the free joints at Pinocchio's neutral
+        configuration, by Gauss-Legendre along q_ref + tau d, d = difference(q_ref, q), tau in [0, 1]."""
         q, v = self._point(s)
-        dq = np.zeros(self.model.nv)
-        dq[self.free] = s[: self.n]
         V = float(pin.computePotentialEnergy(self.model, self.ws.data, q))
-        if self.elements and np.any(dq):
+        if self.elements:
+            d = np.array(pin.difference(self.model, self.reference, q))
             for x, w in zip(self.nodes, self.weights):
-                qt = pin.integrate(self.model, self.q0, 0.5 * (1.0 + x) * dq)
-                V += 0.5 * w * float(self._element_gradient(qt) @ dq)
+                qt = pin.integrate(self.model, self.reference, 0.5 * (1.0 + x) * d)
+                V += 0.5 * w * float(self._element_gradient(qt) @ d)
         return float(pin.computeKineticEnergy(self.model, self.ws.data, q, v)) + V
 
     def energy_gradient(self, s: np.ndarray) -> np.ndarray:

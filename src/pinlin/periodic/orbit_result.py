@@ -61,8 +61,8 @@ class PeriodicOrbit(Result):
         The orbit belongs to a one-parameter family of a conservative scene, labelled by ``"energy"`` or by
         the kept joint's name (``periodic_orbit(keep=...)``); None for an isolated orbit.
     family_value : float or None
-        The label's value: the energy [J] (Pinocchio's kinetic and gravity energies, elements' potential
-        zero at the start), or the kept joint's start position [rad or m].
+        The label's value: the energy [J] (Pinocchio's kinetic and gravity energies, the elements' potential
+        zero at the free joints' neutral configuration), or the kept joint's start position [rad or m].
     period_derivative : float or None
         dT/dE [s/J] (or dT/dq_j [s/rad or s/m]) along the family, from the shooting's bordered matrix
         (the Jordan block at multiplier 1).
