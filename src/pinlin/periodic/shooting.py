@@ -360,7 +360,7 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
     flow = _Flow(scene, q, v)
     n = scene.n
     s = np.concatenate([np.zeros(n), v[scene.free_dofs]])
-    f0 = flow.field(0.0, s)
+    f0 = None if family is None else flow.field(0.0, s)
     if family is not None and np.any(f0):  # the start lies on its orbit: the return time is the period
         T = return_time(flow.field, s, T, float(rtol), float(atol))
     if not autonomous and not np.any(s[n:]):
