@@ -57,6 +57,17 @@ class PeriodicOrbit(Result):
     elapsed : float
         Wall time [s].
     method : str
+    family : str or None
+        The orbit belongs to a one-parameter family of a conservative scene, labelled by ``"energy"`` or by
+        the kept joint's name (``periodic_orbit(keep=...)``); None for an isolated orbit.
+    family_value : float or None
+        The label's value: the energy [J] (Pinocchio's kinetic and gravity energies, the elements' potential
+        zero at the free joints' neutral configuration), or the kept joint's start position [rad or m].
+    period_derivative : float or None
+        dT/dE [s/J] (or dT/dq_j [s/rad or s/m]) along the family, from the shooting's bordered matrix
+        (the Jordan block at multiplier 1).
+    period_derivative_error : float or None
+        Its error estimate: the change with the flow at ``rtol * 10`` plus its size times ``error``.
 
     Examples
     --------
@@ -83,6 +94,10 @@ class PeriodicOrbit(Result):
     scene: Scene = field(repr=False)
     base: np.ndarray = field(repr=False)
     solution: object = field(repr=False)
+    family: str | None = None
+    family_value: float | None = None
+    period_derivative: float | None = None
+    period_derivative_error: float | None = None
 
     _dict_exclude = ("scene", "base", "solution")
 
@@ -168,4 +183,5 @@ class PeriodicOrbit(Result):
     def __repr__(self) -> str:
         kind = "constant" if self.constant else ("autonomous" if self.autonomous else "forced")
         return (f"PeriodicOrbit({kind}, period={self.period:.10g} s, n={self.scene.n}, "
-                f"iterations={self.iterations}, residual={self.residual:.2e}, error={self.error:.2e})")
+                f"iterations={self.iterations}, residual={self.residual:.2e}, error={self.error:.2e}"
+                f"{f', family={self.family!r}' if self.family else ''})")

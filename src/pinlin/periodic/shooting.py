@@ -9,9 +9,10 @@ one period is integrated with the variational equation Phi' = A(t) Phi alongside
 
 for a forced orbit (T the scene's period).  For an autonomous orbit the period is an unknown and a phase
 condition f(s_0) . (s - s_0) = 0 (a Poincare section through the start s_0, f the vector field there) is
-added: J = [[Phi(T) - I, f(x(T))], [f(s_0)^T, 0]].  A conservative scene's orbits come in one-parameter
-families (the energy), which makes J singular along the family: each step is the minimum-norm solution
-(singular values below :data:`RANK_RTOL` of the largest dropped), so Newton settles on the nearest orbit.
+added: J = [[Phi(T) - I, f(x(T))], [f(s_0)^T, 0]], each step its minimum-norm solution (singular values
+below :data:`RANK_RTOL` of the largest dropped).  A conservative scene's orbits come in one-parameter families
+(the energy), which makes J singular along the family: there the condition of :mod:`.family` (the start's
+energy, or a kept coordinate) borders J to a regular square system, so Newton returns the user's orbit.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from ..model.scene import Scene
 from ..nonlinear.charts import chart_groups
 from ..nonlinear.dynamics import FreeDynamics, initial_velocity
 from .coefficients import evaluate_point
+from .family import Family, conservative_family, return_time
 from .orbit_result import PeriodicOrbit
 from .period import scene_period
 
@@ -226,19 +228,23 @@ def _equilibrium_reached(trial: _Trial, history, tol: float) -> None:
             f"no periodic motion of a period near the guess; residuals {history}", history, trial.T)
 
 
-def _step(flow: _Flow, trial: _Trial, s0, f0, autonomous: bool):
-    """The Newton step (ds, dT) of the bordered system (minimum norm)."""
+def _step(flow: _Flow, trial: _Trial, s0, f0, autonomous: bool, family: Family | None):
+    """The Newton step (ds, dT): of the family's bordered system, else the minimum-norm one."""
     n2 = trial.s.size
     J = trial.Phi - np.eye(n2)
     if not autonomous:
         return _newton_step(J, trial.F), 0.0
     fT = flow.field(trial.T, trial.xT)
+    phase = f0 @ (trial.s - s0)
+    if family is not None:
+        return family.step(np.hstack([J, fT[:, None]]), trial.F, trial.s, f0, phase)
     J = np.block([[J, fT[:, None]], [f0[None, :], np.zeros((1, 1))]])
-    d = _newton_step(J, np.concatenate([trial.F, [f0 @ (trial.s - s0)]]), trial.residual)
+    d = _newton_step(J, np.concatenate([trial.F, [phase]]), trial.residual)
     return d[:n2], float(d[n2])
 
 
-def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: _Shooting) -> tuple[_Trial, list, int]:
+def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: _Shooting,
+           family: Family | None) -> tuple[_Trial, list, int]:
     """Newton on F(s, T) = 0 with backtracking (the step is halved, up to :data:`BACKTRACKS` times, until
     the relative residual decreases): (the converged trial, residual history, Newton steps)."""
     s0, f0 = s.copy(), flow.field(0.0, s)
@@ -249,7 +255,7 @@ def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: _Shooti
             _equilibrium_reached(trial, history, opts.residual_tol)
         if trial.residual <= opts.residual_tol:
             return trial, history, it
-        ds, dT = _step(flow, trial, s0, f0, autonomous)
+        ds, dT = _step(flow, trial, s0, f0, autonomous, family)
         for _ in range(BACKTRACKS + 1):
             if trial.T + dT > 0:
                 try:
@@ -277,7 +283,7 @@ def _shoot(flow: _Flow, s: np.ndarray, T: float, autonomous: bool, opts: _Shooti
 @renamed_keywords(tol="residual_tol")
 def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, residual_tol: float = RESIDUAL_TOL,
                    rtol: float = FLOW_RTOL, atol: float = FLOW_ATOL, max_iterations: int = MAX_ITERATIONS,
-                   constant_tol: float = CONSTANT_TOL) -> PeriodicOrbit:
+                   constant_tol: float = CONSTANT_TOL, keep: str | None = None) -> PeriodicOrbit:
     """The T-periodic motion of a scene's free coordinates, by shooting (theory: Floquet).
 
     A scene driven by periodic prescribed motions (or by constant-speed joints its equations depend on)
@@ -286,6 +292,10 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
     zero: the forcing does not reach them, like a pendulum hanging on a vertically vibrating pivot), the
     orbit is ``constant`` and no shooting is needed.  An autonomous scene needs ``period``: a guess of a
     free oscillation's period through the start (a large swing, a limit cycle), found with the period.
+    A conservative autonomous scene (no damping, symmetric element stiffness, no follower wrench, held
+    prescribed joints) has families of orbits: the orbit keeps the energy of (q0, v0), or with ``keep`` a
+    joint's start position (``orbit.family``, ``orbit.period_derivative``: dT/dE or dT/dq_j); the guess
+    is first replaced by the start's return time to the phase section (:mod:`pinlin.periodic.family`).
 
     Parameters
     ----------
@@ -305,6 +315,9 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
         :data:`MAX_ITERATIONS`.
     constant_tol : float
         :data:`CONSTANT_TOL`.
+    keep : str, optional
+        A conservative scene: the free 1-DOF joint whose start position labels the orbit in its family
+        (default: the energy labels it).
 
     Returns
     -------
@@ -322,7 +335,8 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
     OrbitLimitError
         The orbit leaves a free joint's position limits.
     ParameterError
-        Not a scene; constraints or curved joints (free-flyer, spherical, planar); a bad period guess.
+        Not a scene; constraints or curved joints (free-flyer, spherical, planar); a bad period guess;
+        ``keep`` naming no free 1-DOF joint, or given for a forced or non-conservative scene.
 
     Examples
     --------
@@ -332,12 +346,23 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
     >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
     >>> print(orbit.constant, f"{orbit.period:.6f}")
     True 0.031416
+
+    The bundled double pendulum near its first mode shape: the nonlinear mode of the start's energy:
+
+    >>> scene = pinlin.Scene(pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf")))
+    >>> orbit = pinlin.periodic_orbit(scene, [0.1, 0.045], period=1.8)
+    >>> print(orbit.family, f"{orbit.period:.3f}", orbit.period_derivative > 0, orbit.residual < 1e-10)
+    energy 1.811 True True
     """
     start = time.perf_counter()
     q, v, T, autonomous = _start(scene, q0, v0, period)
+    family = conservative_family(scene, q, v, keep, autonomous)
     flow = _Flow(scene, q, v)
     n = scene.n
     s = np.concatenate([np.zeros(n), v[scene.free_dofs]])
+    f0 = None if family is None else flow.field(0.0, s)
+    if family is not None and np.any(f0):  # the start lies on its orbit: the return time is the period
+        T = return_time(flow.field, s, T, float(rtol), float(atol))
     if not autonomous and not np.any(s[n:]):
         worst = _constant_residual(scene, q, v, T)
         if worst <= constant_tol:
@@ -348,10 +373,12 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
                 f"(largest relative equilibrium residual {worst:.1e} along the period)", scene=scene, base=q,
                 solution=None)
     opts = _Shooting(float(residual_tol), float(rtol), float(atol), int(max_iterations))
-    trial, history, it = _shoot(flow, s, T, autonomous, opts)
+    trial, history, it = _shoot(flow, s, T, autonomous, opts, family)
     s, T, res, Phi = trial.s, trial.T, trial.residual, trial.Phi
-    xT_loose = flow.run(s, T, 10 * rtol, 10 * atol)[0]
+    xT_loose, Phi_loose = flow.run(s, T, 10 * rtol, 10 * atol)[:2]
     integration_error = float(np.linalg.norm(trial.xT - xT_loose)) / trial.scale
+    slope = (None, None) if family is None else family.slope(
+        flow.field, s, T, f0, ((Phi, trial.xT), (Phi_loose, xT_loose)), res + integration_error)
     dq = np.zeros(scene.model.nv)
     dq[scene.free_dofs] = s[:n]
     v_start = v.copy()
@@ -363,8 +390,11 @@ def periodic_orbit(scene: Scene, q0, v0=None, *, period: float | None = None, re
         history=tuple(history), constant=False, autonomous=autonomous, monodromy=Phi,
         elapsed=time.perf_counter() - start,
         method=f"shooting: Newton on x(T) - x(0) with the monodromy from the variational equation (DOP853, "
-        f"rtol={rtol:g}, atol={atol:g}){'; period unknown, Poincare phase condition' if autonomous else ''}",
-        scene=scene, base=q, solution=solution)
+        f"rtol={rtol:g}, atol={atol:g}){'; period unknown, Poincare phase condition' if autonomous else ''}"
+        f"{f'; {family.name} kept (bordered Newton)' if family is not None else ''}",
+        scene=scene, base=q, solution=solution, family=None if family is None else family.name,
+        family_value=None if family is None else family.label, period_derivative=slope[0],
+        period_derivative_error=slope[1])
     _check_limits(scene, orbit, history)
     return orbit
 
