@@ -258,9 +258,6 @@ def constraint_forces(scene: Scene, lam: np.ndarray) -> tuple[ConstraintForce, .
     """
     lam = np.array(lam, dtype=float)
     lam.flags.writeable = False  # the forces are part of a frozen result
-    if scene.world_points is not None:  # points at world points: the rows of lam (k x 3) are their forces
-        of = ConstraintForce.of  # what PointConstraint.force(f, copy=False) returns
-        return tuple([of(c.label, c.frame, c.target, f) for c, f in zip(scene.constraints, lam.reshape(-1, 3))])
     return tuple([c.force(lam[rows], copy=False) for c, rows in zip(scene.constraints, scene.constraint_rows)])
 
 

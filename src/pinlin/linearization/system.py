@@ -47,11 +47,9 @@ class LinearizedSystem(Result):
     elapsed : float
         Seconds spent building the system.
     method : str
-        How it was built: ``"analytic"`` (Pinocchio's analytic derivatives and the
-        elements' own, :func:`pinlin.linearize`) or ``"matrices"`` (given).
+        ``"analytic"`` (Pinocchio's and the elements' derivatives, :func:`pinlin.linearize`) or ``"matrices"``.
     error : float
-        The headline error figure: ``residual`` (the rounding left in the matrices
-        is at the level of ``dropped``).
+        The headline error figure: ``residual`` (the rounding left in the matrices is at the level of ``dropped``).
     calls : tuple of str
         Pinocchio algorithms run to build it, in order.
     dropped : mapping

@@ -58,6 +58,14 @@ class Constraint(ABC):
             The frame is its own target, or a joint moving a frame has a
             configuration-dependent motion subspace (composite, universal,
             spherical-ZYX, mimic joints), where :func:`dead_wrench_stiffness` does not hold.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> pinlin.PointConstraint("tip", "tip").check(robot)
+        Traceback (most recent call last):
+        ...
+        pinlin.errors.base.ParameterError: PointConstraint('tip').target: a frame cannot be its own target
         """
         label = f"{type(self).__name__}({self.frame!r})"
         frames = [self.frame] if self.target_frame is None else [self.frame, self.target_frame]
@@ -102,24 +110,73 @@ class Constraint(ABC):
         return out
 
     def force_stiffness(self, ev, lam: np.ndarray) -> np.ndarray:
-        """K_lambda = d(J_c^T lam)/dq at fixed lam (nv x nv), see :func:`dead_wrench_stiffness`."""
+        """K_lambda = d(J_c^T lam)/dq at fixed lam (nv x nv), see :func:`dead_wrench_stiffness`.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> hold = pinlin.PointConstraint("tip", (0.0, 0.0, -1.2))   # the tip held at a world point
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [], constraints=[hold]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> np.round(hold.force_stiffness(ev, np.array([0.0, 0.0, 5.0])), 6)   # 5 N upwards on the tip
+        array([[5.970025, 2.48751 ],
+               [2.48751 , 2.48751 ]])
+        """
         return dead_wrench_stiffness(*stack_wrenches(self.wrench_terms(ev, lam)), ev.robot.dof_supports)
 
     @abstractmethod
     def residual(self, ev) -> np.ndarray:
-        """Phi(q) (m,): [m] for positions, [rad] for rotations."""
+        """Phi(q) (m,): [m] for positions, [rad] for rotations.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> hold = pinlin.PointConstraint("tip", (0.0, 0.0, -1.2))   # the tip held at a world point
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [], constraints=[hold]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> np.round(hold.residual(ev), 6)   # tip position minus target, world axes
+        array([-0.1198  ,  0.      ,  0.005995])
+        """
 
     @abstractmethod
     def jacobian(self, ev) -> np.ndarray:
-        """J_c (m x nv) in velocity form: the frame's velocity relative to the target, world axes."""
+        """J_c (m x nv) in velocity form: the frame's velocity relative to the target, world axes.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> hold = pinlin.PointConstraint("tip", (0.0, 0.0, -1.2))   # the tip held at a world point
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [], constraints=[hold]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> np.round(hold.jacobian(ev), 6)
+        array([[-1.194005, -0.497502],
+               [ 0.      ,  0.      ],
+               [ 0.1198  ,  0.049917]])
+        """
 
     def closure_jacobian(self, ev) -> np.ndarray:
-        """dPhi/dq (m x nv, tangent space), exact also off the manifold (for closing loops)."""
+        """dPhi/dq (m x nv, tangent space), exact also off the manifold (for closing loops).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> hold = pinlin.PointConstraint("tip", (0.0, 0.0, -1.2))   # the tip held at a world point
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [], constraints=[hold]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> bool(np.array_equal(hold.closure_jacobian(ev), hold.jacobian(ev)))   # a point: the same
+        True
+        """
         return self.jacobian(ev)
 
     @abstractmethod
     def wrench_terms(self, ev, lam: np.ndarray) -> list[tuple]:
-        """The world-fixed wrenches J_c^T lam stands for: (J, force, torque) per frame (:func:`dead_wrench_stiffness`)."""
+        """The world-fixed wrenches J_c^T lam stands for: (J, force, torque) per frame (:func:`dead_wrench_stiffness`).
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> hold = pinlin.PointConstraint("tip", (0.0, 0.0, -1.2))   # the tip held at a world point
+        >>> ev = pinlin.linearization.Evaluation(pinlin.Scene(robot, [], constraints=[hold]), np.array([0.1, 0.0]), np.zeros(2))
+        >>> ((J, force, torque),) = hold.wrench_terms(ev, np.array([0.0, 0.0, 5.0]))
+        >>> J.shape, force, torque
+        ((6, 2), array([0., 0., 5.]), None)
+        """
 
     @abstractmethod
     def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
@@ -127,10 +184,21 @@ class Constraint(ABC):
 
         ``copy=False``: ``lam`` is a float array the caller hands over (a view of its own
         copy of all multipliers), kept without another copy.
+
+        Examples
+        --------
+        >>> pinlin.PointConstraint("tip", np.zeros(3)).force(np.array([0.0, 0.0, 5.0])).force
+        array([0., 0., 5.])
         """
 
     def gaps(self, phi: np.ndarray) -> tuple[float, float]:
-        """Distance [m] and rotation [rad] between the frame and its target for this constraint's Phi."""
+        """Distance [m] and rotation [rad] between the frame and its target for this constraint's Phi.
+
+        Examples
+        --------
+        >>> pinlin.PointConstraint("tip", np.zeros(3)).gaps(np.array([0.3, 0.0, 0.4]))
+        (0.5, 0.0)
+        """
         return float(np.linalg.norm(phi[:3])), float(np.linalg.norm(phi[3:])) if len(phi) > 3 else 0.0
 
 

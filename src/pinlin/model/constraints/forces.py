@@ -42,23 +42,6 @@ class ConstraintForce:
     force: np.ndarray
     torque: np.ndarray | None = None
 
-    @classmethod
-    def of(
-        cls, constraint: str, frame: str, target: str | np.ndarray, force: np.ndarray, torque: np.ndarray | None = None
-    ) -> ConstraintForce:
-        """The same value as ``ConstraintForce(constraint, frame, target, force, torque)``, built directly.
-
-        The frozen dataclass's constructor sets each field through ``object.__setattr__``;
-        a linearization builds one of these per constraint on every call, so its
-        fields go into the instance dictionary in one step (equal, hashable and
-        printed exactly as a constructed one).
-        """
-        obj = object.__new__(cls)
-        object.__setattr__(
-            obj, "__dict__", {"constraint": constraint, "frame": frame, "target": target, "force": force, "torque": torque}
-        )
-        return obj
-
 
 @dataclass(frozen=True)
 class ContactStatus:
@@ -104,7 +87,15 @@ class ContactStatus:
         return not (self.pulls or self.slips)
 
     def describe(self) -> str:
-        """One sentence for notes and verdicts: what the contact needs."""
+        """One sentence for notes and verdicts: what the contact needs.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> (foot,) = pinlin.ground_contacts(robot, np.zeros(2), ["tip"], friction=0.5)
+        >>> foot.contact_status(np.array([2.0, 0.0, 1.0])).describe()
+        "contact 'tip': needs friction coefficient 2 > mu = 0.5 (tangential 2 N, normal 1 N)"
+        """
         if self.pulls:
             return f"contact {self.constraint!r}: the ground must pull (normal force {self.normal_force:.4g} N)"
         if self.slips:

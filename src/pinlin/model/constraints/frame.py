@@ -115,4 +115,4 @@ class FrameConstraint(Constraint):
 
     def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
         lam = np.array(lam, dtype=float) if copy else lam
-        return ConstraintForce.of(self.label, self.frame, self.target, lam[:3], lam[3:])
+        return ConstraintForce(self.label, self.frame, self.target, lam[:3], lam[3:])

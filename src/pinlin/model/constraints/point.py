@@ -113,7 +113,7 @@ class PointConstraint(Constraint):
         return self._pair(ev, np.asarray(lam, dtype=float), None)
 
     def force(self, lam: np.ndarray, copy: bool = True) -> ConstraintForce:
-        return ConstraintForce.of(self.label, self.frame, self.target, np.array(lam, dtype=float) if copy else lam)
+        return ConstraintForce(self.label, self.frame, self.target, np.array(lam, dtype=float) if copy else lam)
 
     def contact_status(self, lam: np.ndarray) -> ContactStatus:
         """Normal and tangential force of a contact with multipliers ``lam``.
@@ -124,6 +124,14 @@ class PointConstraint(Constraint):
         ------
         ParameterError
             The constraint is not a contact.
+
+        Examples
+        --------
+        >>> robot = pinlin.load_urdf(pinlin.data_path("urdf/double_pendulum.urdf"))
+        >>> (foot,) = pinlin.ground_contacts(robot, np.zeros(2), ["tip"], friction=0.5)
+        >>> status = foot.contact_status(np.array([0.3, 0.0, 1.0]))
+        >>> round(status.friction_needed, 6), status.slips
+        (0.3, False)
         """
         if not self.contact:
             raise ParameterError(f"PointConstraint({self.frame!r})", "is not a contact (contact=False)")
@@ -132,7 +140,8 @@ class PointConstraint(Constraint):
         ft = float(np.linalg.norm(lam - fn * self.normal))
         needed = ft / fn if fn > 0 else (0.0 if ft == 0 else math.inf)  # no force at all needs no friction
         slips = self.friction is not None and needed > self.friction
-        return ContactStatus(self.label, fn, ft, needed, self.friction, fn < 0, bool(slips and fn >= 0))
+        return ContactStatus(constraint=self.label, normal_force=fn, tangential_force=ft, friction_needed=needed,
+                             friction=self.friction, pulls=fn < 0, slips=bool(slips and fn >= 0))
 
 
 def ground_contacts(
