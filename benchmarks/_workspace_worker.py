@@ -9,8 +9,8 @@ line on stdout:
 - ``{"cmd": "calibrate", "case": c, "variant": v, "min_time": s}`` -> a loop count making one sample last >= s;
 - ``{"cmd": "sample", "case": c, "variant": v, "loops": k}`` -> seconds per call over k calls.
 
-Variants: ``linearize`` (any version); with the per-thread workspaces of issue
-10 also ``fresh`` (linearize with an empty workspace cache for the call: a
+Variants: ``linearize`` (any version); with the per-thread workspaces
+also ``fresh`` (linearize with an empty workspace cache for the call: a
 new Pinocchio Data for every call; the reused workspace is put back after it), ``workspace`` (``Workspace(scene)``:
 memory guard + createData), ``createData`` (``model.createData()`` alone) and
 ``lookup`` (``workspace(scene)``: the per-call cost of finding the thread's

@@ -7,7 +7,7 @@ For each boundary, in one process:
 - bisection: ``pinlin.critical_parameter(func, bracket, method="bisection", tol=1e-12 |p*|)``, halving the
   bracket on ``modes.stability.kind`` alone (the way the notebooks found boundaries before).
 
-Counted: modal analyses ("evaluations", the issue's measure) and calls of ``func``; timed: the median wall
+Counted: modal analyses ("evaluations", a search's cost) and calls of ``func``; timed: the median wall
 time of whole searches.  Errors are measured against closed forms (Ziegler's column 7/2 - sqrt(2) and its
 Routh-Hurwitz damped loads; the paper's double pendulum, theory: double pendulum; the compressed chain's buckling load
 (4k/l) sin^2(pi / (2(2n+1)))); the 50-link chain under a follower load has no closed form, and there the two
@@ -31,7 +31,7 @@ import pinlin
 
 from .common import Report, Table, result_path, work_precision_plot, write_report
 
-#: Tolerance of the bisection baseline, relative to the boundary: the issue's "1e-12".
+#: Tolerance of the bisection baseline, relative to the boundary: the "1e-12" of the acceptance.
 BISECTION_RTOL = 1e-12
 #: Number of links of the chains (full run, quick run).
 CHAIN_LINKS = (50, 20)

@@ -256,11 +256,11 @@ def run(quick: bool = False) -> Report:
     }
     figures = _plot(sweep, series, times["gravity only"], quick)
     text = (
-        "Spring-dampers and bushings between the links of a 50-link chain (issue 12): linearize's cost per element "
+        "Spring-dampers and bushings between the links of a 50-link chain: linearize's cost per element "
         "against a joint spring's, and against central differences. A joint spring adds one number to one diagonal "
         "entry of K; an element between frames adds a rank-3 (a bushing: rank-6) update over the joints supporting "
         "its two frames, at least of the order of nv^2 operations, and needs the frame kinematics once per "
-        "evaluation: issue 12's target of 3x a joint spring's cost is out of reach by construction on a 50-link "
+        "evaluation: the target of 3x a joint spring's cost is out of reach by construction on a 50-link "
         "chain. The slope of the sweep (the marginal cost of one more element, the fixed kinematics excluded) is "
         "the fair per-element figure."
     )

@@ -809,7 +809,7 @@ def _tables(rows: dict, sweep) -> tuple[list[Table], dict]:
             f"(reference: {r['ref']})"
         )
     t1 = Table(
-        "Run time: linearize against the cheapest Pinocchio calls and bare-Pinocchio finite differences (issue 14)",
+        "Run time: linearize against the cheapest Pinocchio calls and bare-Pinocchio finite differences",
         ["scene", "n", "floor: Pinocchio calls the scene needs", "floor [us]", "linearize [us]", "linearize / floor",
          f"within {FLOOR_TARGET:g}x", "bare central FD [us]", "bare central FD / linearize", "linearize faster",
          "bare forward FD [us]", "bare forward FD / linearize", "central FD of pinlin's residual [us]",
@@ -913,9 +913,9 @@ def run(quick: bool = False) -> Report:
     text = (
         "Analytic linearization (pinlin.linearize: Pinocchio's analytic derivatives plus the elements' own) against "
         "the cheapest Pinocchio calls the scene needs (the floor) and against finite differences of bare-Pinocchio "
-        "residuals, the honest baselines of issue 14; MuJoCo's finite-difference inverse-dynamics derivatives as a "
+        "residuals, the honest baselines; MuJoCo's finite-difference inverse-dynamics derivatives as a "
         "peer when mujoco is importable. The last table (benchmarks/bench_workspace.py) times linearize before and "
-        "after the per-thread Pinocchio workspaces of issue 10, and a fresh Data per call against the reused one."
+        "after the per-thread Pinocchio workspaces, and a fresh Data per call against the reused one."
     )
     report = Report("linearize", tables, summary, figures, text=text)
     for label, r in rows.items():

@@ -133,7 +133,7 @@ def workspace_section(quick: bool = False) -> tuple[Table | None, dict[str, str]
         try:
             old_src = baseline_source(Path(tmp))
         except (RuntimeError, OSError, tarfile.TarError) as exc:
-            return None, {"workspace (issue 10)": f"not measured: the baseline code is not available ({exc})"}
+            return None, {"per-thread workspace": f"not measured: the baseline code is not available ({exc})"}
         before, after = Worker(old_src), Worker(REPO / "src")
         try:
             paths = before.ask(cmd="info")["pinlin"], after.ask(cmd="info")["pinlin"]
@@ -204,7 +204,7 @@ def workspace_section(quick: bool = False) -> tuple[Table | None, dict[str, str]
         ),
     )
     summary = {
-        "workspace (issue 10)": "linearize after / before the per-thread workspace: "
+        "per-thread workspace": "linearize after / before the per-thread workspace: "
         + ", ".join(ratios)
         + "; a fresh Data per call would cost "
         + ", ".join(fresh)

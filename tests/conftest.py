@@ -3,7 +3,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-# Hypothesis profiles (issue 13): "ci", the default, runs the fuzz tests (tests/fuzz/) on a fixed set
+# Hypothesis profiles: "ci", the default, runs the fuzz tests (tests/fuzz/) on a fixed set
 # of examples (derandomized, 50 per test, about ten seconds together on 2 cores); "long"
 # (`pytest tests/fuzz --hypothesis-profile=long`) explores thousands of fresh examples per test.
 # Tests that set their own max_examples keep them; deadlines are per example in the fuzz tests

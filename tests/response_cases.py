@@ -1,4 +1,4 @@
-"""Scenes, reference solutions and result checks shared by the tests of frf and response (issues 5, 10)."""
+"""Scenes, reference solutions and result checks shared by the tests of frf and response."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Systems and independent references for the spectral tests (issue 3).
+"""Systems and independent references for the spectral tests (theory: spectrum).
 
 References never share pinlin's method: closed forms, hand derivations, and
 mpmath at 50 digits (roots of det L(lam) interpolated exactly).

@@ -1,4 +1,4 @@
-"""Builders and independent references for the stress tests (issue 7, theory: error figures).
+"""Builders and independent references for the stress tests (theory: error figures).
 
 References never share pinlin's method: closed forms, exact rational arithmetic,
 and mpmath (eigenvalues of the companion matrix at 40 digits).

@@ -1,11 +1,11 @@
-"""The package's shape (issue 10): no import cycles, short modules, short functions, documented packages.
+"""The package's shape: no import cycles, short modules, short functions, documented packages.
 
 Walks ``src/pinlin`` with :mod:`ast` (nothing is imported):
 
 - the graph of imports between pinlin modules, relative and absolute, must have no
   cycle; every import counts, also those inside functions and under
   ``if TYPE_CHECKING:`` (an import for a type annotation or deferred to a call is
-  still a dependency of the design, issue 22);
+  still a dependency of the design);
 - between packages, the imports run down the data flow (:data:`LAYERS`): no package
   imports one of a later layer, and packages of one layer form no cycle;
 - no module imports a ``_private`` name of another module;
@@ -40,9 +40,9 @@ LAYERS = (
     ("pinlin",),
 )
 
-#: Longest module allowed [lines] (issue 10: "no module over 400 lines").
+#: Longest module allowed [lines] (the house rule: "no module over 400 lines").
 MAX_MODULE_LINES = 400
-#: Function length [lines of code] above which a function is reported (issue 10: "about 80").
+#: Function length [lines of code] above which a function is reported (the house rule: "about 80").
 FUNCTION_LINES_TARGET = 80
 #: Function length [lines of code] that fails: "about 80" leaves room, 1.5 times that does not.
 MAX_FUNCTION_LINES = 120
@@ -329,7 +329,7 @@ def test_import_resolution_and_deferred_imports(tmp_path):
         for n in _all_imports(tree)
         if isinstance(n, ast.ImportFrom)
     ]
-    # the type checker's and the deferred import count too (issue 22)
+    # the type checker's and the deferred import count too: they are dependencies of the design
     assert sorted(found) == [
         "__future__", "pinlin.other", "pinlin.pkg", "pinlin.pkg.hidden", "pinlin.pkg.late", "typing"
     ]
@@ -374,7 +374,7 @@ def test_code_lines_skip_docstring_comments_and_blanks():
 
 def test_no_file_refers_to_the_internal_planning_document():
     """The mathematics is in the shipped theory pages (docs/theory); no code, doc or help text points users to
-    the project's internal planning document (issue 26 part 1)."""
+    the project's internal planning document, which users do not have."""
     word = re.compile(r"\b" + "S" + "PEC" + r"\b")
     root = SRC.parents[1]
     tracked = [root / p for p in ("src", "tests", "docs", "notebooks", "benchmarks", "README.md", "CHANGELOG.md")]

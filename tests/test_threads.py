@@ -1,4 +1,4 @@
-"""One shared Scene, many threads: results bitwise equal to the serial run (issue 10, acceptance).
+"""One shared Scene, many threads: results bitwise equal to the serial run (thread-safety acceptance).
 
 A :class:`pinlin.Scene` is an immutable description; every computation runs in
 the Pinocchio ``Data`` of its own thread (:mod:`pinlin.model.evaluation`).
@@ -30,11 +30,11 @@ import pytest
 import pinlin
 from helpers import BOX_URDF
 
-#: Workers of the thread pool (the issue's acceptance: 8).
+#: Workers of the thread pool (the thread-safety acceptance: 8).
 WORKERS = 8
-#: Calls of linearize and find_equilibrium per scene (the issue's acceptance: 400).
+#: Calls of linearize and find_equilibrium per scene (the thread-safety acceptance: 400).
 CALLS = 400
-#: Calls of modal_analysis (of a fresh linearization) per scene: the 400 of issue 10's acceptance.
+#: Calls of modal_analysis (of a fresh linearization) per scene: the 400 of the thread-safety acceptance.
 MODAL_CALLS = 400
 #: Calls of simulate per scene: each integrates a short span, far more work than a linearization.
 SIM_CALLS = 16

@@ -1,4 +1,4 @@
-"""Shared pieces of the fuzzing harness (issue 13, "A harness so this stays true").
+"""Shared pieces of the fuzzing harness, which keeps every bad input refused with a PinlinError.
 
 - :func:`hard_deadline`: a per-example wall-clock limit that interrupts a hang (SIGALRM), which
   hypothesis's own ``deadline`` cannot (it only judges an example after it returns);

@@ -1,4 +1,4 @@
-"""Mutants of the bundled MJCF four-bar (issue 24, part 6), and the pipeline each must pass or refuse.
+"""Mutants of the bundled MJCF four-bar, and the pipeline each must pass or refuse.
 
 :func:`mutate` changes the file as the URDF fuzzer does: an attribute set to a nasty value, an element
 removed or duplicated, an entity trick or a cut.  Its choices come from a ``pick(options)`` callable, so

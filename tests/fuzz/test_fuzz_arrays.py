@@ -1,4 +1,4 @@
-"""Fuzzed array arguments of the public functions (issue 13): shapes, dtypes, NaN and inf, 0, 1e-300, 1e300.
+"""Fuzzed array arguments of the public functions: shapes, dtypes, NaN and inf, 0, 1e-300, 1e300.
 
 Each call must return a result whose headline error figure is finite (and whose
 values hold no NaN while it is), or raise a PinlinError; never another
@@ -58,7 +58,7 @@ def _magnitude(value) -> float:
 
 
 def _error_on_complex_loss():
-    """Turn numpy's ComplexWarning (an imaginary part dropped) into an error: the issue's item 5."""
+    """Turn numpy's ComplexWarning (an imaginary part dropped) into an error: no silent cast to real."""
     warnings.simplefilter("error", getattr(np, "exceptions", np).ComplexWarning)  # numpy >= 1.25 / older
 
 

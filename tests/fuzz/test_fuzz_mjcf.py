@@ -1,4 +1,4 @@
-"""Fuzzed MJCF files through load_mjcf, a scene, the loop closure, linearization and modal analysis (issue 24).
+"""Fuzzed MJCF files through load_mjcf, a scene, the loop closure, linearization and modal analysis.
 
 The bundled four-bar (``data/mjcf/four_bar.xml``) is mutated (:mod:`mjcf_mutants`).  In process, under
 hypothesis: every stage gives a PinlinError or an honest result, and a loaded model holds only finite

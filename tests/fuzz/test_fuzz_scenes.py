@@ -1,4 +1,4 @@
-"""Fuzzed TOML scene files through ``load_scene``, the analysis, and ``pinlin analyze`` (issue 13).
+"""Fuzzed TOML scene files through ``load_scene``, the analysis, and ``pinlin analyze``.
 
 Valid scene documents (the ``--help`` example with every table, the bundled
 scenes) are mutated: a value replaced by another type or a nasty number, a key

@@ -1,4 +1,4 @@
-"""Fuzzed URDFs through loading, a scene, linearization and modal analysis (issue 13).
+"""Fuzzed URDFs through loading, a scene, linearization and modal analysis.
 
 Valid URDFs are mutated: an attribute set to a nasty value (``nan``, ``1e999``,
 ``abc``, empty, negative), an element removed or duplicated, an entity trick

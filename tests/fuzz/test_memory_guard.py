@@ -1,4 +1,4 @@
-"""The memory guard's budget is validated (issue 13 item 9): a negative one gave "-0.00 GiB allowed"."""
+"""The memory guard's budget is validated: a negative one gave "-0.00 GiB allowed"."""
 
 from __future__ import annotations
 

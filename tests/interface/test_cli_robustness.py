@@ -1,7 +1,7 @@
 """The command line never crashes, hangs or lies on bad input.
 
 Each test drives :func:`pinlin.cli.main` (or the scene-file reader) with one
-input of the issue and checks the exit code (2 bad input, 3 failed
+bad input and checks the exit code (2 bad input, 3 failed
 computation, never 1), the one-line message naming what was wrong, and what
 was or was not computed and written.
 """

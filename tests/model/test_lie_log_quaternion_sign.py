@@ -1,4 +1,4 @@
-"""A free-flyer joint spring sees a rotation, not a quaternion: q and -q give the same torque (issue 25 part 6 (v)).
+"""A free-flyer joint spring sees a rotation, not a quaternion: q and -q give the same torque.
 
 The unit quaternions q and -q are one rotation (SO(3) is covered twice by S^3).  The logarithm must take the
 branch w >= 0 (or equivalently flip the sign of a quaternion with w < 0) so that the rotation vector has

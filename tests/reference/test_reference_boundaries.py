@@ -1,4 +1,4 @@
-"""Stability boundaries and sensitivities against closed forms (issue 15 acceptance; theory: worked examples, boundaries).
+"""Stability boundaries and sensitivities against closed forms (theory: worked examples, boundaries).
 
 Sources of the reference values (derivations in tests/boundaries/boundary_cases.py, evaluated with mpmath):
 

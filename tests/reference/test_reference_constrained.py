@@ -1,4 +1,4 @@
-"""Constrained systems against closed forms and Pinocchio's own constrained dynamics (theory: constraints, issue 11).
+"""Constrained systems against closed forms and Pinocchio's own constrained dynamics (theory: constraints).
 
 - Planar four-bar (URDF open chain + point constraint, and the same from MJCF) with a crank
   spring under gravity: omega^2 = K_eff / M_eff by the energy method along the loop

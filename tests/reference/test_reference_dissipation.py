@@ -1,4 +1,4 @@
-"""Margins that say what they cover, and dissipation-induced instability (issue 25; theory: stability).
+"""Margins that say what they cover, and dissipation-induced instability (theory: stability).
 
 Sources:
 
@@ -287,7 +287,7 @@ def test_vanishing_damping_limit_of_equal_dampers_is_41_28():
     assert _limit_closed_form(1, 1) == pytest.approx(41 / 28, rel=1e-15)
     # the limit lies below the undamped flutter load 7/2 - sqrt 2 (Ziegler's paradox)
     assert r.value < 3.5 - np.sqrt(2.0)
-    # and the limit is the limit: the damped flutter load at a small eps is close (Routh-Hurwitz, issue 15)
+    # and the limit is the limit: the damped flutter load at a small eps is close (Routh-Hurwitz)
     from boundaries.boundary_cases import damped_flutter_load, ziegler_theta
 
     assert abs(float(damped_flutter_load(ziegler_theta, mp.mpf("1e-6"), 10.0)) - r.value) < 1e-6

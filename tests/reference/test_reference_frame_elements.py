@@ -1,6 +1,7 @@
-"""Elements between frames against hand-derived closed forms (issue 12 acceptance; theory: turntable, constraints, elements between frames).
+"""Elements between frames against hand-derived closed forms (theory: turntable, constraints,
+elements between frames).
 
-Each case cites its derivation in its docstring; tolerances are those of the issue.
+Each case cites its derivation in its docstring; tolerances are those of the elements' acceptance.
 """
 
 import numpy as np

@@ -1,4 +1,4 @@
-"""Extreme but finite data give a result or a PinlinError (issue 13 item 6; theory: spectrum, error figures).
+"""Extreme but finite data give a result or a PinlinError (theory: spectrum, error figures).
 
 Coefficients of every size double precision holds, 1e-300 to 1e300, in every
 combination: modal_analysis returns eigenvalues with finite error figures, or

@@ -1,4 +1,4 @@
-"""Bad inputs the fuzzer (tests/fuzz) found: each now gets a PinlinError naming what was wrong (issue 13)."""
+"""Bad inputs the fuzzer (tests/fuzz) found: each now gets a PinlinError naming what was wrong."""
 
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Property tests on random chains and random parameters (issue 7 part 7, theory: equations, spectrum, stability).
+"""Property tests on random chains and random parameters (theory: equations, spectrum, stability).
 
 hypothesis draws chains (links, masses, lengths, radii, springs, dampers,
 follower loads, gravity) and random mechanical matrices; the properties hold

@@ -1,7 +1,7 @@
-"""Acceptance of issue 16: stability decided wherever the floating-point data decide it (theory: stability).
+"""Stability acceptance: stability decided wherever the floating-point data decide it (theory: stability).
 
 - spring chains of 10 and 30 unit masses, springs alternating 1 and 1e10 / 1e12 / 1e14, dashpots 0.01,
-  the ground spring 1, -1e-3 or -0.5 (the issue's numbers; truth from mpmath's eigenvalues of the stored S);
+  the ground spring 1, -1e-3 or -0.5 (acceptance numbers; truth from mpmath's eigenvalues of the stored S);
 - property tests: random M > 0, D > 0, S > 0, N = 0 with condition numbers up to 1e12 (and beyond, to
   exercise the undecidable side), checked against mpmath: never wrong, never undecided where the data
   decide by a factor 10;

@@ -1,4 +1,4 @@
-"""Stress tests: stiffness and mass ratios, near-massless links, units (issue 7 part 6, theory: error figures).
+"""Stress tests: stiffness and mass ratios, near-massless links, units (theory: error figures).
 
 Each asserts backward errors recomputed from the returned vectors, eigenvalues
 within their reported error bounds of an mpmath reference, and the verdict the
@@ -32,7 +32,7 @@ def test_stiffness_ratio_1e12_between_joints(gravity, method):
     # D = G = N = 0 and S positive definite: Lagrange-Dirichlet, eigenvalues on the axis
     assert m.stability.kind == "marginally_stable"
     assert np.all(m.eigenvalues.real == 0) or m.method == "general"
-    assert set(m.kind) == {"undamped"}  # D = 0: on the axis (issue 25)
+    assert set(m.kind) == {"undamped"}  # D = 0: on the axis, hence undamped
 
 
 @pytest.mark.parametrize("method", METHODS)

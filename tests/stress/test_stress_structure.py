@@ -1,4 +1,4 @@
-"""Stress tests: rigid-body modes, free-floating bases, coalescing eigenvalues, high speeds (issue 7 part 6).
+"""Stress tests: rigid-body modes, free-floating bases, coalescing eigenvalues, high speeds.
 
 Each asserts backward errors recomputed from the vectors, the Jordan structure
 and the verdict, or a clear "undecided" -- never a wrong verdict.  References:

@@ -1,4 +1,4 @@
-"""Chunked sweeps (issue 14): several points per submitted task, results identical to a serial sweep.
+"""Chunked sweeps: several points per submitted task, results identical to a serial sweep.
 
 Placed with the stress tests because it runs process pools; the sweep's own tests
 (progress, Dask) are in tests/studies.
