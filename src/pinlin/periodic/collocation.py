@@ -95,6 +95,7 @@ def integrate_transitions(
     max_steps: int = MAX_STEPS,
     max_time: float = MAX_TIME,
     max_step_norm: float = MAX_STEP_NORM,
+    breaks=(),
 ) -> Transitions:
     """Step transitions over [0, period] to a relative tolerance, grouped into well-conditioned segments.
 
@@ -116,6 +117,9 @@ def integrate_transitions(
     max_step_norm : float
         Largest h ||D^-1 A(t_mid) D||_2 of a step (D the balancing of A(0), t_mid its middle node): the
         Richardson estimate assumes the asymptotic range.
+    breaks : sequence of float
+        Times in (0, period) [s] that are step boundaries: the jumps of A (:mod:`.jumps`), which no step
+        may cross (its nodes would all lie on one side).
 
     Raises
     ------
@@ -144,8 +148,10 @@ def integrate_transitions(
     t, h = 0.0, _initial_step(A0 * scaling, period, stages, rtol)
     cap = max_step_norm / max(float(np.linalg.norm(A0 * scaling, 2)), 1e-300)
     steps, rejected = [], 0
+    stops = sorted(float(b) for b in breaks if 0.0 < b < period) + [float(period)]
     while t < period * (1 - 1e-14):
-        h = min(h, cap, period - t)
+        stop = next(b for b in stops if b > t)
+        h = min(h, cap, stop - t)
         if len(steps) + rejected >= max_steps or time.perf_counter() - start > max_time:
             budget = "max_steps" if len(steps) + rejected >= max_steps else "max_time"
             raise IntegrationBudgetError(
@@ -162,7 +168,7 @@ def integrate_transitions(
         cap = max_step_norm / max(float(trial.rate[0]), 1e-300)
         if trial.accepted[0]:
             steps.extend(trial.steps)
-            t += h
+            t = stop if h == stop - t else t + h
         else:
             rejected += 1
             if h > 1.2 * cap:
