@@ -7,7 +7,7 @@ spectral interpolant (:mod:`.sampling`) show a jump as a difference between neig
 proportion to its neighbours' (a smooth F changes by about h ||F'|| from one sample to the next, so that
 neighbouring differences agree to O(h)).  Each such candidate is bisected: the half with the larger difference
 is kept, and a jump keeps its difference as the interval shrinks, where a smooth F halves it.  A candidate whose
-difference stops shrinking by :data:`JUMP_KEEP` at an interval of a few ulps is a jump, located to that interval;
+difference keeps :data:`JUMP_KEEP` of its first value down to an interval of a few ulps is a jump, located there;
 the integrator then steps to it exactly (:func:`.collocation.integrate_transitions` ``breaks``).  A steep but
 continuous feature halves its difference once the interval is below its width: its bracket becomes two step
 boundaries, so that the steps inside it see the feature at their nodes.
@@ -82,7 +82,7 @@ def find_jumps(F: Callable[[float], np.ndarray], period: float, samples: np.ndar
     for j in candidates:
         a, b = j * period / N, (j + 1) * period / N
         Fa, Fb, d = samples[j], samples[(j + 1) % N], float(D[j])
-        level = 0
+        d0, feature, level = d, (a, b), 0
         while b - a > JUMP_ULPS * np.spacing(b):
             m = 0.5 * (a + b)
             Fm = np.asarray(F(float(m)), dtype=float)
@@ -94,12 +94,14 @@ def find_jumps(F: Callable[[float], np.ndarray], period: float, samples: np.ndar
                 b, Fb, d = m, Fm, left
             else:
                 a, Fa, d = m, Fm, right
-            level += 1
+            if d >= JUMP_KEEP * d0:
+                feature, level = (a, b), level + 1
         else:
-            if b < period * (1 - 1e-15):
-                jumps.append(float(b))
-                breaks.append(float(b))
-            continue
+            if d >= JUMP_KEEP * d0:     # the difference kept to a few ulps: a jump
+                if b < period * (1 - 1e-15):
+                    jumps.append(float(b))
+                    breaks.append(float(b))
+                continue
         if level > 0:           # steep but continuous: narrower than the samples' spacing
-            breaks.extend(t for t in (float(a), float(b)) if 0.0 < t < period * (1 - 1e-15))
+            breaks.extend(float(t) for t in feature if 0.0 < t < period * (1 - 1e-15))
     return sorted(jumps), sorted(set(breaks)), calls
