@@ -129,8 +129,8 @@ def floquet_from_first_order(A, period, *, rtol: float = RTOL, stages: int = STA
 def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, *, rows, autonomous, start, what,
              orbit_errors=None):
     """The pipeline on the integrated transitions; ``form_after(monodromy)`` gives Omega (or None);
-    ``orbit_errors(steps, monodromy)``: per step a bound on the coefficients' error from the reference orbit's
-    own error (or None)."""
+    ``orbit_errors(steps, monodromy)``: the reference orbit's own error, as :func:`~.bounds.multiplier_bounds`
+    takes it (an :class:`~.orbit_error.OrbitError` or None)."""
     tr = integrated.transitions
     eig = cyclic_eigen(tr.factors)
     monodromy = np.eye(m)
@@ -141,7 +141,8 @@ def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, 
     from_orbit = None if orbit_errors is None else orbit_errors(tr.steps, monodromy)
     bound, b_int, b_eig, b_orbit = multiplier_bounds(tr, eig, from_orbit)
     if np.count_nonzero(trivial) == 2:      # the Jordan block of a conservative family: a square-root bound
-        jordan = jordan_bound(monodromy, eig.multipliers, trivial, monodromy_perturbation(tr, from_orbit))
+        norms = None if from_orbit is None else from_orbit.step_norms()
+        jordan = jordan_bound(monodromy, eig.multipliers, trivial, monodromy_perturbation(tr, norms))
         bound[trivial] = np.maximum(bound[trivial], jordan)
     stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
                                 condition=relative_condition(tr, eig), safety=options.safety, trivial_note=note)

@@ -23,8 +23,11 @@ inaccuracy (Richardson is exact only as h -> 0) in any direction, and the roundi
 Where the coefficients integrated are an interpolant of the true ones (:mod:`.sampling`), each step adds the
 first-order effect of their error bound (:func:`coefficient_terms`).  Without the projection a stiff,
 heavily damped mode's local error (large in norm, invisible to the other
-modes) would inflate every other multiplier's bound by decades.  Both are first order: for a multiplier in (or near)
-a Jordan block the condition 1 / |w^H z| is large and the bound says so, but it is not a proof there.
+modes) would inflate every other multiplier's bound by decades.  The reference orbit's own error adds its
+first-order change of each multiplier (:func:`directional_terms` on :mod:`.orbit_error`'s responses).  All are
+first order: for a multiplier in (or near) a Jordan block the condition 1 / |w^H z| is large but the change
+goes as the square root of the perturbation; for the trivial pair of a conservative family's orbit
+:func:`jordan_bound` says so.
 """
 
 from __future__ import annotations
@@ -35,7 +38,7 @@ import scipy.linalg
 from .collocation import Transitions
 from .cyclic import CyclicEigen
 
-__all__ = ["multiplier_bounds", "relative_condition", "coefficient_terms", "monodromy_perturbation", "jordan_bound", "ESTIMATE_SLACK", "PROJECTION_FACTOR"]
+__all__ = ["multiplier_bounds", "relative_condition", "coefficient_terms", "directional_terms", "monodromy_perturbation", "jordan_bound", "ORBIT_SAFETY", "ESTIMATE_SLACK", "PROJECTION_FACTOR"]
 
 #: theta: share of a step's estimated error norm allowed in any direction, beyond its projection.
 ESTIMATE_SLACK = 1e-2
@@ -46,15 +49,20 @@ ESTIMATE_SLACK = 1e-2
 #: period); 4 keeps a factor 2.4 there, and costs a factor 2-4 of pessimism where the estimate is exact.
 PROJECTION_FACTOR = 4.0
 
+#: Factor on the first-order change of a multiplier from the orbit's correction (an estimate: the correction
+#: is the next Newton step, accurate to its square; the finite differences to eps^(2/3)).
+ORBIT_SAFETY = 2.0
+
 _EPS = float(np.finfo(float).eps)
 
 
-def _integration_sums(tr: Transitions, eig: CyclicEigen, orbit_errors) -> tuple[np.ndarray, np.ndarray]:
+def _integration_sums(tr: Transitions, eig: CyclicEigen, orbit) -> tuple[np.ndarray, np.ndarray]:
     """sum_s rho |v_s^H E_s u_{s-1}| + (theta ||E_s|| + r_s) ||v_s|| ||u_{s-1}|| per multiplier (unit stacked
-    eigenvectors), each segment's steps on stacks; and the same sum of the orbit's coefficient errors
-    (``orbit_errors``: one block bound per step, or None)."""
+    eigenvectors), each segment's steps on stacks; and the orbit's part (``orbit``: see
+    :func:`multiplier_bounds`), rho_orbit |g . ds| + ||g|| ``unknown`` with g the sums' response to a unit
+    change of the orbit's start."""
     m, K = eig.right.shape[0], len(tr.factors)
-    sums, orbit = np.zeros(m), np.zeros(m)
+    sums, gradient = np.zeros(m), np.zeros((m, m), complex)
     for j, (begin, end) in enumerate(tr.segments):
         steps = tr.steps[begin:end]
         U = eig.right[:, j, :].T                            # (m, modes): z_{j-1} in the 1-based notation
@@ -75,9 +83,44 @@ def _integration_sums(tr: Transitions, eig: CyclicEigen, orbit_errors) -> tuple[
         with_error = [i for i, step in enumerate(steps) if step.coefficient_error is not None]
         if with_error:
             sums += coefficient_terms([steps[i] for i in with_error], R[with_error], L[with_error])
-        if orbit_errors is not None:
-            orbit += coefficient_terms(steps, R, L, errors=np.stack(orbit_errors[begin:end]))
-    return sums, orbit
+        if orbit is not None:
+            gradient += directional_terms(steps, R, L, orbit.responses[begin:end])
+    if orbit is None:
+        return sums, np.zeros(m)
+    return sums, (ORBIT_SAFETY * np.abs(orbit.ds @ gradient)
+                  + np.linalg.norm(gradient, axis=0) * orbit.unknown)
+
+
+def directional_terms(steps: list, R: np.ndarray, L: np.ndarray, dA: np.ndarray) -> np.ndarray:
+    """v^H dP u summed over the steps, to first order in a known change dA of the coefficients at every node
+    (variation of constants with the step's quadrature):
+
+    .. math::  v^H \\delta P u = \\sum_i w_i\\, (\\Phi(t_1, t_i)^H v)^H\\, \\delta A(t_i)\\, \\Phi(t_i, t_0) u.
+
+    ``R``, ``L``: (S, m, modes) as :func:`coefficient_terms`; ``dA``: (S, nodes, m, m), or (S, nodes, m, m, J)
+    for J changes at once (the result then (J, modes)).
+
+    Examples
+    --------
+    y' = -y changed by dA = 1e-6 over a step of 0.5 s: dP = h e^{-h} 1e-6 to first order:
+
+    >>> from pinlin.periodic.bounds import directional_terms
+    >>> from pinlin.periodic.gauss_step import try_steps
+    >>> A = lambda times: np.full((np.size(times), 1, 1), -1.0)
+    >>> trial = try_steps(A, np.array([0.0]), np.array([0.5]), stages=4, rtol=1e-10, scaling=np.ones((1, 1)),
+    ...                   max_step_norm=2.0)
+    >>> term = directional_terms(trial.steps, np.ones((1, 1, 1)), np.ones((1, 1, 1)), np.full((1, 8, 1, 1), 1e-6))
+    >>> print(f"{term[0].real:.6e}", f"{0.5 * np.exp(-0.5) * 1e-6:.6e}")
+    3.032653e-07 3.032653e-07
+    """
+    Z = np.stack([step.stage for step in steps])                              # (S, nodes, m, m)
+    P = np.stack([step.P for step in steps])
+    W = np.stack([step.weights for step in steps])
+    right = Z @ R[:, None]                                                    # (S, nodes, m, modes)
+    left = np.linalg.inv(Z).transpose(0, 1, 3, 2) @ (P.transpose(0, 2, 1) @ L)[:, None]
+    if dA.ndim == 5:
+        return np.einsum("si,sipk,sipqj,siqk->jk", W, left.conj(), dA, right)
+    return np.einsum("si,sipk,sipq,siqk->k", W, left.conj(), dA, right)
 
 
 def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray, errors: np.ndarray | None = None) -> np.ndarray:
@@ -129,7 +172,7 @@ def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray, errors: np.ndar
     return np.einsum("si,sik->k", W, np.sum(ln * Er, axis=2))
 
 
-def multiplier_bounds(tr: Transitions, eig: CyclicEigen, orbit_errors: list | None = None
+def multiplier_bounds(tr: Transitions, eig: CyclicEigen, orbit=None
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """(bound, integration part, eigensolver part, orbit part) of |mu_k computed - mu_k exact| for every
     multiplier.
@@ -140,8 +183,11 @@ def multiplier_bounds(tr: Transitions, eig: CyclicEigen, orbit_errors: list | No
         The step transitions, their error estimates and segments.
     eig : CyclicEigen
         The lifted eigenproblem's multipliers and eigenvectors.
-    orbit_errors : list of (1, 1) arrays or None
-        Per step, a bound on ||dA|| from the reference orbit's own error (:mod:`.orbit_error`).
+    orbit : OrbitError or None
+        The reference orbit's own error (:mod:`.orbit_error`): ``responses`` (steps, nodes, m, m, m) dA at
+        every node per unit change of the orbit's start, ``ds`` the start's first-order correction (its change
+        of the multipliers, times :data:`ORBIT_SAFETY`, enters the orbit part) and ``unknown`` the norm of the
+        correction's part of unknown direction.
 
     Returns
     -------
@@ -164,7 +210,7 @@ def multiplier_bounds(tr: Transitions, eig: CyclicEigen, orbit_errors: list | No
     overlap = np.abs(np.einsum("kjp,kjp->k", eig.left.conj(), eig.right))   # |w^H z|
     overlap = np.maximum(overlap, np.finfo(float).tiny)
     scale = K * np.abs(eig.multipliers) / (np.abs(eig.roots) * overlap)
-    sums, orbit_sums = _integration_sums(tr, eig, orbit_errors)
+    sums, orbit_sums = _integration_sums(tr, eig, orbit)
     integration, orbit = scale * sums, scale * orbit_sums
     eta = np.maximum(eig.backward_error, _EPS)
     eigensolver = scale * eta * eig.cyclic_norm

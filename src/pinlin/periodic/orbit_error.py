@@ -1,16 +1,19 @@
 """The orbit's own error in the coefficients of its variational equation (theory: Floquet).
 
-A shooting result misses exact periodicity by its residual r = x(T) - x(0) (``PeriodicOrbit.error``, relative
-to the orbit's excursion max_t ||x(t) - x(0)||).  To first order the exact orbit starts at s + ds with
-(Phi - I) ds = -r, so ||ds|| <= ||r|| / sigma, sigma the smallest singular value of Phi - I (an autonomous
-orbit: the next one, the time shift being free), and it runs at distance ||dx(t)|| <= ||Phi(t, 0)|| ||ds||.
-The coefficients move with it: ||dA(t)|| <= S(t) ||dx(t)||, S(t) = (sum_i ||dA/dx_i||_F^2)^(1/2) by central
-differences of A at the perturbed states (Pinocchio evaluations, the acceleration recomputed).  These block
-bounds per step enter the multipliers through the same first-order terms as an interpolant's error
-(:func:`.bounds.coefficient_terms`).
+A shooting result misses exact periodicity by its residual r = x(T) - x(0).  To first order the exact orbit
+starts at s + ds with (Phi - I) ds = -r (the next Newton step; an autonomous orbit leaves out the smallest
+singular value of Phi - I, its time shift being free) and runs at dx(t) = Phi(t, 0) ds from the computed one.
+The coefficients move with it: dA(t) = (dA/dx) Phi(t, 0) ds, the derivatives by central differences of A at
+every node (Pinocchio evaluations, the acceleration recomputed), so that the multipliers' first-order change
+g_k . ds, g_k = d mu_k / d s from w^H dPhi z / (w^H z), keeps the integral's cancellations
+(:func:`.bounds.multiplier_bounds`).  The error of r itself (``PeriodicOrbit.integration_error``, direction
+unknown) enters as ||g_k|| ||ds'||, ||ds'|| <= integration_error * excursion / sigma.  The change of period of
+an autonomous orbit's exact neighbour is not covered.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 import pinocchio as pin
@@ -19,15 +22,55 @@ from ..linearization.state_form import first_order_form
 from ..nonlinear.dynamics import FreeDynamics
 from .coefficients import evaluate_point
 
-__all__ = ["orbit_state_error", "orbit_coefficient_errors", "ORBIT_SAMPLES", "ORBIT_SLACK"]
+__all__ = ["OrbitError", "orbit_error", "orbit_start_error", "orbit_responses", "ORBIT_SAMPLES"]
 
 #: Times per period at which the orbit's excursion is measured (its residual is relative to it).
 ORBIT_SAMPLES = 64
 
-#: Factor on the sensitivity S(t) and on ||dx(t)|| taken at the ends of a step, for their values inside it.
-ORBIT_SLACK = 2.0
-
 _FD_STEP = float(np.finfo(float).eps) ** (1 / 3)
+
+
+@dataclass(frozen=True)
+class OrbitError:
+    """The reference orbit's error as the bounds take it: ``responses`` (steps, nodes, m, m, m) dA at every
+    node per unit change of the orbit's start (:func:`orbit_responses`), ``ds`` (m,) the start's first-order
+    correction and ``unknown`` the norm of the correction's part of unknown direction (:func:`orbit_start_error`).
+
+    Examples
+    --------
+    >>> from pinlin.periodic.orbit_error import OrbitError
+    >>> e = OrbitError(np.ones((1, 2, 1, 1, 1)), np.array([1e-9]), 1e-12)
+    >>> e.step_norms()[0]
+    array([[1.001e-09]])
+    """
+
+    responses: np.ndarray
+    ds: np.ndarray
+    unknown: float
+
+    def step_norms(self) -> list:
+        """Per step, a (1, 1) bound on ||dA|| over its nodes (2-norms): ||dA . ds|| + ||dA|| unknown."""
+        signed = np.linalg.norm(self.responses @ self.ds, ord=2, axis=(2, 3))               # (S, nodes)
+        whole = np.sqrt(np.sum(self.responses ** 2, axis=(2, 3, 4)))                       # Frobenius
+        return [np.array([[value]]) for value in (signed + whole * self.unknown).max(axis=1)]
+
+
+def orbit_error(scene, orbit, steps: list, monodromy: np.ndarray) -> OrbitError | None:
+    """The :class:`OrbitError` of ``orbit`` along ``steps`` (None for a constant orbit: nothing to correct).
+
+    Examples
+    --------
+    >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
+    >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
+    >>> from pinlin.periodic.orbit_error import orbit_error
+    >>> print(orbit_error(spec.scene, orbit, [], np.eye(2)))
+    None
+    """
+    responses = orbit_responses(scene, orbit, steps)
+    if responses is None:
+        return None
+    ds, unknown = orbit_start_error(scene, orbit, monodromy, 1 if orbit.autonomous else 0)
+    return OrbitError(responses, ds, unknown)
 
 
 def _tangent_state(scene, orbit, t: float) -> np.ndarray:
@@ -36,76 +79,81 @@ def _tangent_state(scene, orbit, t: float) -> np.ndarray:
     return np.concatenate([y[:nv][scene.free_dofs], y[nv:nv + n]])
 
 
-def orbit_state_error(scene, orbit, monodromy: np.ndarray, trivial: int) -> float:
-    """||ds|| <= orbit.error * excursion / sigma: the distance [state units] from the orbit's start to the
-    exact orbit's, to first order; 0 for a constant orbit (its residual is an equilibrium residual, not a state
-    error) or an orbit without its integrator's solution.  ``trivial``: singular values of Phi - I left out
-    (1 for an autonomous orbit: its time shift).
+def orbit_start_error(scene, orbit, monodromy: np.ndarray, trivial: int) -> tuple[np.ndarray, float]:
+    """(ds, unknown): the first-order correction ds = -(Phi - I)^+ r from the orbit's start to the exact
+    orbit's (r = x(T) - x(0) of the orbit's own integration, the pseudo-inverse leaving out ``trivial``
+    smallest singular values: 1 for an autonomous orbit, whose time shift is free), and the norm bound
+    integration_error * excursion / sigma of the part whose direction is unknown (the error of r itself).
+    Zero for a constant orbit (its residual is an equilibrium residual, not a state error).
 
     Examples
     --------
     >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
     >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
-    >>> from pinlin.periodic.orbit_error import orbit_state_error
-    >>> orbit_state_error(spec.scene, orbit, np.eye(2), 0)       # a constant orbit
-    0.0
+    >>> from pinlin.periodic.orbit_error import orbit_start_error
+    >>> orbit_start_error(spec.scene, orbit, np.eye(2), 0)       # a constant orbit
+    (array([0., 0.]), 0.0)
     """
-    if orbit.constant or orbit.solution is None or not orbit.error > 0:
-        return 0.0
+    m = monodromy.shape[0]
+    if orbit.constant or orbit.solution is None:
+        return np.zeros(m), 0.0
+    nv, n = scene.model.nv, scene.n
+    y0, yT = orbit.solution(0.0), orbit.solution(orbit.period)
+    r = np.concatenate([(yT - y0)[:nv][scene.free_dofs], (yT - y0)[nv:nv + n]])
     times = np.linspace(0.0, orbit.period, ORBIT_SAMPLES + 1)
     X = np.stack([_tangent_state(scene, orbit, t) for t in times])
     excursion = float(np.max(np.linalg.norm(X - X[0], axis=1)))
-    sigma = np.linalg.svd(monodromy - np.eye(monodromy.shape[0]), compute_uv=False)
-    kept = sigma[: sigma.size - trivial]
-    if kept.size == 0 or not kept[-1] > 0:
-        return float("inf")
-    return float(orbit.error * excursion / kept[-1])
+    U, sigma, Vh = np.linalg.svd(monodromy - np.eye(m))
+    keep = m - trivial
+    if keep <= 0 or not sigma[keep - 1] > 0:
+        return np.zeros(m), float("inf")
+    ds = -(Vh[:keep].T @ ((U[:, :keep].T @ r) / sigma[:keep]))
+    return ds, float(orbit.integration_error * excursion / sigma[keep - 1])
 
 
-def _sensitivity(scene, dyn: FreeDynamics, orbit, t: float) -> float:
-    """(sum_i ||dA/dx_i||_F^2)^(1/2) at the orbit's point at t, by central differences in the free
-    coordinates' tangent directions and velocities."""
-    n, nv, free = scene.n, scene.model.nv, scene.free_dofs
-    q, v = orbit.state(t)
-    x = np.concatenate([np.zeros(n), v[free]])
-    total = 0.0
-    for i in range(2 * n):
-        pair = []
-        for sign in (1.0, -1.0):
-            h = _FD_STEP * max(1.0, abs(x[i]))
-            dq, vv = np.zeros(nv), v.copy()
-            if i < n:
-                dq[free[i]] = sign * h
-            else:
-                vv[free[i - n]] += sign * h
-            p = evaluate_point(scene, dyn, pin.integrate(scene.model, q, dq), vv, t)
-            pair.append(first_order_form(p.M, p.C, p.K, residual=False)[0])
-        total += float(np.sum(((pair[0] - pair[1]) / (2 * h)) ** 2))
-    return float(np.sqrt(total))
+def _perturbed_A(scene, dyn: FreeDynamics, q, v, t: float, dx: np.ndarray) -> np.ndarray:
+    """A at the orbit's point (q, v) moved by dx = (dq_f, dv_f) in the free coordinates' tangent space."""
+    n, free = scene.n, scene.free_dofs
+    dq, vv = np.zeros(scene.model.nv), v.copy()
+    dq[free] = dx[:n]
+    vv[free] += dx[n:]
+    p = evaluate_point(scene, dyn, pin.integrate(scene.model, q, dq), vv, t)
+    return first_order_form(p.M, p.C, p.K, residual=False)[0]
 
 
-def orbit_coefficient_errors(scene, orbit, steps: list, ds: float) -> list | None:
-    """Per step, the (1, 1) block bound on ||dA|| along the step from the orbit's state error ``ds``: the
-    sensitivity and ||Phi(t, 0)|| ds at the step's ends, the larger of each times :data:`ORBIT_SLACK`
-    (None when ``ds`` is 0).
+def orbit_responses(scene, orbit, steps: list) -> np.ndarray | None:
+    """dA at every node of every step per unit change of the orbit's start: (S, nodes, m, m, m), the last
+    axis the start direction e_j, dA(t_i) = sum_k dA/dx_k (Phi(t_i, 0) e_j)_k, the derivatives by central
+    differences in each free coordinate's tangent direction and velocity (Pinocchio evaluations, the
+    acceleration recomputed); None for a constant orbit or no steps.
 
     Examples
     --------
     >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
     >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
-    >>> from pinlin.periodic.orbit_error import orbit_coefficient_errors
-    >>> print(orbit_coefficient_errors(spec.scene, orbit, [], 0.0))
+    >>> from pinlin.periodic.orbit_error import orbit_responses
+    >>> print(orbit_responses(spec.scene, orbit, []))
     None
     """
-    if not steps or ds == 0.0:
+    if not steps or orbit.constant or orbit.solution is None:
         return None
     dyn = FreeDynamics(scene)
-    ends = [s.t0 for s in steps] + [steps[-1].t0 + steps[-1].h]
-    S = np.array([_sensitivity(scene, dyn, orbit, t) for t in ends])
-    growth, Phi = [1.0], np.eye(steps[0].P.shape[0])
-    for step in steps:
-        Phi = step.P @ Phi
-        growth.append(float(np.linalg.norm(Phi, 2)))
-    dx = np.array(growth) * ds
-    return [np.array([[ORBIT_SLACK ** 2 * max(S[i], S[i + 1]) * max(dx[i], dx[i + 1])]])
-            for i in range(len(steps))]
+    n = scene.n
+    m = 2 * n
+    out = np.zeros((len(steps), steps[0].nodes.size, m, m, m))
+    start = np.eye(m)                                       # Phi(t0, 0)
+    for k, step in enumerate(steps):
+        for i, t in enumerate(step.nodes):
+            q, v = orbit.state(float(t))
+            speeds = np.concatenate([np.zeros(n), v[scene.free_dofs]])
+            J = np.zeros((m, m, m))                          # dA/dx_c
+            for c in range(m):
+                e = np.zeros(m)
+                e[c] = _FD_STEP * max(1.0, abs(speeds[c]))
+                J[..., c] = (_perturbed_A(scene, dyn, q, v, float(t), e)
+                             - _perturbed_A(scene, dyn, q, v, float(t), -e)) / (2 * e[c])
+            out[k, i] = J @ (step.stage[i] @ start)
+        start = step.P @ start
+    return out
+
+

@@ -14,7 +14,7 @@ from .coefficients import variational_coefficients
 from .inputs import coefficient
 from .options import (GROWTH, HARMONICS, MAX_SAMPLES, MAX_STEPS, MAX_TIME, RTOL, SAFETY, SAMPLING, STAGES,
                       STRUCTURE_TOL, FloquetOptions)
-from .orbit_error import orbit_coefficient_errors, orbit_state_error
+from .orbit_error import orbit_error
 from .orbit_result import PeriodicOrbit
 from .result import FloquetAnalysis
 
@@ -90,10 +90,6 @@ def floquet_analysis(scene: Scene, orbit: PeriodicOrbit, *, rtol: float = RTOL, 
         p = co.point(t)
         return np.stack([p.M, p.C, p.K])
 
-    def orbit_errors(steps, monodromy):
-        ds = orbit_state_error(scene, orbit, monodromy, 1 if orbit.autonomous else 0)
-        return orbit_coefficient_errors(scene, orbit, steps, ds)
-
     return floquet_second_order(triple, checked, scene.n, orbit.period, options, start=start,
                                 autonomous=orbit.autonomous, conservative=conservative,
-                                what=f"scene {scene.robot.name!r}, n = {scene.n}", orbit_errors=orbit_errors)
+                                what=f"scene {scene.robot.name!r}, n = {scene.n}", orbit_errors=lambda steps, monodromy: orbit_error(scene, orbit, steps, monodromy))
