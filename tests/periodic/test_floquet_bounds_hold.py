@@ -163,3 +163,14 @@ def test_jordan_bound_is_the_square_root_law():
         true = float(np.max(np.abs(mu - 1)))
         bound = jordan_bound(Phi, mu, np.array([True, True]), e)
         assert true <= bound <= 1.01 * true + e
+
+
+@pytest.mark.parametrize("jump, found", [(7.2, True), (6.8, False)])
+def test_a_jump_is_a_candidate_from_eight_times_its_neighbours_difference(jump, found):
+    """A jump J on a ramp of slope 1, 32 samples (spacing h = 1/32): the difference across it is J + h, its
+    neighbours' h, so the ratio 8 is crossed at J = 7 h (8.2 at 7.2 h, 7.8 at 6.8 h)."""
+    h = 1 / 32
+    F = lambda t: np.array([[[(t % 1.0) + (jump * h if t % 1.0 >= 0.4 else 0.0)]]])
+    samples = np.stack([F(t) for t in np.arange(32) * h])
+    jumps = find_jumps(F, 1.0, samples, np.array([2.0]), 1e-13)[0]    # the ramp's reset at T: no step needed
+    assert jumps == ([pytest.approx(0.4, abs=1e-15)] if found else [])
