@@ -51,12 +51,18 @@ def test_meissner_bounds_contain_the_exact_error(T, c):
     assert f"{T / 4!r}" in flo.method or f"{T / 4:.17g}" in flo.method
 
 
-def test_meissner_without_jumps_found_was_wrong():
-    """The case as filed: stepping across the jumps the multipliers are off by 5.7e-3 (bound 4e-13)."""
-    T = 0.25
-    flo = pinlin.floquet_analysis_matrices(np.eye(1), None, square_k(T), T, sampling="nodes")
-    error = np.max([np.min(np.abs(meissner_exact(T, 0.0) - mu)) for mu in flo.multipliers])
-    assert error > 1e-4 > flo.error_bound.max()     # what "nodes" alone does: it trusts smooth coefficients
+@pytest.mark.parametrize("T", [0.25, 0.5, 0.75])
+@pytest.mark.parametrize("c", [0.0, 0.002])
+def test_meissner_on_the_nodes_path(T, c):
+    """sampling="nodes" takes no samples: the jumps are found in the gaps between the steps' outer nodes
+    (as filed, a step from 0.18696 to 0.23855 had all its nodes after the jump at 0.1875: off by 5.7e-3)."""
+    flo = pinlin.floquet_analysis_matrices(np.eye(1), None if c == 0 else np.array([[c]]), square_k(T), T,
+                                           sampling="nodes")
+    exact = meissner_exact(T, c)
+    for mu, bound in zip(flo.multipliers, flo.error_bound):
+        assert np.min(np.abs(exact - mu)) <= bound <= 1e-10 * max(1.0, abs(mu))
+    for jump in (T / 4, 3 * T / 4):                  # a step boundary within a few ulps of each jump
+        assert np.min(np.abs(flo.step_times - jump)) <= 4 * np.spacing(jump)
 
 
 def test_spectral_sampling_refuses_naming_the_jumps():
@@ -82,16 +88,16 @@ def test_find_jumps_thresholds_at_their_boundaries():
     assert jumps == [] and len(breaks) == 2 and 0.51 - 1e-6 <= breaks[0] < breaks[1] <= 0.51 + 3e-6
 
 
-def test_a_step_boundary_at_the_jump_gives_the_exact_transition():
-    """y' = a(t) y with a = -1 then +2 from t = 0.4: Phi(1) = exp(-0.4 + 1.2) exactly."""
+@pytest.mark.parametrize("jump", [0.4, 0.123456789])
+def test_a_step_boundary_at_the_jump_gives_the_exact_transition(jump):
+    """y' = a(t) y with a = -1 then +2 from t = jump: Phi(1) = exp(-jump + 2 (1 - jump)) exactly, whether the
+    jump is given as a break or found in a gap between steps."""
     from pinlin.periodic.collocation import integrate_transitions
-    A = lambda t: np.array([[-1.0 if t < 0.4 else 2.0]])
-    across = integrate_transitions(A, 1.0, 1)
-    at = integrate_transitions(A, 1.0, 1, breaks=[0.4])
-    exact = math.exp(0.8)
-    assert abs(at.factors[-1][0, 0] * np.prod([f[0, 0] for f in at.factors[:-1]]) - exact) <= 1e-13 * exact
-    assert 0.4 in [s.t0 for s in at.steps]
-    assert abs(np.prod([f[0, 0] for f in across.factors]) - exact) > 1e-6
+    A = lambda t: np.array([[-1.0 if t < jump else 2.0]])
+    exact = math.exp(-jump + 2 * (1 - jump))
+    for tr in (integrate_transitions(A, 1.0, 1, breaks=[jump]), integrate_transitions(A, 1.0, 1)):
+        assert abs(np.prod([f[0, 0] for f in tr.factors]) - exact) <= 1e-13 * exact
+        assert min(abs(s.t0 - jump) for s in tr.steps) <= 4 * np.spacing(jump)
 
 
 def forced_saddle():

@@ -8,7 +8,9 @@ proportion to its neighbours' (a smooth F changes by about h ||F'|| from one sam
 neighbouring differences agree to O(h)).  Each such candidate is bisected: the half with the larger difference
 is kept, and a jump keeps its difference as the interval shrinks, where a smooth F halves it.  A candidate whose
 difference keeps :data:`JUMP_KEEP` of its first value down to an interval of a few ulps is a jump, located there;
-the integrator then steps to it exactly (:func:`.collocation.integrate_transitions` ``breaks``).  A steep but
+the integrator then steps to it exactly (:func:`.collocation.integrate_transitions` ``breaks``).  Without
+samples (``sampling="nodes"``) :class:`EdgeWatch` looks at the integrator's own nodes: in the gap between two
+steps' outer nodes, and between consecutive nodes of a rejected step.  A steep but
 continuous feature halves its difference once the interval is below its width: its bracket becomes two step
 boundaries, so that the steps inside it see the feature at their nodes.
 """
@@ -19,7 +21,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["find_jumps", "JUMP_RATIO", "JUMP_KEEP", "JUMP_ULPS"]
+__all__ = ["find_jumps", "EdgeWatch", "JUMP_RATIO", "JUMP_KEEP", "JUMP_ULPS"]
 
 #: A difference between neighbouring samples this many times larger than the smaller of its neighbours'
 #: makes a candidate (a smooth F gives ratios 1 + O(h); extrema give false candidates, which the bisection
@@ -38,6 +40,34 @@ def _differences(samples: np.ndarray, scale: np.ndarray) -> np.ndarray:
     """Relative difference from sample j to sample j + 1 (cyclic), summed over the groups: (N,)."""
     diff = np.roll(samples, -1, axis=0) - samples
     return np.sum(np.sqrt(np.sum(diff ** 2, axis=(2, 3))) / np.maximum(scale, np.finfo(float).tiny), axis=1)
+
+
+def _distance(Fa: np.ndarray, Fb: np.ndarray, scale: np.ndarray) -> float:
+    return float(np.sum(np.sqrt(np.sum((Fb - Fa) ** 2, axis=(1, 2))) / np.maximum(scale, np.finfo(float).tiny)))
+
+
+def _bisect(F, a: float, b: float, Fa: np.ndarray, Fb: np.ndarray, scale: np.ndarray) -> tuple[str, tuple, int]:
+    """(kind, bracket, calls): "jump" with (b,) the time of a jump located to a few ulps, "steep" with the
+    bracket of a continuous feature narrower than [a, b], or "smooth" (bracket empty)."""
+    d = d0 = _distance(Fa, Fb, scale)
+    feature, level, calls = (a, b), 0, 0
+    while b - a > JUMP_ULPS * np.spacing(b):
+        m = 0.5 * (a + b)
+        Fm = np.asarray(F(float(m)), dtype=float)
+        calls += 1
+        left, right = _distance(Fa, Fm, scale), _distance(Fm, Fb, scale)
+        if max(left, right) < JUMP_KEEP * d:
+            break
+        if left >= right:
+            b, Fb, d = m, Fm, left
+        else:
+            a, Fa, d = m, Fm, right
+        if d >= JUMP_KEEP * d0:
+            feature, level = (a, b), level + 1
+    else:
+        if d >= JUMP_KEEP * d0:     # the difference kept down to a few ulps: a jump
+            return "jump", (float(b),), calls
+    return ("steep", tuple(float(t) for t in feature), calls) if level > 0 else ("smooth", (), calls)
 
 
 def find_jumps(F: Callable[[float], np.ndarray], period: float, samples: np.ndarray, scale: np.ndarray,
@@ -75,33 +105,76 @@ def find_jumps(F: Callable[[float], np.ndarray], period: float, samples: np.ndar
     smaller = np.minimum(np.roll(D, 1), np.roll(D, -1))
     candidates = np.flatnonzero((D > floor) & (D > JUMP_RATIO * smaller))
     jumps, breaks, calls = [], [], 0
-
-    def distance(Fa, Fb):
-        return float(np.sum(np.sqrt(np.sum((Fb - Fa) ** 2, axis=(1, 2))) / np.maximum(scale, np.finfo(float).tiny)))
-
     for j in candidates:
-        a, b = j * period / N, (j + 1) * period / N
-        Fa, Fb, d = samples[j], samples[(j + 1) % N], float(D[j])
-        d0, feature, level = d, (a, b), 0
-        while b - a > JUMP_ULPS * np.spacing(b):
-            m = 0.5 * (a + b)
-            Fm = np.asarray(F(float(m)), dtype=float)
-            calls += 1
-            left, right = distance(Fa, Fm), distance(Fm, Fb)
-            if max(left, right) < JUMP_KEEP * d:
-                break
-            if left >= right:
-                b, Fb, d = m, Fm, left
-            else:
-                a, Fa, d = m, Fm, right
-            if d >= JUMP_KEEP * d0:
-                feature, level = (a, b), level + 1
-        else:
-            if d >= JUMP_KEEP * d0:     # the difference kept to a few ulps: a jump
-                if b < period * (1 - 1e-15):
-                    jumps.append(float(b))
-                    breaks.append(float(b))
-                continue
-        if level > 0:           # steep but continuous: narrower than the samples' spacing
-            breaks.extend(float(t) for t in feature if 0.0 < t < period * (1 - 1e-15))
+        kind, bracket, spent = _bisect(F, j * period / N, (j + 1) * period / N, samples[j], samples[(j + 1) % N],
+                                       scale)
+        calls += spent
+        inside = [t for t in bracket if 0.0 < t < period * (1 - 1e-15)]
+        if kind == "jump":
+            jumps.extend(inside)
+        breaks.extend(inside)
     return sorted(jumps), sorted(set(breaks)), calls
+
+
+class EdgeWatch:
+    """The nodes path's watch over the gaps between consecutive steps: a jump between the last node of one
+    step and the first node of the next is seen by neither step's error estimate.  After each accepted step,
+    :meth:`check` compares the values at the two nodes around the gap with the largest rate of change inside
+    the steps (a difference over :data:`JUMP_RATIO` times that rate times the gap, and above ``floor``
+    relative to ||A||, is bisected) and returns the located jump's time, or None; :meth:`inside` looks for
+    one between the nodes of a rejected step.
+
+    Examples
+    --------
+    >>> from pinlin.periodic.jumps import EdgeWatch
+    >>> A = lambda t: np.array([[1.0 if t < 0.5 else 3.0]])
+    >>> watch = EdgeWatch(A, 1e-13)
+    >>> watch.check(np.array([0.1, 0.2, 0.48]), np.array([[[1.0]], [[1.0]], [[1.0]]]))     # the first step
+    >>> print(watch.check(np.array([0.52, 0.6, 0.9]), np.array([[[3.0]], [[3.0]], [[3.0]]])))
+    0.5
+    >>> print(watch.inside(np.array([0.4, 0.45, 0.55, 0.6]), np.array([[[1.0]], [[1.0]], [[3.0]], [[3.0]]])))
+    0.5
+    """
+
+    def __init__(self, A, floor: float):
+        self.A, self.floor = A, float(floor)      # A counts its own calls
+        self.previous = None
+
+    def forget(self) -> None:
+        """No step before the next one (after a restart at a jump)."""
+        self.previous = None
+
+    def check(self, times: np.ndarray, values: np.ndarray) -> float | None:
+        order = np.argsort(times)
+        times, values = times[order], values[order]
+        rates = np.linalg.norm(np.diff(values, axis=0), axis=(1, 2)) / np.maximum(np.diff(times), 1e-300)
+        rate = float(rates.max()) if rates.size else 0.0
+        previous, self.previous = self.previous, (float(times[-1]), values[-1], rate)
+        if previous is None:
+            return None
+        t_last, A_last, rate_last = previous
+        scale = np.array([max(float(np.linalg.norm(A_last)), float(np.linalg.norm(values[0])), 1e-300)])
+        gap = float(times[0]) - t_last
+        difference = float(np.linalg.norm(values[0] - A_last)) / scale[0]
+        if not (difference > self.floor and difference * scale[0] > JUMP_RATIO * max(rate, rate_last) * gap):
+            return None
+        kind, bracket, _ = _bisect(lambda t: self.A(t)[None], t_last, float(times[0]), A_last[None],
+                                   values[0][None], scale)
+        return bracket[0] if kind == "jump" else None
+
+    def inside(self, times: np.ndarray, values: np.ndarray) -> float | None:
+        """The located jump between two consecutive nodes of a rejected step (the largest rate of change
+        over :data:`JUMP_RATIO` times the next largest, the difference above ``floor``), or None."""
+        order = np.argsort(times)
+        times, values = times[order], values[order]
+        differences = np.linalg.norm(np.diff(values, axis=0), axis=(1, 2))
+        rates = differences / np.maximum(np.diff(times), 1e-300)
+        if rates.size < 2:
+            return None
+        k = int(np.argmax(rates))
+        scale = np.array([max(float(np.linalg.norm(values[k])), float(np.linalg.norm(values[k + 1])), 1e-300)])
+        if not (differences[k] > self.floor * scale[0] and rates[k] > JUMP_RATIO * np.sort(rates)[-2]):
+            return None
+        kind, bracket, _ = _bisect(lambda t: self.A(t)[None], float(times[k]), float(times[k + 1]),
+                                   values[k][None], values[k + 1][None], scale)
+        return bracket[0] if kind == "jump" else None
