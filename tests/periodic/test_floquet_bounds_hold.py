@@ -180,3 +180,13 @@ def test_a_jump_is_a_candidate_from_eight_times_its_neighbours_difference(jump, 
     samples = np.stack([F(t) for t in np.arange(32) * h])
     jumps = find_jumps(F, 1.0, samples, np.array([2.0]), 1e-13)[0]    # the ramp's reset at T: no step needed
     assert jumps == ([pytest.approx(0.4, abs=1e-15)] if found else [])
+
+
+def test_the_fallback_to_the_nodes_warns_and_says_why():
+    """|sin t| has a kink, no jump: the interpolant's error falls by 2 per doubling (1.7e-2, 9.1e-3, 4.6e-3)."""
+    K = lambda t: np.array([[2.0 + 0.3 * abs(np.sin(t))]])
+    with pytest.warns(pinlin.AccuracyWarning, match=r"did not reach the relative error 1e-13 with 64 samples "
+                                                    r"\(measured errors after each doubling: 1\.7e-02, 9\.1e-03, "
+                                                    r"4\.6e-03\): evaluating them at every collocation node"):
+        flo = pinlin.floquet_analysis_matrices(np.eye(1), np.array([[0.05]]), K, 2 * np.pi)
+    assert "sampling did not converge: 64 samples" in flo.method

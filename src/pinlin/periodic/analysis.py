@@ -155,7 +155,8 @@ def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, 
               f"{len(tr.factors)}-segment product from the lifted block-cyclic eigenproblem")
     return FloquetAnalysis(
         multipliers=readonly(eig.multipliers), error_bound=readonly(bound), integration_bound=readonly(b_int),
-        eigensolver_bound=readonly(b_eig), orbit_bound=readonly(b_orbit), exponents=readonly(np.log(eig.multipliers.astype(complex)) / T),
+        eigensolver_bound=readonly(b_eig), orbit_bound=readonly(b_orbit),
+        exponents=readonly(np.log(eig.multipliers.astype(complex)) / T),
         trivial=readonly(trivial), conservative=form is not None, stability=stability,
         monodromy=readonly(monodromy), period=T, segments=len(tr.factors), steps=len(tr.steps),
         evaluations=integrated.evaluations, step_times=readonly(times), step_errors=readonly(step_errors),

@@ -141,10 +141,31 @@ class EdgeWatch:
         self.previous = None
 
     def forget(self) -> None:
-        """No step before the next one (after a restart at a jump)."""
+        """No step before the next one (after a restart at a jump).
+
+        Examples
+        --------
+        >>> from pinlin.periodic.jumps import EdgeWatch
+        >>> watch = EdgeWatch(lambda t: np.array([[1.0 if t < 0.5 else 3.0]]), 1e-13)
+        >>> watch.check(np.array([0.1, 0.48]), np.array([[[1.0]], [[1.0]]]))
+        >>> watch.forget()
+        >>> print(watch.check(np.array([0.52, 0.9]), np.array([[[3.0]], [[3.0]]])))     # no step before it
+        None
+        """
         self.previous = None
 
     def check(self, times: np.ndarray, values: np.ndarray) -> float | None:
+        """The located jump in the gap between the previous accepted step's last node and this accepted
+        step's first node (``times`` (k,) [s] and ``values`` (k, m, m) of A at this step's nodes), or None.
+
+        Examples
+        --------
+        >>> from pinlin.periodic.jumps import EdgeWatch
+        >>> watch = EdgeWatch(lambda t: np.array([[2.0 * t]]), 1e-13)        # smooth: the gap is in proportion
+        >>> watch.check(np.array([0.1, 0.4]), np.array([[[0.2]], [[0.8]]]))
+        >>> print(watch.check(np.array([0.6, 0.9]), np.array([[[1.2]], [[1.8]]])))
+        None
+        """
         order = np.argsort(times)
         times, values = times[order], values[order]
         rates = np.linalg.norm(np.diff(values, axis=0), axis=(1, 2)) / np.maximum(np.diff(times), 1e-300)
@@ -164,7 +185,15 @@ class EdgeWatch:
 
     def inside(self, times: np.ndarray, values: np.ndarray) -> float | None:
         """The located jump between two consecutive nodes of a rejected step (the largest rate of change
-        over :data:`JUMP_RATIO` times the next largest, the difference above ``floor``), or None."""
+        over :data:`JUMP_RATIO` times the next largest, the difference above ``floor``), or None.
+
+        Examples
+        --------
+        >>> from pinlin.periodic.jumps import EdgeWatch
+        >>> watch = EdgeWatch(lambda t: np.array([[1.0 if t < 0.3 else -1.0]]), 1e-13)
+        >>> print(f"{watch.inside(np.array([0.0, 0.2, 0.4]), np.array([[[1.0]], [[1.0]], [[-1.0]]])):.15f}")
+        0.300000000000000
+        """
         order = np.argsort(times)
         times, values = times[order], values[order]
         differences = np.linalg.norm(np.diff(values, axis=0), axis=(1, 2))

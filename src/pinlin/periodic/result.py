@@ -104,9 +104,9 @@ class FloquetAnalysis(Result):
     deferred: object = field(default=None, repr=False)
 
     _dict_exclude = ("deferred",)
-    _dict_fields = ("multipliers", "error_bound", "integration_bound", "eigensolver_bound", "orbit_bound", "exponents",
-                    "frequencies", "harmonic_content", "dominant_harmonic", "trivial", "conservative", "stability",
-                    "monodromy", "period", "segments", "steps", "evaluations", "step_times", "step_errors",
+    _dict_fields = ("multipliers", "error_bound", "integration_bound", "eigensolver_bound", "orbit_bound",
+                    "exponents", "frequencies", "harmonic_content", "dominant_harmonic", "trivial", "conservative",
+                    "stability", "monodromy", "period", "segments", "steps", "evaluations", "step_times", "step_errors",
                     "integration_error", "elapsed", "method")
 
     @functools.cached_property

@@ -92,4 +92,5 @@ def floquet_analysis(scene: Scene, orbit: PeriodicOrbit, *, rtol: float = RTOL, 
 
     return floquet_second_order(triple, checked, scene.n, orbit.period, options, start=start,
                                 autonomous=orbit.autonomous, conservative=conservative,
-                                what=f"scene {scene.robot.name!r}, n = {scene.n}", orbit_errors=lambda steps, monodromy: orbit_error(scene, orbit, steps, monodromy))
+                                what=f"scene {scene.robot.name!r}, n = {scene.n}",
+                                orbit_errors=lambda steps, monodromy: orbit_error(scene, orbit, steps, monodromy))
