@@ -129,8 +129,8 @@ def floquet_from_first_order(A, period, *, rtol: float = RTOL, stages: int = STA
 def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, *, rows, autonomous, start, what,
              orbit_errors=None):
     """The pipeline on the integrated transitions; ``form_after(monodromy)`` gives Omega (or None);
-    ``orbit_errors(steps, monodromy)``: the reference orbit's own error, as :func:`~.bounds.multiplier_bounds`
-    takes it (an :class:`~.orbit_error.OrbitError` or None)."""
+    ``orbit_errors(tr, eig, monodromy)``: the reference orbit's part of the bound and per-step norm bounds
+    on its dA (:func:`~.orbit_error.orbit_bound`), or None."""
     tr = integrated.transitions
     eig = cyclic_eigen(tr.factors)
     monodromy = np.eye(m)
@@ -138,10 +138,12 @@ def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, 
         monodromy = factor @ monodromy
     form = form_after(monodromy)
     trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
-    from_orbit = None if orbit_errors is None else orbit_errors(tr.steps, monodromy)
-    bound, b_int, b_eig, b_orbit = multiplier_bounds(tr, eig, from_orbit)
+    bound, b_int, b_eig, b_orbit = multiplier_bounds(tr, eig)
+    norms = None
+    if orbit_errors is not None:
+        b_orbit, norms = orbit_errors(tr, eig, monodromy)
+        bound = bound + b_orbit
     if np.count_nonzero(trivial) == 2:      # the Jordan block of a conservative family: a square-root bound
-        norms = None if from_orbit is None else from_orbit.step_norms()
         jordan = jordan_bound(monodromy, eig.multipliers, trivial, monodromy_perturbation(tr, norms))
         bound[trivial] = np.maximum(bound[trivial], jordan)
     stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,

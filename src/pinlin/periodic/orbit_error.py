@@ -3,8 +3,9 @@
 A shooting result misses exact periodicity by its residual r = x(T) - x(0).  To first order the exact orbit
 starts at s + ds with (Phi - I) ds = -r (the next Newton step; an autonomous orbit leaves out the smallest
 singular value of Phi - I, its time shift being free) and runs at dx(t) = Phi(t, 0) ds from the computed one.
-The coefficients move with it: dA(t) = (dA/dx) Phi(t, 0) ds, the derivatives by central differences of A at
-every node (Pinocchio evaluations, the acceleration recomputed), so that the multipliers' first-order change
+The coefficients move with it: dA(t) = (dA/dx) Phi(t, 0) ds, the derivatives by central differences of A
+(Pinocchio evaluations, the acceleration recomputed), periodic along the orbit: sampled once per period and
+interpolated to every node (:mod:`.sampling`), so that the multipliers' first-order change
 g_k . ds, g_k = d mu_k / d s from w^H dPhi z / (w^H z), keeps the integral's cancellations
 (:func:`.bounds.multiplier_bounds`).  The error of r itself (``PeriodicOrbit.integration_error``, direction
 unknown) enters as ||g_k|| ||ds'||, ||ds'|| <= integration_error * excursion / sigma.  The change of period of
@@ -20,33 +21,41 @@ import pinocchio as pin
 
 from ..linearization.state_form import first_order_form
 from ..nonlinear.dynamics import FreeDynamics
+from .bounds import multiplier_bounds
 from .coefficients import evaluate_point
+from .sampling import sample_periodic
 
-__all__ = ["OrbitError", "orbit_error", "orbit_start_error", "orbit_responses", "ORBIT_SAMPLES"]
+__all__ = ["OrbitError", "orbit_bound", "JACOBIAN_RTOL", "JACOBIAN_SAMPLES", "orbit_start_error", "orbit_responses", "ORBIT_SAMPLES"]
 
 #: Times per period at which the orbit's excursion is measured (its residual is relative to it).
 ORBIT_SAMPLES = 64
+
+#: Relative accuracy of the interpolated derivatives dA/dx along the orbit (the orbit's part of a bound is a
+#: first-order figure with a safety factor 2: a few digits are all it needs) and the most samples they take.
+JACOBIAN_RTOL = 1e-4
+JACOBIAN_SAMPLES = 256
 
 _FD_STEP = float(np.finfo(float).eps) ** (1 / 3)
 
 
 @dataclass(frozen=True)
 class OrbitError:
-    """The reference orbit's error as the bounds take it: ``responses`` (steps, nodes, m, m, m) dA at every
-    node per unit change of the orbit's start (:func:`orbit_responses`), ``ds`` (m,) the start's first-order
-    correction and ``unknown`` the norm of the correction's part of unknown direction (:func:`orbit_start_error`).
+    """The reference orbit's error as the bounds take it: ``ds`` (m,) the start's first-order correction,
+    ``unknown`` the norm of the correction's part of unknown direction (:func:`orbit_start_error`) and
+    ``responses`` (steps, nodes, m, m, m), dA at every node per unit change of the orbit's start
+    (:func:`orbit_responses`).
 
     Examples
     --------
     >>> from pinlin.periodic.orbit_error import OrbitError
-    >>> e = OrbitError(np.ones((1, 2, 1, 1, 1)), np.array([1e-9]), 1e-12)
+    >>> e = OrbitError(np.array([1e-9]), 1e-12, np.ones((1, 2, 1, 1, 1)))
     >>> e.step_norms()[0]
     array([[1.001e-09]])
     """
 
-    responses: np.ndarray
     ds: np.ndarray
     unknown: float
+    responses: np.ndarray
 
     def step_norms(self) -> list:
         """Per step, a (1, 1) bound on ||dA|| over its nodes (2-norms): ||dA . ds|| + ||dA|| unknown."""
@@ -55,22 +64,27 @@ class OrbitError:
         return [np.array([[value]]) for value in (signed + whole * self.unknown).max(axis=1)]
 
 
-def orbit_error(scene, orbit, steps: list, monodromy: np.ndarray) -> OrbitError | None:
-    """The :class:`OrbitError` of ``orbit`` along ``steps`` (None for a constant orbit: nothing to correct).
+def orbit_bound(scene, orbit, tr, eig, monodromy: np.ndarray) -> tuple[np.ndarray, list | None]:
+    """(the orbit's part of each multiplier's bound, per-step norm bounds on its dA for the Jordan bound, or
+    None): the first-order change of the multipliers from the orbit's correction, through the responses at
+    every node (:class:`OrbitError`, :func:`~.bounds.multiplier_bounds`).
 
     Examples
     --------
     >>> spec = pinlin.model.load_scene(pinlin.data_path("scenes/kapitza.toml"))
     >>> orbit = pinlin.periodic_orbit(spec.scene, spec.q0)
-    >>> from pinlin.periodic.orbit_error import orbit_error
-    >>> print(orbit_error(spec.scene, orbit, [], np.eye(2)))
-    None
+    >>> from pinlin.periodic.orbit_error import orbit_bound
+    >>> orbit_bound(spec.scene, orbit, None, None, np.eye(2))         # a constant orbit
+    (array([0., 0.]), None)
     """
-    responses = orbit_responses(scene, orbit, steps)
-    if responses is None:
-        return None
+    m = monodromy.shape[0]
+    if orbit.constant or orbit.solution is None or not tr.steps:
+        return np.zeros(m), None
     ds, unknown = orbit_start_error(scene, orbit, monodromy, 1 if orbit.autonomous else 0)
-    return OrbitError(responses, ds, unknown)
+    if not np.any(ds) and unknown == 0.0:
+        return np.zeros(m), None
+    error = OrbitError(ds, unknown, orbit_responses(scene, orbit, tr.steps))
+    return multiplier_bounds(tr, eig, error)[3], error.step_norms()
 
 
 def _tangent_state(scene, orbit, t: float) -> np.ndarray:
@@ -121,11 +135,26 @@ def _perturbed_A(scene, dyn: FreeDynamics, q, v, t: float, dx: np.ndarray) -> np
     return first_order_form(p.M, p.C, p.K, residual=False)[0]
 
 
+def _jacobian(scene, dyn: FreeDynamics, orbit, t: float) -> np.ndarray:
+    """dA/dx_c at the orbit's point at t, (m, m, m) with c last, by central differences in each free
+    coordinate's tangent direction and velocity."""
+    n, m = scene.n, 2 * scene.n
+    q, v = orbit.state(t)
+    speeds = np.concatenate([np.zeros(n), v[scene.free_dofs]])
+    J = np.zeros((m, m, m))
+    for c in range(m):
+        e = np.zeros(m)
+        e[c] = _FD_STEP * max(1.0, abs(speeds[c]))
+        J[..., c] = (_perturbed_A(scene, dyn, q, v, t, e) - _perturbed_A(scene, dyn, q, v, t, -e)) / (2 * e[c])
+    return J
+
+
 def orbit_responses(scene, orbit, steps: list) -> np.ndarray | None:
     """dA at every node of every step per unit change of the orbit's start: (S, nodes, m, m, m), the last
-    axis the start direction e_j, dA(t_i) = sum_k dA/dx_k (Phi(t_i, 0) e_j)_k, the derivatives by central
-    differences in each free coordinate's tangent direction and velocity (Pinocchio evaluations, the
-    acceleration recomputed); None for a constant orbit or no steps.
+    axis the start direction e_j, dA(t_i) = sum_c dA/dx_c (Phi(t_i, 0) e_j)_c.  The derivatives dA/dx (central
+    differences, Pinocchio evaluations with the acceleration recomputed) are periodic along the orbit: they
+    are sampled and interpolated (:mod:`.sampling`, to :data:`JACOBIAN_RTOL`), or evaluated at every node
+    where the interpolant does not converge.  None for a constant orbit or no steps.
 
     Examples
     --------
@@ -138,22 +167,23 @@ def orbit_responses(scene, orbit, steps: list) -> np.ndarray | None:
     if not steps or orbit.constant or orbit.solution is None:
         return None
     dyn = FreeDynamics(scene)
-    n = scene.n
-    m = 2 * n
-    out = np.zeros((len(steps), steps[0].nodes.size, m, m, m))
+    m = 2 * scene.n
+    times = np.concatenate([step.nodes for step in steps])
+    samples = sample_periodic(lambda t: _jacobian(scene, dyn, orbit, t).transpose(2, 0, 1), orbit.period,
+                              tol=JACOBIAN_RTOL, max_samples=JACOBIAN_SAMPLES, scales=_common_scale)
+    if samples.converged:
+        J = samples(times).transpose(0, 2, 3, 1)                 # (nodes of all steps, m, m, c)
+    else:
+        J = np.stack([_jacobian(scene, dyn, orbit, float(t)) for t in times])
+    J = J.reshape(len(steps), -1, m, m, m)
+    out = np.zeros_like(J)
     start = np.eye(m)                                       # Phi(t0, 0)
     for k, step in enumerate(steps):
-        for i, t in enumerate(step.nodes):
-            q, v = orbit.state(float(t))
-            speeds = np.concatenate([np.zeros(n), v[scene.free_dofs]])
-            J = np.zeros((m, m, m))                          # dA/dx_c
-            for c in range(m):
-                e = np.zeros(m)
-                e[c] = _FD_STEP * max(1.0, abs(speeds[c]))
-                J[..., c] = (_perturbed_A(scene, dyn, q, v, float(t), e)
-                             - _perturbed_A(scene, dyn, q, v, float(t), -e)) / (2 * e[c])
-            out[k, i] = J @ (step.stage[i] @ start)
+        out[k] = J[k] @ (step.stage @ start)[:, None]
         start = step.P @ start
     return out
 
 
+def _common_scale(samples: np.ndarray) -> np.ndarray:
+    """One scale for every group: the largest Frobenius norm of the whole Jacobian over the samples."""
+    return np.full(samples.shape[1], float(np.sqrt(np.sum(samples ** 2, axis=(1, 2, 3))).max()))
