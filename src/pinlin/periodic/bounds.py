@@ -38,7 +38,8 @@ import scipy.linalg
 from .collocation import Transitions
 from .cyclic import CyclicEigen
 
-__all__ = ["multiplier_bounds", "relative_condition", "coefficient_terms", "directional_terms", "monodromy_perturbation", "jordan_bound", "ORBIT_SAFETY", "ESTIMATE_SLACK", "PROJECTION_FACTOR"]
+__all__ = ["multiplier_bounds", "relative_condition", "coefficient_terms", "directional_terms",
+           "monodromy_perturbation", "jordan_bound", "ORBIT_SAFETY", "ESTIMATE_SLACK", "PROJECTION_FACTOR"]
 
 #: theta: share of a step's estimated error norm allowed in any direction, beyond its projection.
 ESTIMATE_SLACK = 1e-2
@@ -123,16 +124,15 @@ def directional_terms(steps: list, R: np.ndarray, L: np.ndarray, dA: np.ndarray)
     return np.einsum("si,sipk,sipq,siqk->k", W, left.conj(), dA, right)
 
 
-def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray, errors: np.ndarray | None = None) -> np.ndarray:
+def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray) -> np.ndarray:
     """First-order effect of an error dA of the integrated coefficients on each mode, summed over steps,
 
     .. math::  |v^H \\delta P u| \\le \\sum_i w_i \\sum_{ab} E_{ab}\\, \\|(\\Phi(t_1, t_i)^H v)_a\\|\\,
                \\|(\\Phi(t_i, t_0) u)_b\\|,
 
     with Phi(t_i, t_0) = Z_i the stage transitions, Phi(t_1, t_i) = P Z_i^-1, w_i the quadrature weights and
-    E the step's block bound on dA (rows split into E's blocks; ``errors`` (S, g, g) in place of the steps'
-    ``coefficient_error``).  ``R``, ``L``: (S, m, modes) the modes at each step's start and the left vectors
-    at its end.
+    E the step's block bound on dA (rows split into E's blocks).  ``R``, ``L``: (S, m, modes) the modes at
+    each step's start and the left vectors at its end.
 
     Examples
     --------
@@ -151,7 +151,7 @@ def coefficient_terms(steps: list, R: np.ndarray, L: np.ndarray, errors: np.ndar
     Z = np.stack([step.stage for step in steps])                              # (S, nodes, m, m), real
     P = np.stack([step.P for step in steps])
     S, nodes, m = Z.shape[:3]
-    E = np.stack([step.coefficient_error for step in steps]) if errors is None else errors
+    E = np.stack([step.coefficient_error for step in steps])
     modes, g = R.shape[2], E.shape[1]
 
     def block_norms(X):

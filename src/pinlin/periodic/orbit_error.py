@@ -25,7 +25,8 @@ from .bounds import multiplier_bounds
 from .coefficients import evaluate_point
 from .sampling import sample_periodic
 
-__all__ = ["OrbitError", "orbit_bound", "JACOBIAN_RTOL", "JACOBIAN_SAMPLES", "orbit_start_error", "orbit_responses", "ORBIT_SAMPLES"]
+__all__ = ["OrbitError", "orbit_bound", "orbit_start_error", "orbit_responses", "ORBIT_SAMPLES", "JACOBIAN_RTOL",
+           "JACOBIAN_SAMPLES"]
 
 #: Times per period at which the orbit's excursion is measured (its residual is relative to it).
 ORBIT_SAMPLES = 64
