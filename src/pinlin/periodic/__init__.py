@@ -13,11 +13,13 @@ One concept per module:
 - :mod:`.collocation` -- step transitions of y' = A(t) y step by step,
   grouped into well-conditioned segments;
 - :mod:`.collocation_grid` -- the same on a step grid refined in rounds, for coefficients cheap at many times;
-- :mod:`.sampled` -- the transitions from sampled coefficients (or, where they do not converge, at the nodes);
+- :mod:`.jumps` -- jumps of the coefficients, found in their samples and located by bisection (step boundaries);
+- :mod:`.sampled` -- the transitions from sampled coefficients (or, where they do not converge, at the nodes
+  with a step boundary at each jump);
 - :mod:`.cyclic` -- multipliers and periodic eigenvectors of a segment product from the lifted block-cyclic
   matrix (the product is never formed for them);
-- :mod:`.bounds` -- each multiplier's error bound (integration error and eigensolver backward error through
-  its periodic condition);
+- :mod:`.bounds` -- each multiplier's error bound (integration error, eigensolver backward error and the
+  reference orbit's error through its periodic condition; the square-root bound of a Jordan pair at 1);
 - :mod:`.harmonics` -- frequencies of the Floquet modes from their harmonic content;
 - :mod:`.floquet_verdict` -- the stability verdict from multipliers, bounds and (conservative) Krein signatures;
 - :mod:`.result` -- :class:`FloquetAnalysis`, the result;
@@ -30,6 +32,7 @@ Scenes (a URDF model with periodic prescribed motions or an autonomous free osci
 - :mod:`.coefficients` -- :func:`variational_coefficients`: M(t), C(t), K(t) along a motion from Pinocchio's
   RNEA derivatives at the actual acceleration;
 - :mod:`.orbit_result` -- :class:`PeriodicOrbit`, the periodic reference motion;
+- :mod:`.orbit_error` -- the orbit's own error in its variational coefficients (its first-order correction);
 - :mod:`.shooting` -- :func:`periodic_orbit`, that motion by Newton shooting with the monodromy;
 - :mod:`.scene_floquet` -- :func:`floquet_analysis`, the Floquet analysis of a scene along its orbit;
 - :mod:`.multiblade_scene` -- :func:`multiblade_transform`, a scene's rotor in multi-blade coordinates.

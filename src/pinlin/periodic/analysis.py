@@ -17,7 +17,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..errors.deprecated import renamed_keywords
 from ..numerics.arrays import readonly
-from .bounds import multiplier_bounds, relative_condition
+from .bounds import jordan_bound, monodromy_perturbation, multiplier_bounds, relative_condition
 from .cyclic import cyclic_eigen
 from .floquet_verdict import floquet_verdict
 from .harmonics import harmonic_content
@@ -126,16 +126,26 @@ def floquet_from_first_order(A, period, *, rtol: float = RTOL, stages: int = STA
                     start=start, what="first-order A(t)")
 
 
-def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, *, rows, autonomous, start, what):
-    """The pipeline on the integrated transitions; ``form_after(monodromy)`` gives Omega (or None)."""
+def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, *, rows, autonomous, start, what,
+             orbit_errors=None):
+    """The pipeline on the integrated transitions; ``form_after(monodromy)`` gives Omega (or None);
+    ``orbit_errors(tr, eig, monodromy)``: the reference orbit's part of the bound and per-step norm bounds
+    on its dA (:func:`~.orbit_error.orbit_bound`), or None."""
     tr = integrated.transitions
     eig = cyclic_eigen(tr.factors)
-    bound, b_int, b_eig = multiplier_bounds(tr, eig)
     monodromy = np.eye(m)
     for factor in tr.factors:
         monodromy = factor @ monodromy
     form = form_after(monodromy)
     trivial, note = _trivial_mask(eig.multipliers, autonomous, form is not None)
+    bound, b_int, b_eig, b_orbit = multiplier_bounds(tr, eig)
+    norms = None
+    if orbit_errors is not None:
+        b_orbit, norms = orbit_errors(tr, eig, monodromy)
+        bound = bound + b_orbit
+    if np.count_nonzero(trivial) == 2:      # the Jordan block of a conservative family: a square-root bound
+        jordan = jordan_bound(monodromy, eig.multipliers, trivial, monodromy_perturbation(tr, norms))
+        bound[trivial] = np.maximum(bound[trivial], jordan)
     stability = floquet_verdict(eig.multipliers, bound, trivial=trivial, form=form, vectors=eig.right[:, 0, :].T,
                                 condition=relative_condition(tr, eig), safety=options.safety, trivial_note=note)
     step_errors = np.array([s.error for s in tr.steps])
@@ -147,7 +157,8 @@ def _analyse(integrated: Integrated, T, m, form_after, options: FloquetOptions, 
               f"{len(tr.factors)}-segment product from the lifted block-cyclic eigenproblem")
     return FloquetAnalysis(
         multipliers=readonly(eig.multipliers), error_bound=readonly(bound), integration_bound=readonly(b_int),
-        eigensolver_bound=readonly(b_eig), exponents=readonly(np.log(eig.multipliers.astype(complex)) / T),
+        eigensolver_bound=readonly(b_eig), orbit_bound=readonly(b_orbit),
+        exponents=readonly(np.log(eig.multipliers.astype(complex)) / T),
         trivial=readonly(trivial), conservative=form is not None, stability=stability,
         monodromy=readonly(monodromy), period=T, segments=len(tr.factors), steps=len(tr.steps),
         evaluations=integrated.evaluations, step_times=readonly(times), step_errors=readonly(step_errors),
@@ -259,10 +270,11 @@ def floquet_analysis_matrices(M, C, K, period, *, rtol: float = RTOL, stages: in
 
 def floquet_second_order(triple, fallback, n: int, period, options: FloquetOptions, *, start: float,
                          autonomous: bool = False, conservative: bool | None = None,
-                         what: str = "M, C, K") -> FloquetAnalysis:
+                         what: str = "M, C, K", orbit_errors=None) -> FloquetAnalysis:
     """:func:`floquet_analysis_matrices` on validated coefficients: ``triple(t)`` -> (3, n, n) stacked M, C, K
     (one evaluation), ``fallback()`` -> (M, C, K) checked callables for the integrator's nodes; ``start`` the
-    ``time.perf_counter()`` the run's elapsed time counts from."""
+    ``time.perf_counter()`` the run's elapsed time counts from; ``orbit_errors`` as ``_analyse`` takes it
+    (a scene's orbit)."""
     T = check_period(period)
     if conservative not in (None, True, False):
         raise ParameterError("conservative", f"expected None, True or False, got {conservative!r}")
@@ -285,4 +297,4 @@ def floquet_second_order(triple, fallback, n: int, period, options: FloquetOptio
         return None
 
     return _analyse(integrated, T, 2 * n, form_after, options, rows=np.arange(n), autonomous=autonomous,
-                    start=start, what=what)
+                    start=start, what=what, orbit_errors=orbit_errors)

@@ -17,6 +17,7 @@ import scipy.linalg
 
 from ..errors import IntegrationBudgetError, IntegrationError
 from .gauss_step import try_steps
+from .jumps import JUMP_ULPS, EdgeWatch
 from .options import GROWTH, MAX_STEPS, MAX_TIME, RTOL, STAGES
 
 __all__ = ["Transitions", "integrate_transitions", "group_segments", "balancing", "MAX_STEP_NORM"]
@@ -95,6 +96,7 @@ def integrate_transitions(
     max_steps: int = MAX_STEPS,
     max_time: float = MAX_TIME,
     max_step_norm: float = MAX_STEP_NORM,
+    breaks=(),
 ) -> Transitions:
     """Step transitions over [0, period] to a relative tolerance, grouped into well-conditioned segments.
 
@@ -116,6 +118,10 @@ def integrate_transitions(
     max_step_norm : float
         Largest h ||D^-1 A(t_mid) D||_2 of a step (D the balancing of A(0), t_mid its middle node): the
         Richardson estimate assumes the asymptotic range.
+    breaks : sequence of float
+        Times in (0, period) [s] that are step boundaries: the jumps of A (:mod:`.jumps`), which no step
+        may cross (its nodes would all lie on one side).  Jumps in the gap between two steps' outer nodes
+        are found as the steps go (:class:`.jumps.EdgeWatch`) and become step boundaries too.
 
     Raises
     ------
@@ -133,19 +139,23 @@ def integrate_transitions(
     7 True
     """
     start = time.perf_counter()
-    counted = [0]
+    counted, seen = [0], {}
 
     def values(times):
         counted[0] += len(times)
-        return np.stack([A(float(t)) for t in times])
+        seen["times"], seen["values"] = times, np.stack([A(float(t)) for t in times])
+        return seen["values"]
 
     A0 = values(np.array([0.0]))[0]
     d, scaling = balancing(A0)
     t, h = 0.0, _initial_step(A0 * scaling, period, stages, rtol)
     cap = max_step_norm / max(float(np.linalg.norm(A0 * scaling, 2)), 1e-300)
     steps, rejected = [], 0
+    stops = sorted(float(b) for b in breaks if 0.0 < b < period) + [float(period)]
+    watch = EdgeWatch(lambda t: values(np.array([t]))[0], rtol)
     while t < period * (1 - 1e-14):
-        h = min(h, cap, period - t)
+        stop = next(b for b in stops if b > t)
+        h = min(h, cap, stop - t)
         if len(steps) + rejected >= max_steps or time.perf_counter() - start > max_time:
             budget = "max_steps" if len(steps) + rejected >= max_steps else "max_time"
             raise IntegrationBudgetError(
@@ -161,10 +171,22 @@ def integrate_transitions(
         # one node: the cap is a heuristic, an SVD per node is not
         cap = max_step_norm / max(float(trial.rate[0]), 1e-300)
         if trial.accepted[0]:
+            jump = watch.check(seen["times"], seen["values"])
+            if jump is not None and abs(jump - t) > JUMP_ULPS * np.spacing(t):
+                # a jump in the gap before this step's first node: restart at the step that holds it
+                if jump < t:
+                    t = steps.pop().t0
+                stops = sorted(stops + [jump])
+                watch.forget()
+                continue
             steps.extend(trial.steps)
-            t += h
+            t = stop if h == stop - t else t + h
         else:
             rejected += 1
+            jump = watch.inside(seen["times"], seen["values"])
+            if jump is not None and t < jump < stop:
+                stops = sorted(stops + [jump])
+                continue
             if h > 1.2 * cap:
                 continue    # outside the asymptotic range the Richardson estimate is not trusted: h = cap
         h *= min(2.0, max(0.2, 0.9 * max(float(trial.ratio[0]), 1e-30) ** (-1.0 / (2 * stages + 1))))

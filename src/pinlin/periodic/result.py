@@ -24,11 +24,16 @@ class FloquetAnalysis(Result):
         mu_k, eigenvalues of the monodromy Phi(T), largest modulus first; computed from the segment
         transitions (periodic eigenproblem), never from ``monodromy``.
     error_bound : ndarray (m,)
-        Bound on |mu_k computed - mu_k exact| (absolute): ``integration_bound + eigensolver_bound``, each a
-        first-order figure (:mod:`pinlin.periodic.bounds`).
+        Bound on |mu_k computed - mu_k exact| (absolute): ``integration_bound + eigensolver_bound +
+        orbit_bound``, each a first-order figure (:mod:`pinlin.periodic.bounds`); for the trivial pair of a
+        conservative family's orbit (a Jordan block at 1) at least the square-root bound of
+        :func:`~pinlin.periodic.bounds.jordan_bound`.
     integration_bound, eigensolver_bound : ndarray (m,)
-        Its two parts: the integration's estimated error and the eigensolver's backward error, each through
+        Its parts: the integration's estimated error and the eigensolver's backward error, each through
         the multiplier's condition in the periodic eigenproblem.
+    orbit_bound : ndarray (m,) or None
+        The part from the reference orbit's own error (:mod:`pinlin.periodic.orbit_error`; zeros for
+        coefficients given by the caller).
     exponents : ndarray, complex (m,)
         log(mu_k) / T (principal branch) [1/s]; real parts unambiguous, imaginary parts modulo 2 pi / T.
     frequencies : ndarray (m,)
@@ -95,12 +100,13 @@ class FloquetAnalysis(Result):
     integration_error: float
     elapsed: float
     method: str
+    orbit_bound: np.ndarray | None = None
     deferred: object = field(default=None, repr=False)
 
     _dict_exclude = ("deferred",)
-    _dict_fields = ("multipliers", "error_bound", "integration_bound", "eigensolver_bound", "exponents",
-                    "frequencies", "harmonic_content", "dominant_harmonic", "trivial", "conservative", "stability",
-                    "monodromy", "period", "segments", "steps", "evaluations", "step_times", "step_errors",
+    _dict_fields = ("multipliers", "error_bound", "integration_bound", "eigensolver_bound", "orbit_bound",
+                    "exponents", "frequencies", "harmonic_content", "dominant_harmonic", "trivial", "conservative",
+                    "stability", "monodromy", "period", "segments", "steps", "evaluations", "step_times", "step_errors",
                     "integration_error", "elapsed", "method")
 
     @functools.cached_property

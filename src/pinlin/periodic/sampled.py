@@ -16,10 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ParameterError, SamplingError
+from ..errors import AccuracyWarning, ParameterError, SamplingError, warn_user
 from ..linearization.state_form import first_order_form
 from .collocation import Transitions, integrate_transitions
 from .collocation_grid import integrate_on_grid
+from .jumps import find_jumps
 from .options import FloquetOptions
 from .sampling import PeriodicSamples, group_norms, sample_periodic
 from .second_order import SecondOrderA, lagrangian_defect, structure_defect
@@ -77,31 +78,56 @@ def second_order_scales(samples: np.ndarray) -> np.ndarray:
     return np.array([M, max(C, np.sqrt(M * K)), K])
 
 
-def _sample(F, T, options: FloquetOptions, names, scales=group_norms) -> PeriodicSamples | None:
+@dataclass(frozen=True)
+class _Sampled:
+    """What the sampling found: the interpolant (None on the nodes path), and where it did not converge the
+    jumps located in the samples (:mod:`.jumps`), the step boundaries they need and the calls the search made."""
+
+    samples: PeriodicSamples | None
+    jumps: tuple = ()
+    breaks: tuple = ()
+    calls: int = 0
+
+
+def _sample(F, T, options: FloquetOptions, names, scales=group_norms) -> _Sampled:
     if options.sampling == "nodes":
-        return None
+        return _Sampled(None)
     tol = max(options.rtol, SAMPLING_FLOOR * _EPS)
     samples = sample_periodic(F, T, tol=tol, max_samples=options.max_samples, scales=scales)
     finite = np.isfinite(samples.samples).all(axis=(2, 3))                  # (N, groups)
     if not finite.all():
         j, g = np.argwhere(~finite)[0]
         raise ParameterError(names[g], f"non-finite entries at t = {j * T / samples.samples.shape[0]:.6g} s")
-    if not samples.converged and options.sampling == "spectral":
+    if samples.converged:
+        return _Sampled(samples)
+    jumps, breaks, calls = find_jumps(F, T, samples.samples, samples.scale, tol)
+    found = (f"; jumps of the coefficients located at t = {', '.join(f'{t!r}' for t in jumps)} s"
+             if jumps else "")
+    errors = ", ".join(f"{e:.1e}" for e in samples.history)
+    if options.sampling == "spectral":
         raise SamplingError(
             f"sampling='spectral': the trigonometric interpolant of the coefficients did not reach the relative "
             f"error {tol:.2g} with {samples.evaluations} samples (measured errors after each doubling: "
-            f"{', '.join(f'{e:.1e}' for e in samples.history)}); the coefficients are not smooth enough: use "
-            f"sampling='nodes'", samples.evaluations, samples.history, tol)
-    return samples
+            f"{errors}){found}; the coefficients are not smooth enough: use sampling='nodes'",
+            samples.evaluations, samples.history, tol)
+    warn_user(f"Floquet: the coefficients' trigonometric interpolant did not reach the relative error {tol:.2g} "
+              f"with {samples.evaluations} samples (measured errors after each doubling: {errors}){found}: "
+              f"evaluating them at every collocation node instead"
+              f"{' with a step boundary at each jump' if jumps else ''} (slower; the interpolant's error does "
+              f"not enter the bounds)", AccuracyWarning)
+    return _Sampled(samples, tuple(jumps), tuple(breaks), calls)
 
 
-def _at_nodes(tr: Transitions, samples: PeriodicSamples | None, defect: float) -> Integrated:
+def _at_nodes(tr: Transitions, sampled: _Sampled, defect: float) -> Integrated:
     """The transitions of the nodes path, counting the samples spent first where sampling did not converge."""
-    if samples is None:
+    if sampled.samples is None:
         return Integrated(tr, tr.evaluations, None, defect, "coefficients at every node")
-    return Integrated(tr, tr.evaluations + samples.evaluations, None, defect,
-                      f"coefficients at every node (sampling did not converge: {samples.evaluations} samples "
-                      f"spent first)")
+    spent = sampled.samples.evaluations + sampled.calls
+    at = (f"; steps end at the jumps located at t = {', '.join(f'{t:.17g}' for t in sampled.jumps)} s"
+          if sampled.jumps else "")
+    return Integrated(tr, tr.evaluations + spent, None, defect,
+                      f"coefficients at every node (sampling did not converge: {spent} samples "
+                      f"spent first{at})")
 
 
 def _described(samples: PeriodicSamples, tr: Transitions) -> str:
@@ -128,9 +154,11 @@ def first_order_transitions(func, T: float, m: int, options: FloquetOptions) -> 
     >>> print(nodes.samples is None, nodes.description)
     True coefficients at every node
     """
-    samples = _sample(lambda t: func(t)[None], T, options, ("A",))
+    sampled = _sample(lambda t: func(t)[None], T, options, ("A",))
+    samples = sampled.samples
     if samples is None or not samples.converged:
-        return _at_nodes(integrate_transitions(func, T, m, **_integration(options)), samples, float("nan"))
+        tr = integrate_transitions(func, T, m, breaks=sampled.breaks, **_integration(options))
+        return _at_nodes(tr, sampled, float("nan"))
     n = m // 2
     top = np.hstack([np.zeros((n, n)), np.eye(n)]) if m % 2 == 0 else None
     second = top is not None and bool(np.all(samples.samples[:, 0, :n] == top))
@@ -204,11 +232,12 @@ def second_order_transitions(triple, fallback, T: float, n: int, options: Floque
     16 True
     """
     give_up = options.structure_tol * _EPS
-    samples = _sample(triple, T, options, ("M", "C", "K"), second_order_scales)
+    sampled = _sample(triple, T, options, ("M", "C", "K"), second_order_scales)
+    samples = sampled.samples
     if samples is None or not samples.converged:
         A = SecondOrderA(*fallback(), n, give_up)
-        tr = integrate_transitions(A, T, 2 * n, **_integration(options))
-        return _at_nodes(tr, samples, A.defect)
+        tr = integrate_transitions(A, T, 2 * n, breaks=sampled.breaks, **_integration(options))
+        return _at_nodes(tr, sampled, A.defect)
     S = samples.samples
     A_samples = first_order_form(S[:, 0], S[:, 1], S[:, 2], times=np.arange(S.shape[0]) * T / S.shape[0],
                                  residual=False)[0]

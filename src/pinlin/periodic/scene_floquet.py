@@ -14,6 +14,7 @@ from .coefficients import variational_coefficients
 from .inputs import coefficient
 from .options import (GROWTH, HARMONICS, MAX_SAMPLES, MAX_STEPS, MAX_TIME, RTOL, SAFETY, SAMPLING, STAGES,
                       STRUCTURE_TOL, FloquetOptions)
+from .orbit_error import orbit_bound
 from .orbit_result import PeriodicOrbit
 from .result import FloquetAnalysis
 
@@ -91,4 +92,5 @@ def floquet_analysis(scene: Scene, orbit: PeriodicOrbit, *, rtol: float = RTOL, 
 
     return floquet_second_order(triple, checked, scene.n, orbit.period, options, start=start,
                                 autonomous=orbit.autonomous, conservative=conservative,
-                                what=f"scene {scene.robot.name!r}, n = {scene.n}")
+                                what=f"scene {scene.robot.name!r}, n = {scene.n}",
+                                orbit_errors=lambda tr, eig, monodromy: orbit_bound(scene, orbit, tr, eig, monodromy))
