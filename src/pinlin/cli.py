@@ -43,8 +43,9 @@ from .errors import (
     PinlinError,
     SceneFileError,
 )
+from .model.examples import ExampleNotFoundError
 from .model.loading import EXAMPLES
-from .model.scene_file import SCENE_FORMAT, SceneSpec, default_scene_path, load_scene
+from .model.scene_file import SCENE_FORMAT, SceneSpec, default_scene_path
 from .report import REPORT_SCHEMA, REPORT_VERSION, analyze, render_text, write_plot
 from .report.campbell import (
     CAMPBELL_FORMAT,
@@ -53,7 +54,7 @@ from .report.campbell import (
     render_campbell_text,
     write_campbell_plot,
 )
-from .report.command import Stopwatch, plain_text
+from .report.command import CommandParser, Stopwatch, plain_text
 from .report.outputs import (
     check_animation_path,
     check_figure_path,
@@ -61,7 +62,13 @@ from .report.outputs import (
     write_animation,
     write_json,
 )
-from .report.scenes import default_campbell_scene_path, default_sweep_scene_path, example_spec
+from .report.scenes import (
+    bundled_scenes,
+    default_campbell_scene_path,
+    default_sweep_scene_path,
+    example_spec,
+    load_scene_argument,
+)
 from .report.periodic import analyze_periodic, check_periodic_options, is_periodic, render_periodic_text
 from .report.sweep import render_sweep_text, run_sweep, sweep_document, sweep_plan, write_sweep_plot
 from .report.sweep.parameters import SWEEP_FORMAT
@@ -85,6 +92,10 @@ __all__ = [
 ]
 
 EXIT_OK, EXIT_INPUT, EXIT_COMPUTATION = 0, 2, 3
+
+#: How the SCENE argument of every command is described in its help.
+SCENE_HELP = ("scene file (TOML), or the name of a bundled scene ({names}) read from any folder; "
+              "default: {default}")
 
 #: Default joint stiffness of ``--example`` [N m/rad]: stiff enough that gravity only softens a 6-DOF arm a little.
 DEFAULT_EXAMPLE_STIFFNESS = 1e3
@@ -110,15 +121,17 @@ def _parser() -> argparse.ArgumentParser:
         prog="pinlin", description="Linearized equations of motion of multibody systems from a URDF."
     )
     parser.add_argument("--version", action="version", version=f"pinlin {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=CommandParser)
     a = _command(
         sub, "analyze", "equilibrium, linearized matrices and their analysis for a scene",
         "Find the equilibrium of a scene, linearize it into M, D, G, S, N and report them with their errors and "
-        "timings.  Without a scene file, the bundled default scene (the paper's double pendulum with follower "
-        "load) is analysed.",
+        "timings.  Without a scene file, the bundled default scene (the double pendulum with follower load of "
+        "Example 6.2 of the paper pinlin grew from, on the linearized equations of multibody dynamics) is "
+        "analysed.",
         "Scene file format (TOML):\n" + SCENE_FORMAT,
     )
-    a.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum")
+    a.add_argument("scene", nargs="?", help=SCENE_HELP.format(names=", ".join(bundled_scenes()),
+                                                               default="the bundled double pendulum"))
     a.add_argument("--example", metavar="NAME",
                    help=f"analyse an example-robot-data model with elastic joints instead ({', '.join(sorted(EXAMPLES))})")
     a.add_argument("--stiffness", type=float, default=DEFAULT_EXAMPLE_STIFFNESS,
@@ -135,7 +148,8 @@ def _parser() -> argparse.ArgumentParser:
         "values where it changes.  Without a scene file, the bundled double pendulum over its follower load.",
         "The [sweep] table of a scene file (TOML):\n" + SWEEP_FORMAT,
     )
-    s.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled double pendulum sweep")
+    s.add_argument("scene", nargs="?", help=SCENE_HELP.format(names="as for analyze",
+                                                               default="the bundled double pendulum sweep"))
     s.add_argument("--parameter", metavar="PATH", help="the parameter to sweep instead of the file's [sweep] table")
     s.add_argument("--values", metavar="VALUES", help="its values: START:STOP:NUM or a comma-separated list")
     s.add_argument("--no-boundaries", action="store_true", help="skip the exact boundaries between the points")
@@ -149,7 +163,8 @@ def _parser() -> argparse.ArgumentParser:
         "critical speed is sqrt(k/m).",
         "The [campbell] table of a scene file (TOML):\n" + CAMPBELL_FORMAT,
     )
-    c.add_argument("scene", nargs="?", help="scene file (TOML); default: the bundled rotating ring")
+    c.add_argument("scene", nargs="?", help=SCENE_HELP.format(names="as for analyze",
+                                                               default="the bundled rotating ring"))
     c.add_argument("--joint", metavar="NAME", help="the prescribed joint whose speed varies (default: the only one)")
     c.add_argument("--speeds", metavar="SPEEDS", help="START:STOP:NUM or a comma-separated list [rad/s or m/s]")
     _outputs(c, "Campbell document (the sweep document with a campbell section)")
@@ -204,7 +219,7 @@ def _analyze(args) -> int:
         raise ParameterError("--example", "give either a scene file or --example, not both")
     with args.clock.part("loading"):
         spec = example_spec(args.example, args.stiffness, args.damping) if args.example else (
-            load_scene(args.scene or default_scene_path()))
+            load_scene_argument(args.scene, default_scene_path()))
     args.source = spec.path
     if spec.sweep is not None:
         sweep_plan(spec, spec.sweep)  # a [sweep] table is checked here too, not only by `pinlin sweep`
@@ -250,7 +265,7 @@ def _sweep(args) -> int:
         raise ParameterError("--parameter", "--parameter and --values go together")
     values = None if args.values is None else _values(args.values)
     with args.clock.part("loading"):
-        spec = load_scene(args.scene or default_sweep_scene_path())
+        spec = load_scene_argument(args.scene, default_sweep_scene_path())
     args.source = spec.path
     options = args.parameter is not None
     table = {"parameter": args.parameter, "values": values} if options else spec.sweep
@@ -269,7 +284,7 @@ def _campbell(args) -> int:
         _check_outputs(args)
     speeds = None if args.speeds is None else _values(args.speeds, "--speeds")
     with args.clock.part("loading"):
-        spec = load_scene(args.scene or default_campbell_scene_path())
+        spec = load_scene_argument(args.scene, default_campbell_scene_path())
     args.source = spec.path
     plan = campbell_plan(spec, args.joint, speeds)
     with args.clock.part("campbell"):
@@ -334,7 +349,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return commands[args.command](args)
     except (InputError, ModelTooLargeError, MissingDependencyError) as exc:
-        print(f"pinlin: error: {_one_line(exc)}", file=sys.stderr)
+        option = "--example: " if isinstance(exc, ExampleNotFoundError) else ""  # the only option naming one
+        print(f"pinlin: error: {option}{_one_line(exc)}", file=sys.stderr)
         return EXIT_INPUT
     except PinlinError as exc:  # ComputationError, and any other pinlin error: a failed computation
         where = "" if args.source is None or isinstance(exc, SceneFileError) else f"{args.source}: "

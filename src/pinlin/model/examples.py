@@ -122,7 +122,7 @@ class ExampleNotFoundError(NameNotFoundError, ParameterError):
         self.name, self.valid, self.close = str(name), tuple(valid), tuple(close)
         self.parameter = "name"
         hint = f"did you mean {', '.join(repr(c) for c in self.close)}? " if self.close else ""
-        InputError.__init__(self, f"name: unknown example {self.name!r}; {hint}known examples: {list(self.valid)}")
+        InputError.__init__(self, f"unknown example {self.name!r}; {hint}known examples: {list(self.valid)}")
 
 
 @dataclass(frozen=True)
@@ -182,12 +182,47 @@ class ExampleInfo:
 
 
 class ExampleTable(tuple):
-    """The rows of :func:`examples`, a tuple of :class:`ExampleInfo` that prints one row a line."""
+    """The rows of :func:`examples`, a tuple of :class:`ExampleInfo` that prints one row a line.
+
+    Indexed by position (a row, or a slice: a table) or by name (the row of that robot); ``name in table``
+    asks for a name.
+
+    Raises
+    ------
+    ExampleNotFoundError
+        Indexed by a name that no row has (a ``ValueError``, as every bad input; it lists the close names).
+
+    Examples
+    --------
+    >>> table = pinlin.examples()
+    >>> table["ur5"].nv, "ur5" in table, table[0] == table[table[0].name]
+    (6, True, True)
+    """
+
+    def __getitem__(self, key):
+        if isinstance(key, str):
+            for row in self:
+                if row.name == key:
+                    return row
+            names = self.names()
+            raise ExampleNotFoundError(key, names, difflib.get_close_matches(key, names, n=4, cutoff=0.6))
+        item = super().__getitem__(key)
+        return ExampleTable(item) if isinstance(key, slice) else item
+
+    def __contains__(self, item) -> bool:
+        return item in self.names() if isinstance(item, str) else super().__contains__(item)
 
     def __repr__(self) -> str:
         return f"{len(self)} example robots:\n" + "\n".join(repr(row) for row in self)
 
     def names(self) -> tuple[str, ...]:
+        """The robots' names, in the table's order.
+
+        Examples
+        --------
+        >>> "panda" in pinlin.examples().names()
+        True
+        """
         return tuple(row.name for row in self)
 
 

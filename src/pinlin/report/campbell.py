@@ -80,10 +80,17 @@ class _Reader:
 
     def joint(self, joint) -> str:
         prescribed = sorted(self.spec.scene.prescribed)
+        motions = sorted(self.spec.scene.motions)
+        if not prescribed and motions:  # only periodic motions: no constant speed to sweep
+            self.fail("joint", f"the scene prescribes no constant speed: {', '.join(map(repr, motions))} "
+                      f"{'follows a periodic motion' if len(motions) == 1 else 'follow periodic motions'}, so "
+                      f"its equations are time-periodic; analyse it with 'pinlin analyze "
+                      f"{self.spec.path or 'SCENE'}' (the Floquet multipliers), or in Python with "
+                      f"pinlin.floquet_campbell for a Campbell diagram of a periodic family")
         if joint is None:
             if len(prescribed) != 1:
                 self.fail("joint", f"name the prescribed joint whose speed varies; the scene prescribes "
-                          f"{prescribed or 'no joint'}")
+                          f"{prescribed or 'no joint: add a [prescribed] table'}")
             return prescribed[0]
         if joint not in prescribed:
             have = prescribed or "none: add a [prescribed] table"

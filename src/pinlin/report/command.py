@@ -5,17 +5,20 @@
   ``Total 7.52 s: loading 3.1 ms, analysis 15.5 ms, plot a.png 7.4 s, other 1.2 ms``;
 - :func:`duration` -- seconds as ``15.5 ms`` or ``7.52 s``;
 - :func:`plain_text` -- reStructuredText markup of a docstring (````x````,
-  ``:func:`~pinlin.x```) as the plain text ``--help`` prints.
+  ``:func:`~pinlin.x```) as the plain text ``--help`` prints;
+- :class:`CommandParser` -- a subcommand's parser that refuses a misspelt option with its own usage.
 """
 
 from __future__ import annotations
 
+import argparse
+import difflib
 import re
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-__all__ = ["Stopwatch", "duration", "plain_text"]
+__all__ = ["Stopwatch", "duration", "plain_text", "CommandParser"]
 
 #: What the total of :meth:`Stopwatch.summary` does not include.
 NOT_INCLUDED = "Python start-up and imports not included"
@@ -92,3 +95,34 @@ def plain_text(text: str) -> str:
         return target.rsplit(".", 1)[-1] if short else target
 
     return _LITERAL.sub(r"\1", _ROLE.sub(role, text))
+
+
+class CommandParser(argparse.ArgumentParser):
+    """A subcommand's parser that refuses unknown arguments itself, with its own usage and the close option
+    names, instead of handing them back to the top-level parser (whose usage says nothing of the options).
+
+    Examples
+    --------
+    >>> import contextlib, io
+    >>> from pinlin.report.command import CommandParser
+    >>> parser = CommandParser(prog="pinlin analyze")
+    >>> _ = parser.add_argument("--stiffness", type=float)
+    >>> err = io.StringIO()
+    >>> with contextlib.redirect_stderr(err):
+    ...     try:
+    ...         parser.parse_args(["--stifness", "3"])
+    ...     except SystemExit as exc:
+    ...         code = exc.code
+    >>> code, err.getvalue().splitlines()[-1]
+    (2, 'pinlin analyze: error: unrecognized arguments: --stifness 3 (did you mean --stiffness?)')
+    """
+
+    def parse_known_args(self, args=None, namespace=None):
+        namespace, extra = super().parse_known_args(args, namespace)
+        if extra:
+            options = set(re.findall(r"--[a-z][a-z-]*", self.format_usage()))
+            close = [m for word in extra if word.startswith("-")
+                     for m in difflib.get_close_matches(word.split("=")[0], options, n=1)]
+            hint = f" (did you mean {', '.join(close)}?)" if close else ""
+            self.error(f"unrecognized arguments: {' '.join(extra)}{hint}")
+        return namespace, extra

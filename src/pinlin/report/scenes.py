@@ -3,19 +3,26 @@ elastic joints) and the bundled scenes of ``pinlin sweep`` and ``pinlin campbell
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
-from ..errors import ParameterError
+from ..errors import ParameterError, SceneFileError
 from ..model.elements import JointDamper, JointSpring
 from ..model.loading import data_path, load_example
 from ..model.scene import Scene
-from ..model.scene_file import SceneSpec
+from ..model.scene_file import SceneSpec, load_scene
 
-__all__ = ["example_spec", "default_sweep_scene_path", "default_campbell_scene_path"]
+__all__ = ["example_spec", "default_sweep_scene_path", "default_campbell_scene_path", "bundled_scenes", "scene_path",
+           "load_scene_argument", "BUNDLED_SCENES"]
+
+#: The folder of the bundled scenes, relative to :func:`pinlin.data_path`; a SCENE argument that is not a file
+#: but the name of one of them (``turntable.toml`` or ``turntable``) reads the bundled scene, from any folder.
+BUNDLED_SCENES = "scenes"
 
 
 def default_sweep_scene_path():
-    """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower 
+    """The bundled scene of ``pinlin sweep`` without a file: the double pendulum over its follower load.
 
     Examples
     --------
@@ -26,7 +33,9 @@ def default_sweep_scene_path():
 
 
 def default_campbell_scene_path():
-    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring (theory: rotating r
+    """The bundled scene of ``pinlin campbell`` without a file: the particle in a rotating ring.
+
+    Its critical speed is sqrt(k/m) (theory: rotating ring).
 
     Examples
     --------
@@ -89,3 +98,63 @@ def example_spec(name: str, stiffness: float, damping: float = 0.0) -> SceneSpec
     scene = Scene(robot, elements)
     floating = any(robot.joint(n).kind == "JointModelFreeFlyer" for n in robot.joint_names)
     return SceneSpec(scene, scene.check_configuration(q0), not floating, floating, f"example:{name}")
+
+
+def bundled_scenes() -> tuple[str, ...]:
+    """The names of the bundled scene files that a command's SCENE argument accepts from any folder.
+
+    Examples
+    --------
+    >>> "turntable.toml" in pinlin.report.scenes.bundled_scenes()
+    True
+    """
+    root = data_path(f"{BUNDLED_SCENES}/double_pendulum.toml").parent
+    return tuple(sorted(p.name for p in root.glob("*.toml")))
+
+
+def scene_path(text: str | Path) -> Path:
+    """The file a SCENE argument names: the path itself where it is a file, else the bundled scene of that name.
+
+    A bare name (no folder) of a bundled scene, with or without ``.toml``, is read from the package wherever
+    the command runs; anything else is returned as given, for :func:`~pinlin.model.load_scene` to read or to
+    refuse (naming the file).
+
+    Examples
+    --------
+    >>> pinlin.report.scenes.scene_path("turntable.toml") == pinlin.data_path("scenes/turntable.toml")
+    True
+    >>> pinlin.report.scenes.scene_path("kapitza").name
+    'kapitza.toml'
+    """
+    path = Path(text)
+    if path.is_file() or path.parent != Path("."):
+        return path
+    name = path.name if path.suffix == ".toml" else f"{path.name}.toml"
+    return data_path(f"{BUNDLED_SCENES}/{name}") if name in bundled_scenes() else path
+
+
+def load_scene_argument(text: str | None, default: Path) -> SceneSpec:
+    """The scene of a command's SCENE argument (:func:`scene_path`), or its bundled ``default`` without one.
+
+    Raises
+    ------
+    SceneFileError
+        No such file and no bundled scene of that name (the message lists the bundled scenes), or
+        anything :func:`~pinlin.model.load_scene` refuses.
+
+    Examples
+    --------
+    >>> from pinlin.report.scenes import load_scene_argument
+    >>> default = pinlin.data_path("scenes/double_pendulum.toml")
+    >>> load_scene_argument("kapitza", default).scene.motions["pivot"]
+    Harmonic(...)
+    >>> load_scene_argument(None, default).path == str(default)
+    True
+    """
+    if text is None:
+        return load_scene(default)
+    path = scene_path(text)
+    if not path.is_file():
+        raise SceneFileError(f"scene file not found (bundled scenes, read by name from any folder: "
+                             f"{', '.join(bundled_scenes())})", str(path))
+    return load_scene(path)
