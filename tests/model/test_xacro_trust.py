@@ -102,6 +102,12 @@ def test_a_runaway_expression_ends_at_the_time_limit(tmp_path):
     assert time.perf_counter() - start < 10.0
 
 
+def test_a_runaway_allocation_ends_at_the_memory_limit(tmp_path):
+    path = _xacro(tmp_path, mass="${len('x' * 10**10)}")
+    with pytest.raises(pinlin.UrdfError, match=r"ran out of memory \(limit 1073741824 bytes\)"):
+        pinlin.expand_xacro(path, trust=True, memory_limit=2**30)
+
+
 def test_an_include_outside_the_allowed_folders_is_refused(tmp_path):
     outside = tmp_path / "outside"
     outside.mkdir()

@@ -126,7 +126,7 @@ def _untrusted(source: str) -> UrdfError:
 def _run_sandbox(request: dict, source: str) -> str:
     try:
         done = subprocess.run(
-            [sys.executable, "-I", str(_SANDBOX)], input=json.dumps(request), capture_output=True, text=True,
+            [sys.executable, "-I", "-B", str(_SANDBOX)], input=json.dumps(request), capture_output=True, text=True,
             timeout=request["time_limit"], check=False,
         )
     except subprocess.TimeoutExpired:

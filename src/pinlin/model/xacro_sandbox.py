@@ -2,7 +2,7 @@
 
 A xacro is a program: its ``${...}`` expressions are Python, its ``$(env ...)``
 reads the environment, ``load_yaml`` and ``<xacro:include>`` read files.  This
-script is run as a file (``python -I xacro_sandbox.py``), imports only the standard
+script is run as a file (``python -I -B xacro_sandbox.py``), imports only the standard
 library and xacro, and reads one JSON request on stdin::
 
     {"path": ..., "mappings": {...}, "search_path": [...], "roots": [...],
@@ -131,11 +131,11 @@ def _install(xacro, substitution_args, request: dict) -> None:
     xacro.safe_eval, substitution_args._eval, xacro.get_include_files = checked_eval, checked_sub_eval, checked_includes
 
 
-def _answer(exc: BaseException) -> _Answer | None:
-    """The refusal or explained failure behind an exception that xacro may have wrapped."""
+def _cause(exc: BaseException, kinds: tuple[type, ...]) -> BaseException | None:
+    """The first exception of ``kinds`` behind ``exc``, which xacro may have wrapped (its ``exc``, the chain)."""
     seen = set()
     while exc is not None and id(exc) not in seen:
-        if isinstance(exc, _Answer):
+        if isinstance(exc, kinds):
             return exc
         seen.add(id(exc))
         exc = getattr(exc, "exc", None) or exc.__cause__ or exc.__context__
@@ -153,10 +153,10 @@ def _main() -> None:
         _install(xacro, substitution_args, request)
         answer = {"urdf": xacro.process_file(request["path"], mappings=request["mappings"]).toxml()}
     except Exception as exc:  # the process boundary: every failure becomes one answer (module docstring)
-        explained = _answer(exc)
+        explained = _cause(exc, (_Answer,))
         if explained is not None:
             answer = {"error": str(explained), "explained": True}
-        elif isinstance(exc, MemoryError):
+        elif _cause(exc, (MemoryError,)) is not None:
             answer = {"error": f"ran out of memory (limit {request['memory_limit']} bytes)", "explained": False}
         else:
             answer = {"error": f"{type(exc).__name__}: {exc}", "explained": False}
