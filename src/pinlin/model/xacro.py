@@ -54,7 +54,14 @@ _SANDBOX = Path(__file__).with_name("xacro_sandbox.py")
 
 
 def is_xacro(path: str | os.PathLike) -> bool:
-    """True for a ``.xacro`` file (``robot.urdf.xacro``, ``robot.xacro``)."""
+    """True for a ``.xacro`` file (``robot.urdf.xacro``, ``robot.xacro``).
+
+    Examples
+    --------
+    >>> from pinlin.model.xacro import is_xacro
+    >>> is_xacro("robot.urdf.xacro"), is_xacro("robot.urdf")
+    (True, False)
+    """
     return os.fspath(path).endswith(".xacro")
 
 
@@ -73,6 +80,12 @@ def package_search_path(package_dirs: Sequence[str | os.PathLike] | None = None)
     ------
     ParameterError
         ``package_dirs`` is a single string or not a sequence of paths.
+
+    Examples
+    --------
+    >>> from pinlin.model.xacro import package_search_path
+    >>> package_search_path(["/ws/src"])[0].as_posix()
+    '/ws/src'
     """
     if package_dirs is None:
         package_dirs = []
@@ -84,6 +97,20 @@ def package_search_path(package_dirs: Sequence[str | os.PathLike] | None = None)
     return out
 
 
+def _package_directories(search_path: Sequence[Path]) -> dict[str, Path]:
+    """Package name -> its directory: the first ``<dir>/pkg`` or entry named ``pkg`` (module docstring)."""
+    out: dict[str, Path] = {}
+    for d in search_path:
+        try:
+            children = sorted(c for c in d.iterdir() if c.is_dir())
+        except OSError:  # missing or unreadable: nothing found there, as for a missing folder
+            continue
+        for child in children:
+            out.setdefault(child.name, child)
+        out.setdefault(d.name, d)
+    return out
+
+
 def find_package(name: str, search_path: Sequence[Path]) -> Path:
     """The directory of package ``name`` on ``search_path``.
 
@@ -91,14 +118,19 @@ def find_package(name: str, search_path: Sequence[Path]) -> Path:
     ------
     UrdfError
         No such package; the message lists the directories searched.
+
+    Examples
+    --------
+    >>> from pinlin.model.xacro import find_package
+    >>> data = pinlin.data_path("urdf/double_pendulum.urdf").parent.parent
+    >>> find_package("urdf", [data]) == data / "urdf"
+    True
     """
-    for d in search_path:
-        if (d / name).is_dir():
-            return d / name
-        if d.name == name and d.is_dir():
-            return d
-    shown = [str(d) for d in search_path] or "nothing: pass package_dirs=[...] or set ROS_PACKAGE_PATH"
-    raise UrdfError(f"package {name!r} not found; searched {shown}", name)
+    found = _package_directories(search_path).get(name)
+    if found is None:
+        shown = [str(d) for d in search_path] or "nothing: pass package_dirs=[...] or set ROS_PACKAGE_PATH"
+        raise UrdfError(f"package {name!r} not found; searched {shown}", name)
+    return found
 
 
 def _check_allow(allow: Collection[str]) -> frozenset[str]:
@@ -123,7 +155,7 @@ def _untrusted(source: str) -> UrdfError:
     )
 
 
-def _run_sandbox(request: dict, source: str) -> str:
+def _run_sandbox(request: dict, search_path: list[Path], source: str) -> str:
     try:
         done = subprocess.run(
             [sys.executable, "-I", "-B", str(_SANDBOX)], input=json.dumps(request), capture_output=True, text=True,
@@ -138,6 +170,8 @@ def _run_sandbox(request: dict, source: str) -> str:
         raise UrdfError(f"{source}: xacro's process ended without an answer (exit status {done.returncode}, "
                         f"time limit {request['time_limit']} s, memory limit {request['memory_limit']} bytes): "
                         f"{' '.join(done.stderr.split())[-300:]}", source) from None
+    if "missing_package" in answer:
+        find_package(answer["missing_package"], search_path)  # raises, naming the directories searched
     if "error" in answer:
         said = " ".join(answer["error"].split())
         raise UrdfError(f"{source}: {said}" if answer["explained"] else
@@ -215,14 +249,16 @@ def expand_xacro(
         if not isinstance(trust, bool):
             raise ParameterError("trust", f"expected True or False, got {trust!r}")
         raise _untrusted(source)
+    packages = _package_directories(search_path)
     request = {
         "xacro_location": _xacro_location(),
         "path": os.path.abspath(source),
         "mappings": {str(k): str(v) for k, v in (xacro_args or {}).items()},
-        "search_path": [str(d) for d in search_path],
-        "roots": [str(Path(source).resolve().parent), *(str(d) for d in search_path)],
+        "packages": {name: str(d) for name, d in packages.items()},
+        # the file's folder, the search path and every package on it (a package may be a link to elsewhere)
+        "roots": [str(Path(source).resolve().parent), *(str(d) for d in [*search_path, *packages.values()])],
         "allow": sorted(allow),
         "time_limit": time_limit,
         "memory_limit": memory_limit,
     }
-    return _run_sandbox(request, source)
+    return _run_sandbox(request, search_path, source)

@@ -5,13 +5,13 @@ reads the environment, ``load_yaml`` and ``<xacro:include>`` read files.  This
 script is run as a file (``python -I -B xacro_sandbox.py``), imports only the standard
 library and xacro, and reads one JSON request on stdin::
 
-    {"path": ..., "mappings": {...}, "search_path": [...], "roots": [...],
+    {"path": ..., "mappings": {...}, "packages": {name: folder}, "roots": [...],
      "allow": [...], "memory_limit": bytes, "time_limit": seconds, "xacro_location": folder}
 
 It lowers its own limits first (address space, CPU time, size of any file written:
 zero), then refuses what ``allow`` does not list (:data:`PERMISSIONS`), expands, and
-writes one JSON answer on stdout: ``{"urdf": text}`` or ``{"error": message,
-"explained": bool}`` (explained: a refusal or a missing package, said as is).  Any
+writes one JSON answer on stdout: ``{"urdf": text}``, ``{"missing_package": name}`` or
+``{"error": message, "explained": bool}`` (explained: a refusal, said as is).  Any
 failure inside xacro (``ExpatError``, ``RecursionError``, xacro's own) becomes such an
 answer, so the parent raises one pinlin error.
 """
@@ -38,12 +38,8 @@ PERMISSIONS = {
 _PYTHON_ESCAPE = re.compile(r"__|\bpython\s*\.")
 
 
-class _Answer(Exception):
-    """A failure this script explains itself (its message is the answer)."""
-
-
-class _Refused(_Answer):
-    """A construct the caller did not allow."""
+class _Refused(Exception):
+    """A construct the caller did not allow (its message is the answer)."""
 
 
 def _refuse(what: str, permission: str) -> _Refused:
@@ -70,23 +66,19 @@ def _inside(path: str, roots: list[str]) -> bool:
     return any(os.path.commonpath([real, root]) == root for root in roots)
 
 
-def _find_package(name: str, search_path: list[str]) -> str:
-    for d in search_path:
-        if os.path.isdir(os.path.join(d, name)):
-            return os.path.join(d, name)
-        if os.path.basename(os.path.normpath(d)) == name and os.path.isdir(d):
-            return d
-    raise _Answer(f"package {name!r} not found; searched {search_path or 'nothing'}: pass package_dirs=[...] "
-                  f"or set ROS_PACKAGE_PATH")
+class _MissingPackage(Exception):
+    """A package not in the request's ``packages`` (the parent names the directories searched)."""
 
 
 def _install(xacro, substitution_args, request: dict) -> None:
     """Point xacro's package lookup at the search path and put the refusals in place."""
-    allow, search_path = set(request["allow"]), request["search_path"]
+    allow, packages = set(request["allow"]), request["packages"]
     roots = [os.path.realpath(r) for r in request["roots"]]
 
     def find(pkg):
-        return _find_package(pkg, search_path)
+        if pkg not in packages:
+            raise _MissingPackage(pkg)
+        return packages[pkg]
 
     def resolve(spec):
         if spec.startswith("package://"):
@@ -153,8 +145,10 @@ def _main() -> None:
         _install(xacro, substitution_args, request)
         answer = {"urdf": xacro.process_file(request["path"], mappings=request["mappings"]).toxml()}
     except Exception as exc:  # the process boundary: every failure becomes one answer (module docstring)
-        explained = _cause(exc, (_Answer,))
-        if explained is not None:
+        explained, missing = _cause(exc, (_Refused,)), _cause(exc, (_MissingPackage,))
+        if missing is not None:
+            answer = {"missing_package": missing.args[0]}
+        elif explained is not None:
             answer = {"error": str(explained), "explained": True}
         elif _cause(exc, (MemoryError,)) is not None:
             answer = {"error": f"ran out of memory (limit {request['memory_limit']} bytes)", "explained": False}
