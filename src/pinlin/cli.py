@@ -116,6 +116,11 @@ def _outputs(p: argparse.ArgumentParser, what: str) -> None:
     p.add_argument("--precision", type=int, default=6, help=f"significant digits in the text (1 to {MAX_PRECISION})")
 
 
+def _trust_xacro(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--trust-xacro", action="store_true",
+                   help="expand the scene's .xacro robot file: a xacro is a program, use only files you trust")
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="pinlin", description="Linearized equations of motion of multibody systems from a URDF."
@@ -132,6 +137,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     a.add_argument("scene", nargs="?", help=SCENE_HELP.format(names=", ".join(bundled_scenes()),
                                                                default="the bundled double pendulum"))
+    _trust_xacro(a)
     a.add_argument("--example", metavar="NAME",
                    help=f"analyse an example-robot-data model with elastic joints instead ({', '.join(sorted(EXAMPLES))})")
     a.add_argument("--stiffness", type=float, default=DEFAULT_EXAMPLE_STIFFNESS,
@@ -150,6 +156,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     s.add_argument("scene", nargs="?", help=SCENE_HELP.format(names="as for analyze",
                                                                default="the bundled double pendulum sweep"))
+    _trust_xacro(s)
     s.add_argument("--parameter", metavar="PATH", help="the parameter to sweep instead of the file's [sweep] table")
     s.add_argument("--values", metavar="VALUES", help="its values: START:STOP:NUM or a comma-separated list")
     s.add_argument("--no-boundaries", action="store_true", help="skip the exact boundaries between the points")
@@ -165,6 +172,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     c.add_argument("scene", nargs="?", help=SCENE_HELP.format(names="as for analyze",
                                                                default="the bundled rotating ring"))
+    _trust_xacro(c)
     c.add_argument("--joint", metavar="NAME", help="the prescribed joint whose speed varies (default: the only one)")
     c.add_argument("--speeds", metavar="SPEEDS", help="START:STOP:NUM or a comma-separated list [rad/s or m/s]")
     _outputs(c, "Campbell document (the sweep document with a campbell section)")
@@ -219,7 +227,7 @@ def _analyze(args) -> int:
         raise ParameterError("--example", "give either a scene file or --example, not both")
     with args.clock.part("loading"):
         spec = example_spec(args.example, args.stiffness, args.damping) if args.example else (
-            load_scene_argument(args.scene, default_scene_path()))
+            load_scene_argument(args.scene, default_scene_path(), trust_xacro=args.trust_xacro))
     args.source = spec.path
     if spec.sweep is not None:
         sweep_plan(spec, spec.sweep)  # a [sweep] table is checked here too, not only by `pinlin sweep`
@@ -265,7 +273,7 @@ def _sweep(args) -> int:
         raise ParameterError("--parameter", "--parameter and --values go together")
     values = None if args.values is None else _values(args.values)
     with args.clock.part("loading"):
-        spec = load_scene_argument(args.scene, default_sweep_scene_path())
+        spec = load_scene_argument(args.scene, default_sweep_scene_path(), trust_xacro=args.trust_xacro)
     args.source = spec.path
     options = args.parameter is not None
     table = {"parameter": args.parameter, "values": values} if options else spec.sweep
@@ -284,7 +292,7 @@ def _campbell(args) -> int:
         _check_outputs(args)
     speeds = None if args.speeds is None else _values(args.speeds, "--speeds")
     with args.clock.part("loading"):
-        spec = load_scene_argument(args.scene, default_campbell_scene_path())
+        spec = load_scene_argument(args.scene, default_campbell_scene_path(), trust_xacro=args.trust_xacro)
     args.source = spec.path
     plan = campbell_plan(spec, args.joint, speeds)
     with args.clock.part("campbell"):

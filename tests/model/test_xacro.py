@@ -59,7 +59,8 @@ def test_xacro_with_arguments_and_a_package_include(workspace, include, monkeypa
     monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
     path = _robot(workspace, include)
     m, length = 2.5, 0.8
-    robot = pinlin.load_urdf(path, xacro_args={"mass": m, "length": length}, package_dirs=[workspace / "ws"])
+    robot = pinlin.load_urdf(path, xacro_args={"mass": m, "length": length}, package_dirs=[workspace / "ws"],
+                             trust_xacro=True)
     assert robot.joint_names == ("bar1_joint",) and robot.source == str(path)
     body = robot.model.inertias[1]
     assert_allclose(body.mass, m, rtol=1e-15)
@@ -68,14 +69,14 @@ def test_xacro_with_arguments_and_a_package_include(workspace, include, monkeypa
     sys = pinlin.linearize(pinlin.Scene(robot, gravity=(0, 0, -9.81)), np.zeros(1))
     assert_allclose(sys.M, [[m * length**2 / 3]], rtol=1e-12)
     assert_allclose(sys.S, [[m * 9.81 * length / 2]], rtol=1e-12)  # hanging: g m L / 2
-    default = pinlin.load_urdf(path, package_dirs=[workspace / "ws"])  # the <xacro:arg> defaults
+    default = pinlin.load_urdf(path, package_dirs=[workspace / "ws"], trust_xacro=True)  # the <xacro:arg> defaults
     assert_allclose(default.model.inertias[1].mass, 1.0)
 
 
 def test_ros_package_path_is_searched_after_package_dirs(workspace, monkeypatch, tmp_path):
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(workspace / "ws"))
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "install"))
-    robot = pinlin.load_urdf(_robot(workspace, "package://bars/urdf/bar.xacro"))
+    robot = pinlin.load_urdf(_robot(workspace, "package://bars/urdf/bar.xacro"), trust_xacro=True)
     assert robot.nv == 1
     assert package_search_path(["/first"])[0].as_posix() == "/first"
     assert package_search_path()[1].as_posix() == (tmp_path / "install" / "share").as_posix()
@@ -87,7 +88,7 @@ def test_missing_package_names_the_search_path(workspace, monkeypatch):
     monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
     monkeypatch.delenv("AMENT_PREFIX_PATH", raising=False)
     with pytest.raises(pinlin.UrdfError, match=r"package 'bars' not found; searched \['/nowhere'\]"):
-        pinlin.load_urdf(_robot(workspace, "package://bars/urdf/bar.xacro"), package_dirs=["/nowhere"])
+        pinlin.load_urdf(_robot(workspace, "package://bars/urdf/bar.xacro"), package_dirs=["/nowhere"], trust_xacro=True)
 
 
 def test_bad_xacro_input(workspace, tmp_path):
@@ -101,10 +102,10 @@ def test_bad_xacro_input(workspace, tmp_path):
     broken = tmp_path / "broken.xacro"
     broken.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="${undefined}"/></robot>')
     with pytest.raises(pinlin.UrdfError, match=r"broken.xacro: xacro could not expand the file .*undefined"):
-        pinlin.load_urdf(broken)
+        pinlin.load_urdf(broken, trust_xacro=True)
 
 
 def test_missing_xacro_package_names_the_extra(workspace, monkeypatch):
     monkeypatch.setitem(sys.modules, "xacro", None)  # import xacro now raises ImportError
     with pytest.raises(pinlin.MissingDependencyError, match=r"pip install 'pinlin\[xacro\]'"):
-        pinlin.load_urdf(_robot(workspace, "package://bars/urdf/bar.xacro"))
+        pinlin.load_urdf(_robot(workspace, "package://bars/urdf/bar.xacro"), trust_xacro=True)

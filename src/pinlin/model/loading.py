@@ -15,7 +15,7 @@ import contextlib
 import os
 import tempfile
 import warnings
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Collection, Iterator, Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -202,14 +202,16 @@ def load_urdf(
     inertia: str = "check",
     xacro_args: Mapping[str, object] | None = None,
     package_dirs: Sequence[str | os.PathLike] | None = None,
+    trust_xacro: bool = False,
+    xacro_allow: Collection[str] = (),
 ) -> Robot:
     """Load a URDF (or xacro) file as a :class:`Robot` (kinematics and inertia only).
 
     Parameters
     ----------
     path : path-like
-        The URDF file, or a ``.xacro`` file (expanded with :func:`pinlin.model.xacro.expand_xacro`).
-        Meshes it names are never opened.
+        The URDF file, or a ``.xacro`` file (expanded with :func:`pinlin.model.xacro.expand_xacro`
+        if ``trust_xacro``). Meshes it names are never opened.
     free_flyer : bool
         Mount the root link on a free-flyer joint (floating base, nq = nv + 1).
     locked : sequence of str or mapping, optional
@@ -226,18 +228,25 @@ def load_urdf(
         Directories searched first for ``package://`` and ``$(find pkg)`` in a
         ``.xacro`` file, before ``ROS_PACKAGE_PATH`` and ``AMENT_PREFIX_PATH``
         (:func:`pinlin.model.xacro.package_search_path`).
+    trust_xacro : bool
+        Expand a ``.xacro`` file: a xacro is a program, so only one you trust (default: refused).
+        It runs in a child process with time and memory limits (:mod:`pinlin.model.xacro`).
+    xacro_allow : collection of str
+        What a trusted xacro may also do (``"env"``, ``"optenv"``, ``"load_yaml"``,
+        ``"python"``, ``"include"``: :data:`pinlin.model.xacro.XACRO_PERMISSIONS`); default nothing.
 
     Raises
     ------
     UrdfError
         Missing file, malformed XML, invalid URDF, no movable joint, non-finite or (with
-        ``inertia="check"``) impossible inertia, anything the URDF parser or xacro could not read.
+        ``inertia="check"``) impossible inertia, anything the URDF parser or xacro could not read;
+        a ``.xacro`` file without ``trust_xacro=True``, or doing what ``xacro_allow`` does not list.
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
         Too deep for the parser, or Pinocchio's data would not fit in memory (said before parsing).
     ParameterError
-        A bad ``inertia``, ``memory_limit``, ``xacro_args`` or ``package_dirs``.
+        A bad ``inertia``, ``memory_limit``, ``xacro_args``, ``package_dirs`` or ``xacro_allow``.
     MissingDependencyError
         A ``.xacro`` file without the ``xacro`` package (``pip install 'pinlin[xacro]'``).
 
@@ -254,7 +263,7 @@ def load_urdf(
     if not p.is_file():
         raise UrdfError(f"URDF file not found: {source}", source)
     if is_xacro(source):
-        text = expand_xacro(p, xacro_args, package_dirs)
+        text = expand_xacro(p, xacro_args, package_dirs, trust=trust_xacro, allow=xacro_allow)
         model = _load_text(text, None, source, free_flyer, memory_limit, inertia)
         return _finish(model, source, locked, memory_limit)
     if xacro_args is not None:

@@ -17,7 +17,10 @@ What pinlin refuses rather than get wrong (Pinocchio 4.1's MJCF parser):
 - a body with several joints: the parser merges them into a composite joint,
   whose analytic derivatives in Pinocchio 4.1 disagree with finite differences
   (checked: 10 % errors in dtau/dq); give each joint its own body;
-- ``<include>``: not followed by the parser.
+- ``<include>``: not followed by the parser;
+- more than :data:`~.mjcf_checks.MAX_MJCF_BODIES` bodies or nesting deeper than
+  :data:`~.mjcf_checks.MAX_MJCF_DEPTH` (a :class:`~pinlin.ModelTooLargeError`): the
+  parser recurses along the tree and its memory grows with the cube of the body count.
 
 Other ``<equality>`` kinds (joint, tendon, flex couplings) are not constraints
 pinlin models: they are left out with a warning; inactive entries
@@ -173,7 +176,9 @@ def load_mjcf(
     JointNotFoundError
         A locked joint does not exist.
     ModelTooLargeError
-        Pinocchio's data would not fit in memory.
+        More bodies or deeper nesting than Pinocchio's parser handles (:data:`.mjcf_checks.MAX_MJCF_BODIES`,
+        :data:`.mjcf_checks.MAX_MJCF_DEPTH`, checked before it reads the file), or Pinocchio's data would
+        not fit in memory.
     ParameterError
         ``inertia`` is not "check" or "repair".
 

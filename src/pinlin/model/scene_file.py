@@ -5,6 +5,7 @@ Format (every table is optional except ``[robot]``)::
     [robot]
     urdf = "double_pendulum.urdf"   # relative to this file, else a bundled URDF of that name
     # example = "ur5"               # or an example-robot-data model (instead of urdf)
+    # trust_xacro = true            # expand a .xacro urdf: a xacro is a program, trust only your own
     free_flyer = false
     # locked = ["joint2"]           # joints held fixed; or a table: locked = { joint2 = 0.5 }
 
@@ -90,7 +91,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import PinlinError, SceneFileError
+from ..errors import ParameterError, PinlinError, SceneFileError
 from .elements import (
     Bushing,
     DeadWrench,
@@ -119,7 +120,7 @@ SCENE_FORMAT = __doc__.split("Format (every table is optional except ``[robot]``
 _ELEMENT_TABLES = ("spring", "damper", "rayleigh", "follower", "dead", "spring_damper", "bushing")
 _TOP = {"robot", "scene", "prescribed", "start", "constraint", "sweep", "campbell", *_ELEMENT_TABLES}
 _KEYS = {
-    "robot": {"urdf", "example", "free_flyer", "locked"},
+    "robot": {"urdf", "example", "free_flyer", "locked", "trust_xacro"},
     "scene": {"gravity", "urdf_damping"},
     "start": {"q", "joints", "reference", "equilibrium", "balancing"},
     "spring": {"joint", "stiffness", "rest"},
@@ -175,8 +176,9 @@ def default_scene_path() -> Path:
     return data_path("scenes/double_pendulum.toml")
 
 
-def _robot(r: Reader, table: dict, base: Path) -> Robot:
+def _robot(r: Reader, table: dict, base: Path, trust_xacro: bool) -> Robot:
     r.check_keys(table, _KEYS["robot"], "robot")
+    trust_xacro = trust_xacro or bool(r.get(table, "trust_xacro", "robot", bool))
     urdf = r.get(table, "urdf", "robot", str)
     example = r.get(table, "example", "robot", str)
     if (urdf is None) == (example is None):
@@ -198,7 +200,7 @@ def _robot(r: Reader, table: dict, base: Path) -> Robot:
                 path = data_path(f"urdf/{urdf}")
             except PinlinError:
                 r.fail("robot.urdf", f"URDF file not found: {base / urdf} (nor a bundled URDF of that name)")
-        return load_urdf(path, free_flyer=bool(free_flyer), locked=locked)
+        return load_urdf(path, free_flyer=bool(free_flyer), locked=locked, trust_xacro=trust_xacro)
     except SceneFileError:
         raise
     except PinlinError as exc:
@@ -317,14 +319,24 @@ def _start(r: Reader, table: dict, scene: Scene) -> tuple[np.ndarray, bool, bool
 
 
 
-def load_scene(path) -> SceneSpec:
+def load_scene(path, *, trust_xacro: bool = False) -> SceneSpec:
     """Read a scene file (format in :data:`SCENE_FORMAT`).
+
+    Parameters
+    ----------
+    path : path-like
+        The TOML file.
+    trust_xacro : bool
+        Expand a ``.xacro`` robot file (as its own ``[robot] trust_xacro = true`` does): a
+        xacro is a program, so only one you trust (:func:`pinlin.load_urdf`); default refused.
 
     Raises
     ------
     SceneFileError
         Missing or unreadable file, invalid TOML, unknown or wrongly typed key,
         or anything the robot, elements or start refuse; the message names the key.
+    ParameterError
+        ``trust_xacro`` is not a boolean.
 
     Examples
     --------
@@ -347,7 +359,9 @@ def load_scene(path) -> SceneSpec:
     r.check_keys(doc, _TOP, None)
     if "robot" not in doc:
         r.fail("robot", "missing the [robot] table")
-    robot = _robot(r, doc["robot"], path.parent)
+    if not isinstance(trust_xacro, bool):
+        raise ParameterError("trust_xacro", f"expected True or False, got {trust_xacro!r}")
+    robot = _robot(r, doc["robot"], path.parent, trust_xacro)
     elements = _elements(r, doc, robot)
     constraints = read_constraints(r, doc, robot, _KEYS["constraint"])
     scene_table = doc.get("scene", {})

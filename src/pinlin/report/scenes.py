@@ -133,8 +133,10 @@ def scene_path(text: str | Path) -> Path:
     return data_path(f"{BUNDLED_SCENES}/{name}") if name in bundled_scenes() else path
 
 
-def load_scene_argument(text: str | None, default: Path) -> SceneSpec:
+def load_scene_argument(text: str | None, default: Path, *, trust_xacro: bool = False) -> SceneSpec:
     """The scene of a command's SCENE argument (:func:`scene_path`), or its bundled ``default`` without one.
+
+    ``trust_xacro``: the caller trusts a xacro the scene names (see :func:`~pinlin.model.load_scene`).
 
     Raises
     ------
@@ -152,9 +154,9 @@ def load_scene_argument(text: str | None, default: Path) -> SceneSpec:
     True
     """
     if text is None:
-        return load_scene(default)
+        return load_scene(default, trust_xacro=trust_xacro)
     path = scene_path(text)
     if not path.is_file():
         raise SceneFileError(f"scene file not found (bundled scenes, read by name from any folder: "
                              f"{', '.join(bundled_scenes())})", str(path))
-    return load_scene(path)
+    return load_scene(path, trust_xacro=trust_xacro)
