@@ -6,12 +6,10 @@ write into, so it must belong to one caller at a time (Pinocchio's Model/Data sp
 :func:`workspace` gives each thread its own :class:`Workspace` per robot (shared by
 the robot's scenes, whose models differ only in gravity), created on that
 thread's first use (behind the memory guard) and reused afterwards:
-``createData`` costs about 35-40 us on a 9-joint arm and 40-48 ms on a 100-link
-chain, 4x and 60-80x a whole linearization, so a fresh one per call would be the
-slower choice (benchmarks/bench_workspace.py measures both).  Within one thread computations
+``createData`` costs 4x (9-joint arm) to 60-80x (100-link chain) a whole linearization,
+so a fresh one per call would be the slower choice (benchmarks/bench_workspace.py).  Within one thread computations
 run one after another, and each copies what it reads out of ``Data`` before the
-next algorithm runs, so nested calls (a linearization inside a simulation's
-callback) are safe too.
+next algorithm runs, so nested calls (a linearization inside a simulation's callback) are safe too.
 """
 
 from __future__ import annotations
@@ -293,7 +291,7 @@ class Evaluation:
         """
         if self._world_jacobian is None:
             self._ensure_kinematics()
-            J = np.array(self.data.J)
+            J = np.array(self.data.J).reshape(6, self.model.nv)  # (6,) from the binding when nv = 1
             J.flags.writeable = False
             self._world_jacobian = J
         return self._world_jacobian
@@ -312,13 +310,13 @@ class Evaluation:
             local = self._jacobians.get((frame_id, pin.ReferenceFrame.LOCAL))
             if local is None:
                 self._ensure_kinematics()
-                local = np.array(pin.getFrameJacobian(self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL))
+                local = _frame_jacobian(self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL)
                 self._jacobians[(frame_id, pin.ReferenceFrame.LOCAL)] = local
             if reference == pin.ReferenceFrame.LOCAL_WORLD_ALIGNED:
                 R = self.frame_rotation(frame_id)
                 self._jacobians[key] = np.vstack([R @ local[:3], R @ local[3:]])
             elif reference != pin.ReferenceFrame.LOCAL:
-                self._jacobians[key] = np.array(pin.getFrameJacobian(self.model, self.data, frame_id, reference))
+                self._jacobians[key] = _frame_jacobian(self.model, self.data, frame_id, reference)
         return self._jacobians[key]
 
     def world_aligned_jacobian(self, frame_id: int) -> np.ndarray:
@@ -334,7 +332,7 @@ class Evaluation:
         J = self._jacobians.get(key)
         if J is None:
             self._ensure_kinematics()
-            J = self._jacobians[key] = pin.getFrameJacobian(
+            J = self._jacobians[key] = _frame_jacobian(
                 self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
             )
         return J
@@ -395,3 +393,8 @@ class BatchPoints:
         if value is None:
             value = self._memo[owner] = build()
         return value
+
+
+def _frame_jacobian(model: pin.Model, data: pin.Data, frame_id: int, reference) -> np.ndarray:
+    """A frame Jacobian as a (6, nv) array (the binding returns a (6,) vector when nv = 1)."""
+    return np.reshape(pin.getFrameJacobian(model, data, frame_id, reference), (6, model.nv))

@@ -320,7 +320,8 @@ def _body_energies(scene: Scene, ev: Evaluation, u: np.ndarray, w: float) -> dic
         inertia = model.inertias[j]
         if inertia.mass == 0 and not np.any(inertia.inertia):
             continue
-        J = pin.getJointJacobian(model, ev.data, j, pin.ReferenceFrame.LOCAL)
+        # (6, nv): the binding returns a (6,) vector when nv = 1
+        J = np.reshape(pin.getJointJacobian(model, ev.data, j, pin.ReferenceFrame.LOCAL), (6, model.nv))
         out[_body_name(model, j)] = w / 4 * _form(J @ u, inertia.matrix())
     return out
 

@@ -270,7 +270,7 @@ def _frame_terms(model, data, frame_id, axis, normal, flat_tol):
     du/dq: d a_w = dtheta x a_w with dtheta = J_ang dq; p = n - (n.a_w) a_w, u = p / |p|.
     """
     pin.updateFramePlacement(model, data, frame_id)
-    J6 = pin.getFrameJacobian(model, data, frame_id, _LWA)
+    J6 = np.reshape(pin.getFrameJacobian(model, data, frame_id, _LWA), (6, model.nv))  # (6,) when nv = 1
     o, a_w, u, s = _rim(model, data, frame_id, axis, normal, flat_tol)
     da = -pin.skew(a_w) @ J6[3:]
     dp = -np.outer(a_w, normal @ da) - (normal @ a_w) * da
