@@ -178,6 +178,7 @@ def contact_velocity_derivative(
     q, v = np.asarray(q, dtype=float), np.asarray(v, dtype=float)
     pin.computeForwardKinematicsDerivatives(model, data, q, v, np.zeros(model.nv))  # also fills the joint Jacobians
     dvel_dq, _ = pin.getFrameVelocityDerivatives(model, data, frame_id, _LWA)
+    dvel_dq = np.reshape(dvel_dq, (6, model.nv))  # (6,) from the binding when nv = 1
     _, J6, u, du = _frame_terms(model, data, frame_id, axis, normal, flat_tol)
     omega = J6[3:] @ v
     # Pinocchio's LOCAL_WORLD_ALIGNED derivative is that of the velocity of the world point at o held
