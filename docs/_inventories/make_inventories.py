@@ -27,7 +27,7 @@ HERE = Path(__file__).resolve().parent
 PROJECTS = {
     "python": ("https://docs.python.org/3", "3", {
         "library/collections.abc": [("class", f"collections.abc.{n}", None)
-                                    for n in ("Callable", "Iterable", "Iterator", "Mapping", "Sequence")],
+                                    for n in ("Callable", "Collection", "Iterable", "Iterator", "Mapping", "Sequence")],
         "library/os": [("class", "os.PathLike", None)],
         "library/pathlib": [("class", "pathlib.Path", None)],
         "library/dataclasses": [("function", "dataclasses.replace", None)],
