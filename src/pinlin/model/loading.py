@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
 import warnings
 from collections.abc import Collection, Iterator, Mapping, Sequence
 from pathlib import Path
@@ -25,6 +24,7 @@ from ..errors import JointNotFoundError, ParameterError, UrdfError
 from .examples import discover_examples, example_file, find_example
 from .inertia import check_bodies, check_inertia_option
 from .memory import check_memory, check_memory_limit
+from .parser_output import captured_stderr
 from .robot import Robot
 from .urdf_text import check_urdf_xml
 from .xacro import expand_xacro, is_xacro
@@ -117,26 +117,6 @@ def reduce_model(model: pin.Model, locked, source: str) -> pin.Model:
 
 
 # ----------------------------------------------------------------------------- loading
-
-
-@contextlib.contextmanager
-def captured_stderr() -> Iterator[list[str]]:
-    """Capture what the C++ URDF parser prints on file descriptor 2."""
-    out: list[str] = []
-    try:
-        fd = os.dup(2)
-    except OSError:  # no usable stderr: nothing to capture
-        yield out
-        return
-    with tempfile.TemporaryFile(mode="w+b") as tmp:
-        os.dup2(tmp.fileno(), 2)
-        try:
-            yield out
-        finally:
-            os.dup2(fd, 2)
-            os.close(fd)
-            tmp.seek(0)
-            out.append(tmp.read().decode(errors="replace").strip())
 
 
 def _report_parser_messages(messages: list[str], source: str) -> None:

@@ -42,7 +42,8 @@ import pinocchio as pin
 from ..errors import MjcfError
 from .constraints import Constraint, FrameConstraint, PointConstraint
 from .inertia import check_bodies, check_inertia_option
-from .loading import captured_stderr, reduce_model
+from .loading import reduce_model
+from .parser_output import captured_stderr
 from .memory import check_memory
 from .mjcf_checks import EqualityEntry, check_mjcf, equality_entries
 from .robot import Robot
